@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs every Debian package michi needs to build, test and benchmark (Debian 12). Skips what is installed.
+set -euo pipefail
+PACKAGES=(
+    build-essential cmake pkg-config git
+    libompl-dev ompl-demos
+    libfcl-dev libccd-dev liboctomap-dev
+    liburdfdom-dev liburdfdom-headers-dev
+    libeigen3-dev
+    libboost-dev libboost-graph-dev libboost-filesystem-dev libboost-program-options-dev libboost-serialization-dev
+    libboost-system-dev
+    libyaml-cpp-dev
+    libassimp-dev
+    libgtest-dev libgmock-dev
+    libbenchmark-dev
+    python3 sqlite3
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$p")
+    fi
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+    echo "setup: all ${#PACKAGES[@]} packages already installed" >&2
+    exit 0
+fi
+echo "setup: installing ${missing[*]}" >&2
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,643 @@
+#include <michi/tools/Problem.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <boost/filesystem.hpp>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+using michi::validity::Obstacle;
+using michi::validity::Shape;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            /** Reads typed values out of a YAML tree and turns every mistake into a ProblemError naming the key. */
+            class Reader
+            {
+            public:
+                explicit Reader(std::string file) : file_(std::move(file))
+                {
+                }
+
+                [[noreturn]] void fail(const std::string &key, const std::string &message) const
+                {
+                    throw ProblemError(file_, key, message);
+                }
+
+                YAML::Node require(const YAML::Node &map, const std::string &name, const std::string &key) const
+                {
+                    if (!map.IsMap())
+                        fail(key, "expected a mapping");
+                    const YAML::Node n = map[name];
+                    if (!n)
+                        fail(key.empty() ? name : key + "." + name, "missing (required)");
+                    return n;
+                }
+
+                double number(const YAML::Node &n, const std::string &key) const
+                {
+                    if (!n.IsScalar())
+                        fail(key, "expected a number");
+                    const std::string text = n.Scalar();
+                    // accept "pi", "-pi/2", "0.5*pi" as conveniences for joint values
+                    try
+                    {
+                        return parseNumber(text);
+                    }
+                    catch (const std::exception &)
+                    {
+                        fail(key, "expected a number, got '" + text + "'");
+                    }
+                }
+
+                double number(const YAML::Node &map, const std::string &name, const std::string &key,
+                              double fallback) const
+                {
+                    const YAML::Node n = map[name];
+                    return n ? number(n, key + "." + name) : fallback;
+                }
+
+                std::vector<double> numbers(const YAML::Node &n, const std::string &key, std::size_t size = 0) const
+                {
+                    if (!n.IsSequence())
+                        fail(key, size ? "expected a list of " + std::to_string(size) + " numbers" :
+                                         "expected a list of numbers");
+                    if (size && n.size() != size)
+                        fail(key, "expected " + std::to_string(size) + " numbers, got " + std::to_string(n.size()));
+                    std::vector<double> values;
+                    for (std::size_t i = 0; i < n.size(); ++i)
+                        values.push_back(number(n[i], key + "[" + std::to_string(i) + "]"));
+                    return values;
+                }
+
+                std::string text(const YAML::Node &n, const std::string &key) const
+                {
+                    if (!n.IsScalar())
+                        fail(key, "expected a string");
+                    return n.Scalar();
+                }
+
+                unsigned int count(const YAML::Node &n, const std::string &key) const
+                {
+                    const double v = number(n, key);
+                    if (!(v >= 1.) || v != std::floor(v) || v > 1e9)
+                        fail(key, "expected a positive integer");
+                    return static_cast<unsigned int>(v);
+                }
+
+                bool flag(const YAML::Node &n, const std::string &key) const
+                {
+                    if (!n.IsScalar() || (n.Scalar() != "true" && n.Scalar() != "false"))
+                        fail(key, "expected true or false");
+                    return n.Scalar() == "true";
+                }
+
+                /** A path in the problem file, relative to the file's folder; must exist. */
+                std::string path(const YAML::Node &n, const std::string &key) const
+                {
+                    const fs::path p = fs::path(text(n, key));
+                    const fs::path full = p.is_absolute() ? p : fs::path(file_).parent_path() / p;
+                    if (!fs::exists(full))
+                        fail(key, "file '" + full.string() + "' does not exist");
+                    return full.lexically_normal().string();
+                }
+
+                /** {xyz: [3], rpy: [3]} or {position: [3], orientation: [x, y, z, w]}. */
+                Eigen::Isometry3d pose(const YAML::Node &n, const std::string &key) const
+                {
+                    if (!n.IsMap())
+                        fail(key, "expected a pose {xyz: [x, y, z], rpy: [roll, pitch, yaw]}");
+                    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+                    for (const char *name : {"xyz", "position"})
+                        if (n[name])
+                        {
+                            const auto v = numbers(n[name], key + "." + name, 3);
+                            t.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+                        }
+                    if (n["rpy"])
+                    {
+                        const auto r = numbers(n["rpy"], key + ".rpy", 3);
+                        t.linear() = (Eigen::AngleAxisd(r[2], Eigen::Vector3d::UnitZ()) *
+                                      Eigen::AngleAxisd(r[1], Eigen::Vector3d::UnitY()) *
+                                      Eigen::AngleAxisd(r[0], Eigen::Vector3d::UnitX()))
+                                         .toRotationMatrix();
+                    }
+                    else if (n["orientation"])
+                    {
+                        const auto q = numbers(n["orientation"], key + ".orientation", 4);
+                        const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
+                        if (quat.norm() < 1e-9)
+                            fail(key + ".orientation", "quaternion has zero norm");
+                        t.linear() = quat.normalized().toRotationMatrix();
+                    }
+                    for (const auto &kv : n)
+                    {
+                        const std::string k = kv.first.as<std::string>();
+                        if (k != "xyz" && k != "position" && k != "rpy" && k != "orientation")
+                            fail(key + "." + k, "unknown pose key (expected xyz/rpy or position/orientation)");
+                    }
+                    return t;
+                }
+
+                std::vector<Eigen::Vector2d> polygon(const YAML::Node &n, const std::string &key) const
+                {
+                    if (!n.IsSequence() || n.size() < 3)
+                        fail(key, "expected a list of at least 3 [x, y] points");
+                    std::vector<Eigen::Vector2d> points;
+                    for (std::size_t i = 0; i < n.size(); ++i)
+                    {
+                        const auto p = numbers(n[i], key + "[" + std::to_string(i) + "]", 2);
+                        points.emplace_back(p[0], p[1]);
+                    }
+                    return points;
+                }
+
+                const std::string &file() const
+                {
+                    return file_;
+                }
+
+                static double parseNumber(std::string text)
+                {
+                    text.erase(std::remove_if(text.begin(), text.end(), ::isspace), text.end());
+                    double sign = 1.;
+                    if (!text.empty() && (text[0] == '-' || text[0] == '+'))
+                    {
+                        sign = text[0] == '-' ? -1. : 1.;
+                        text = text.substr(1);
+                    }
+                    const auto pi = text.find("pi");
+                    if (pi == std::string::npos)
+                    {
+                        std::size_t used = 0;
+                        const double v = std::stod(text, &used);
+                        if (used != text.size() || !std::isfinite(v))
+                            throw std::invalid_argument(text);
+                        return sign * v;
+                    }
+                    // forms: pi, k*pi, pi/d, k*pi/d
+                    double factor = 1., divisor = 1.;
+                    const std::string before = text.substr(0, pi), after = text.substr(pi + 2);
+                    if (!before.empty())
+                    {
+                        if (before.back() != '*')
+                            throw std::invalid_argument(text);
+                        factor = parseNumber(before.substr(0, before.size() - 1));
+                    }
+                    if (!after.empty())
+                    {
+                        if (after[0] != '/')
+                            throw std::invalid_argument(text);
+                        divisor = parseNumber(after.substr(1));
+                        if (divisor == 0.)
+                            throw std::invalid_argument(text);
+                    }
+                    return sign * factor * M_PI / divisor;
+                }
+
+            private:
+                std::string file_;
+            };
+
+            std::shared_ptr<const Shape> readShape(const Reader &r, const YAML::Node &o, const std::string &key)
+            {
+                try
+                {
+                    if (o["box"])
+                    {
+                        const auto s = r.numbers(o["box"], key + ".box", 3);
+                        return Shape::box(Eigen::Vector3d(s[0], s[1], s[2]));
+                    }
+                    if (o["sphere"])
+                        return Shape::sphere(r.number(o["sphere"], key + ".sphere"));
+                    for (const char *kind : {"cylinder", "capsule"})
+                        if (o[kind])
+                        {
+                            const std::string k = key + "." + kind;
+                            const double radius = r.number(r.require(o[kind], "radius", k), k + ".radius");
+                            const double length = r.number(r.require(o[kind], "length", k), k + ".length");
+                            return std::string(kind) == "cylinder" ? Shape::cylinder(radius, length) :
+                                                                     Shape::capsule(radius, length);
+                        }
+                    if (o["polygon"])
+                    {
+                        const std::string k = key + ".polygon";
+                        const YAML::Node p = o["polygon"];
+                        const auto points = r.polygon(r.require(p, "points", k), k + ".points");
+                        std::vector<double> z{-0.5, 0.5};
+                        if (p["z"])
+                            z = r.numbers(p["z"], k + ".z", 2);
+                        return Shape::prism(points, z[0], z[1]);
+                    }
+                    if (o["mesh"])
+                    {
+                        const std::string k = key + ".mesh";
+                        const std::string file = r.path(r.require(o["mesh"], "file", k), k + ".file");
+                        Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+                        if (o["mesh"]["scale"])
+                        {
+                            const auto s = r.numbers(o["mesh"]["scale"], k + ".scale", 3);
+                            scale = Eigen::Vector3d(s[0], s[1], s[2]);
+                        }
+                        return Shape::meshFromFile(file, scale);
+                    }
+                }
+                catch (const ProblemError &)
+                {
+                    throw;
+                }
+                catch (const std::exception &e)
+                {
+                    r.fail(key, e.what());
+                }
+                r.fail(key, "expected one of box, sphere, cylinder, capsule, polygon, mesh");
+            }
+
+            void readScene(const Reader &r, const YAML::Node &scene, Problem &problem)
+            {
+                problem.scene = std::make_shared<validity::Scene>();
+                if (!scene)
+                    return;
+                if (!scene.IsMap())
+                    r.fail("scene", "expected a mapping with obstacles and/or map");
+                if (const YAML::Node list = scene["obstacles"])
+                {
+                    if (!list.IsSequence())
+                        r.fail("scene.obstacles", "expected a list");
+                    std::set<std::string> names;
+                    for (std::size_t i = 0; i < list.size(); ++i)
+                    {
+                        const std::string key = "scene.obstacles[" + std::to_string(i) + "]";
+                        const YAML::Node o = list[i];
+                        if (!o.IsMap())
+                            r.fail(key, "expected a mapping");
+                        Obstacle obstacle;
+                        obstacle.name = o["name"] ? r.text(o["name"], key + ".name") : "obstacle" + std::to_string(i);
+                        if (!names.insert(obstacle.name).second)
+                            r.fail(key + ".name", "duplicate obstacle name '" + obstacle.name + "'");
+                        obstacle.shape = readShape(r, o, key);
+                        if (o["pose"])
+                            obstacle.pose = r.pose(o["pose"], key + ".pose");
+                        if (const YAML::Node traj = o["trajectory"])
+                        {
+                            if (!traj.IsSequence() || traj.size() < 1)
+                                r.fail(key + ".trajectory", "expected a list of {t, xyz, rpy} key frames");
+                            for (std::size_t k = 0; k < traj.size(); ++k)
+                            {
+                                const std::string tk = key + ".trajectory[" + std::to_string(k) + "]";
+                                validity::TimedPose tp;
+                                tp.time = r.number(r.require(traj[k], "t", tk), tk + ".t");
+                                YAML::Node poseNode = YAML::Clone(traj[k]);
+                                poseNode.remove("t");
+                                tp.pose = r.pose(poseNode, tk);
+                                obstacle.trajectory.push_back(tp);
+                            }
+                        }
+                        problem.scene->add(std::move(obstacle));
+                    }
+                }
+                if (const YAML::Node map = scene["map"])
+                {
+                    const std::string key = "scene.map";
+                    const std::string pgm = r.path(r.require(map, "pgm", key), key + ".pgm");
+                    const double resolution = r.number(r.require(map, "resolution", key), key + ".resolution");
+                    if (!(resolution > 0.))
+                        r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                    Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+                    if (map["origin"])
+                    {
+                        const auto o = r.numbers(map["origin"], key + ".origin", 2);
+                        origin = Eigen::Vector2d(o[0], o[1]);
+                    }
+                    const double height = r.number(map, "height", key, 1.);
+                    const double threshold = r.number(map, "threshold", key, 0.5);
+                    try
+                    {
+                        for (auto &o : validity::occupancyObstacles(pgm, resolution, origin, height, threshold))
+                            problem.scene->add(std::move(o));
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail(key + ".pgm", e.what());
+                    }
+                }
+                for (const auto &kv : scene)
+                {
+                    const std::string k = kv.first.as<std::string>();
+                    if (k != "obstacles" && k != "map")
+                        r.fail("scene." + k, "unknown key (expected obstacles, map)");
+                }
+            }
+
+            void readArm(const Reader &r, const YAML::Node &robot, Problem &problem)
+            {
+                const std::string urdf = r.path(r.require(robot, "urdf", "robot"), "robot.urdf");
+                problem.model = validity::RobotModel::fromUrdfFile(urdf);  // UrdfError names the URDF
+                const auto &model = *problem.model;
+                if (model.variableCount() == 0)
+                    r.fail("robot.urdf", "robot '" + model.name() + "' has no movable joint");
+                if (robot["base_pose"])
+                    problem.model->setBasePose(r.pose(robot["base_pose"], "robot.base_pose"));
+
+                auto checkJoint = [&](const std::string &joint, const std::string &key) {
+                    try
+                    {
+                        return model.variableIndex(joint);
+                    }
+                    catch (const std::out_of_range &e)
+                    {
+                        r.fail(key, e.what());
+                    }
+                };
+                if (const YAML::Node groups = robot["groups"])
+                {
+                    if (!groups.IsMap())
+                        r.fail("robot.groups", "expected a mapping of group name to a list of joint names");
+                    for (const auto &kv : groups)
+                    {
+                        const std::string g = kv.first.as<std::string>();
+                        const std::string key = "robot.groups." + g;
+                        if (!kv.second.IsSequence() || kv.second.size() == 0)
+                            r.fail(key, "expected a non-empty list of joint names");
+                        for (std::size_t i = 0; i < kv.second.size(); ++i)
+                        {
+                            const std::string joint = r.text(kv.second[i], key + "[" + std::to_string(i) + "]");
+                            checkJoint(joint, key + "[" + std::to_string(i) + "]");
+                            problem.groups[g].push_back(joint);
+                        }
+                    }
+                }
+                if (problem.groups.empty() || !robot["group"])
+                {
+                    if (robot["group"])
+                        r.fail("robot.group", "names a group but robot.groups is missing");
+                    problem.groups.emplace("all", model.variableNames());
+                    problem.group = problem.groups.size() == 1 ? problem.groups.begin()->first : "all";
+                    problem.groups["all"] = model.variableNames();
+                    problem.group = "all";
+                }
+                else
+                {
+                    problem.group = r.text(robot["group"], "robot.group");
+                    if (!problem.groups.count(problem.group))
+                        r.fail("robot.group", "no group named '" + problem.group + "' in robot.groups");
+                }
+                for (const auto &joint : problem.groups[problem.group])
+                    problem.groupVariables.push_back(model.variableIndex(joint));
+
+                // joints outside the group: mid-range, or 0 when 0 is within the limits, unless given
+                problem.fixedValues.assign(model.variableCount(), 0.);
+                for (std::size_t v = 0; v < model.variableCount(); ++v)
+                {
+                    const auto &j = model.variableJoint(v);
+                    if (j.lower > 0. || j.upper < 0.)
+                        problem.fixedValues[v] = 0.5 * (j.lower + j.upper);
+                }
+                if (const YAML::Node fixed = robot["fixed_joints"])
+                {
+                    if (!fixed.IsMap())
+                        r.fail("robot.fixed_joints", "expected a mapping of joint name to value");
+                    for (const auto &kv : fixed)
+                    {
+                        const std::string joint = kv.first.as<std::string>();
+                        const std::string key = "robot.fixed_joints." + joint;
+                        const int v = checkJoint(joint, key);
+                        problem.fixedValues[v] = r.number(kv.second, key);
+                    }
+                }
+                if (const YAML::Node allowed = robot["allowed_collisions"])
+                {
+                    if (!allowed.IsSequence())
+                        r.fail("robot.allowed_collisions", "expected a list of [link_a, link_b] pairs");
+                    for (std::size_t i = 0; i < allowed.size(); ++i)
+                    {
+                        const std::string key = "robot.allowed_collisions[" + std::to_string(i) + "]";
+                        if (!allowed[i].IsSequence() || allowed[i].size() != 2)
+                            r.fail(key, "expected a pair [link_a, link_b]");
+                        try
+                        {
+                            problem.model->allowCollision(r.text(allowed[i][0], key), r.text(allowed[i][1], key));
+                        }
+                        catch (const std::out_of_range &e)
+                        {
+                            r.fail(key, e.what());
+                        }
+                    }
+                }
+            }
+
+            void readSe2(const Reader &r, const YAML::Node &robot, Problem &problem)
+            {
+                problem.kind = Problem::Kind::SE2;
+                problem.footprint = r.polygon(r.require(robot, "footprint", "robot"), "robot.footprint");
+                try
+                {
+                    validity::triangulatePolygon(problem.footprint);
+                }
+                catch (const std::exception &e)
+                {
+                    r.fail("robot.footprint", e.what());
+                }
+                problem.footprintHeight = r.number(robot, "height", "robot", 1.);
+                const YAML::Node bounds = r.require(robot, "bounds", "robot");
+                const auto x = r.numbers(r.require(bounds, "x", "robot.bounds"), "robot.bounds.x", 2);
+                const auto y = r.numbers(r.require(bounds, "y", "robot.bounds"), "robot.bounds.y", 2);
+                if (!(x[0] < x[1]) || !(y[0] < y[1]))
+                    r.fail("robot.bounds", "expected [min, max] with min < max");
+                problem.se2Bounds = {{x[0], x[1], y[0], y[1]}};
+            }
+
+            std::vector<double> readConfiguration(const Reader &r, const YAML::Node &n, const std::string &key,
+                                                  const Problem &problem)
+            {
+                const auto values = r.numbers(n, key, problem.dimension());
+                if (problem.kind == Problem::Kind::ARM)
+                    for (std::size_t i = 0; i < values.size(); ++i)
+                    {
+                        const auto &joint = problem.model->variableJoint(problem.groupVariables[i]);
+                        if (joint.type != validity::RobotJoint::Type::CONTINUOUS &&
+                            (values[i] < joint.lower - 1e-9 || values[i] > joint.upper + 1e-9))
+                        {
+                            std::ostringstream msg;
+                            msg << "joint '" << joint.name << "' value " << values[i] << " outside its limits ["
+                                << joint.lower << ", " << joint.upper << "]";
+                            r.fail(key + "[" + std::to_string(i) + "]", msg.str());
+                        }
+                    }
+                else
+                {
+                    const auto &b = problem.se2Bounds;
+                    if (values[0] < b[0] || values[0] > b[1] || values[1] < b[2] || values[1] > b[3])
+                        r.fail(key, "position outside robot.bounds");
+                }
+                return values;
+            }
+
+            void readPlanners(const Reader &r, const YAML::Node &list, Problem &problem)
+            {
+                if (!list)
+                {
+                    for (const char *name : {"geometric::RRTConnect", "geometric::PRM", "geometric::RRTstar",
+                                             "geometric::BITstar"})
+                        problem.planners.push_back(PlannerSpec{name, {}});
+                    return;
+                }
+                if (!list.IsSequence() || list.size() == 0)
+                    r.fail("planners", "expected a non-empty list of planner names or {name, params}");
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = "planners[" + std::to_string(i) + "]";
+                    PlannerSpec spec;
+                    if (list[i].IsScalar())
+                        spec.name = list[i].Scalar();
+                    else if (list[i].IsMap())
+                    {
+                        spec.name = r.text(r.require(list[i], "name", key), key + ".name");
+                        if (const YAML::Node params = list[i]["params"])
+                        {
+                            if (!params.IsMap())
+                                r.fail(key + ".params", "expected a mapping of parameter name to value");
+                            for (const auto &kv : params)
+                                spec.params[kv.first.as<std::string>()] =
+                                    r.text(kv.second, key + ".params." + kv.first.as<std::string>());
+                        }
+                    }
+                    else
+                        r.fail(key, "expected a planner name or {name, params}");
+                    problem.planners.push_back(spec);
+                }
+            }
+
+            void readBenchmark(const Reader &r, const YAML::Node &b, Problem &problem)
+            {
+                if (!b)
+                    return;
+                if (!b.IsMap())
+                    r.fail("benchmark", "expected a mapping (time_limit, runs, memory_limit, seed, simplify)");
+                auto &s = problem.benchmark;
+                for (const auto &kv : b)
+                {
+                    const std::string k = kv.first.as<std::string>(), key = "benchmark." + k;
+                    if (k == "time_limit")
+                    {
+                        s.timeLimit = r.number(kv.second, key);
+                        if (!(s.timeLimit > 0.))
+                            r.fail(key, "expected a positive number of seconds");
+                    }
+                    else if (k == "memory_limit")
+                        s.memoryLimit = r.number(kv.second, key);
+                    else if (k == "runs")
+                        s.runs = r.count(kv.second, key);
+                    else if (k == "seed")
+                        s.seed = r.count(kv.second, key);
+                    else if (k == "simplify")
+                        s.simplify = r.flag(kv.second, key);
+                    else
+                        r.fail(key, "unknown key (expected time_limit, runs, memory_limit, seed, simplify)");
+                }
+            }
+        }
+
+        validity::CollisionBodiesPtr Problem::bodies() const
+        {
+            if (kind == Kind::SE2)
+                return std::make_shared<validity::PlanarRigidBody>(footprint, 0., footprintHeight);
+            return std::make_shared<validity::RobotGroupBodies>(model, groupVariables, fixedValues);
+        }
+
+        std::size_t Problem::dimension() const
+        {
+            return kind == Kind::SE2 ? 3 : groupVariables.size();
+        }
+
+        std::vector<std::string> Problem::valueNames() const
+        {
+            if (kind == Kind::SE2)
+                return {"x", "y", "yaw"};
+            std::vector<std::string> names;
+            for (int v : groupVariables)
+                names.push_back(model->variableJoint(v).name);
+            return names;
+        }
+
+        Problem loadProblem(const std::string &path)
+        {
+            Reader r(path);
+            if (!fs::is_regular_file(path))
+                r.fail("", "no such problem file");
+            YAML::Node root;
+            try
+            {
+                root = YAML::LoadFile(path);
+            }
+            catch (const YAML::Exception &e)
+            {
+                r.fail("", "not valid YAML (line " + std::to_string(e.mark.line + 1) + ", column " +
+                               std::to_string(e.mark.column + 1) + "): " + e.msg);
+            }
+            if (!root.IsMap())
+                r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
+            static const std::set<std::string> known{"name",    "description", "robot",     "scene",    "start",
+                                                     "goal",    "queries",     "planners",  "benchmark", "collision",
+                                                     "extras"};
+            for (const auto &kv : root)
+                if (!known.count(kv.first.as<std::string>()))
+                    r.fail(kv.first.as<std::string>(), "unknown top-level key");
+
+            Problem problem;
+            problem.file = path;
+            problem.name = root["name"] ? r.text(root["name"], "name") : fs::path(path).stem().string();
+            if (root["description"])
+                problem.description = r.text(root["description"], "description");
+
+            const YAML::Node robot = r.require(root, "robot", "");
+            if (!robot.IsMap())
+                r.fail("robot", "expected a mapping (urdf: ... or type: se2)");
+            const std::string type = robot["type"] ? r.text(robot["type"], "robot.type") : "urdf";
+            if (type == "urdf" || type == "arm")
+                readArm(r, robot, problem);
+            else if (type == "se2")
+                readSe2(r, robot, problem);
+            else
+                r.fail("robot.type", "expected 'urdf' or 'se2', got '" + type + "'");
+
+            readScene(r, root["scene"], problem);
+
+            if (root["queries"])
+            {
+                const YAML::Node q = root["queries"];
+                if (!q.IsSequence() || q.size() == 0)
+                    r.fail("queries", "expected a non-empty list of {start, goal}");
+                for (std::size_t i = 0; i < q.size(); ++i)
+                {
+                    const std::string key = "queries[" + std::to_string(i) + "]";
+                    problem.queries.push_back(
+                        Query{readConfiguration(r, r.require(q[i], "start", key), key + ".start", problem),
+                              readConfiguration(r, r.require(q[i], "goal", key), key + ".goal", problem)});
+                }
+            }
+            if (root["start"] || root["goal"] || problem.queries.empty())
+            {
+                const auto start = readConfiguration(r, r.require(root, "start", ""), "start", problem);
+                const auto goal = readConfiguration(r, r.require(root, "goal", ""), "goal", problem);
+                problem.queries.insert(problem.queries.begin(), Query{start, goal});
+            }
+            readPlanners(r, root["planners"], problem);
+            readBenchmark(r, root["benchmark"], problem);
+            if (const YAML::Node c = root["collision"])
+            {
+                problem.validSegmentFraction = r.number(c, "valid_segment_fraction", "collision", 0.);
+                if (problem.validSegmentFraction < 0. || problem.validSegmentFraction >= 1.)
+                    r.fail("collision.valid_segment_fraction", "expected a number in [0, 1)");
+            }
+            return problem;
+        }
+    }
+}

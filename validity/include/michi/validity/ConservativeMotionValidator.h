@@ -1,0 +1,45 @@
+#ifndef MICHI_VALIDITY_CONSERVATIVE_MOTION_VALIDATOR_
+#define MICHI_VALIDITY_CONSERVATIVE_MOTION_VALIDATOR_
+
+#include <michi/validity/FclValidityChecker.h>
+
+#include <ompl/base/MotionValidator.h>
+
+namespace michi
+{
+    namespace validity
+    {
+        /** \brief Motion validation by conservative advancement: at a state with clearance c, no point of the
+            robot can reach an obstacle before it has moved c, and CollisionBodies::displacementBound() says how
+            far a joint-space step moves it. So the motion is walked in steps that are safe by construction, and
+            the check is exact with respect to the scene (no obstacle thinner than the state-space resolution is
+            missed). Where the clearance falls below \e minClearanceStep the validator falls back to discrete
+            checks at the space's resolution, as OMPL's DiscreteMotionValidator does; self-collision is checked
+            at every visited state. The interpolation is the space's own. Thread-safe. */
+        class ConservativeMotionValidator : public ompl::base::MotionValidator
+        {
+        public:
+            ConservativeMotionValidator(const ompl::base::SpaceInformationPtr &si, FclValidityCheckerPtr checker);
+
+            bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const override;
+            bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
+                             std::pair<ompl::base::State *, double> &lastValid) const override;
+
+            void setMinClearanceStep(double metres)
+            {
+                minClearanceStep_ = metres;
+            }
+            double getMinClearanceStep() const
+            {
+                return minClearanceStep_;
+            }
+
+        private:
+            bool walk(const ompl::base::State *s1, const ompl::base::State *s2, double *lastValidTime) const;
+            FclValidityCheckerPtr checker_;
+            double minClearanceStep_{1e-3};
+        };
+    }
+}
+
+#endif
