@@ -11,7 +11,8 @@ function(michi_add_component name)
         target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPENDS} PRIVATE ${ARG_PRIVATE_DEPENDS})
         target_compile_options(${target} PRIVATE -Wall -Wextra)
         set_target_properties(${target} PROPERTIES OUTPUT_NAME michi_${name} EXPORT_NAME ${name}
-            VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+            VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
+            INSTALL_RPATH "$ORIGIN")
     else()
         add_library(${target} INTERFACE)
         target_include_directories(${target} INTERFACE

@@ -1,1 +1,258 @@
-int main(){return 0;}
+// The `michi` command: benchmark and plan on michi problem files, list the planners.
+#include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/PathFile.h>
+#include <michi/tools/PlannerRegistry.h>
+#include <michi/tools/PlanningContext.h>
+#include <michi/tools/Problem.h>
+#include <michi/tools/SvgPlot.h>
+#include <michi/validity/RobotModel.h>
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/filesystem.hpp>
+
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = boost::filesystem;
+using namespace michi::tools;
+
+namespace
+{
+    const char *USAGE =
+        "usage:\n"
+        "  michi bench PROBLEM.yaml --out DIR [--planners A,B,...] [--runs N] [--time SECONDS] [--query I]\n"
+        "      run OMPL's Benchmark; writes DIR/<problem>.log, DIR/<problem>.db (Planner Arena), DIR/summary.md\n"
+        "      and DIR/<problem>.svg\n"
+        "  michi plan PROBLEM.yaml --planner NAME [--out DIR] [--time SECONDS] [--query I] [--seed S]\n"
+        "      solve once, print the path, write DIR/<problem>-<planner>.path and .svg\n"
+        "  michi list-planners\n"
+        "options: --verbose shows OMPL's log messages\n";
+
+    struct UsageError : std::runtime_error
+    {
+        using std::runtime_error::runtime_error;
+    };
+
+    /** --key value options after the positional arguments. */
+    struct Args
+    {
+        std::vector<std::string> positional;
+        std::map<std::string, std::string> options;
+        bool verbose{false};
+
+        Args(int argc, char **argv, const std::vector<std::string> &known)
+        {
+            for (int i = 2; i < argc; ++i)
+            {
+                const std::string a = argv[i];
+                if (a == "--verbose")
+                    verbose = true;
+                else if (a.rfind("--", 0) == 0)
+                {
+                    if (std::find(known.begin(), known.end(), a.substr(2)) == known.end())
+                        throw UsageError("unknown option " + a);
+                    if (i + 1 >= argc)
+                        throw UsageError("option " + a + " needs a value");
+                    options[a.substr(2)] = argv[++i];
+                }
+                else
+                    positional.push_back(a);
+            }
+        }
+        bool has(const std::string &k) const
+        {
+            return options.count(k) > 0;
+        }
+        std::string get(const std::string &k, const std::string &fallback = "") const
+        {
+            auto it = options.find(k);
+            return it == options.end() ? fallback : it->second;
+        }
+        double number(const std::string &k, double fallback, bool integer = false) const
+        {
+            if (!has(k))
+                return fallback;
+            try
+            {
+                std::size_t used = 0;
+                const double v = std::stod(get(k), &used);
+                if (used != get(k).size() || !(v > 0.) || (integer && v != static_cast<long>(v)))
+                    throw std::invalid_argument(k);
+                return v;
+            }
+            catch (const std::exception &)
+            {
+                throw UsageError("--" + k + " expects a positive " + (integer ? "integer" : "number") + ", got '" +
+                                 get(k) + "'");
+            }
+        }
+        std::size_t index(const std::string &k) const
+        {
+            if (!has(k))
+                return 0;
+            try
+            {
+                std::size_t used = 0;
+                const long v = std::stol(get(k), &used);
+                if (used != get(k).size() || v < 0)
+                    throw std::invalid_argument(k);
+                return static_cast<std::size_t>(v);
+            }
+            catch (const std::exception &)
+            {
+                throw UsageError("--" + k + " expects a non-negative integer, got '" + get(k) + "'");
+            }
+        }
+    };
+
+    std::vector<std::string> splitComma(const std::string &s)
+    {
+        std::vector<std::string> parts;
+        std::stringstream in(s);
+        std::string item;
+        while (std::getline(in, item, ','))
+            if (!item.empty())
+                parts.push_back(item);
+        return parts;
+    }
+
+    std::string fileSafe(std::string s)
+    {
+        for (char &c : s)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_')
+                c = '_';
+        return s;
+    }
+
+    int bench(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "planners", "runs", "time", "query"});
+        if (args.positional.size() != 1)
+            throw UsageError("bench takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("bench needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        const Problem problem = loadProblem(args.positional[0]);
+        BenchOptions options;
+        options.outDir = args.get("out");
+        options.planners = splitComma(args.get("planners"));
+        options.runs = static_cast<unsigned int>(args.number("runs", 0, true));
+        options.timeLimit = args.number("time", 0.);
+        options.query = args.index("query");
+        options.progress = &std::cerr;
+        const BenchResult result = runBenchmark(problem, options);
+        std::ifstream summary(result.summary);
+        std::cout << summary.rdbuf();
+        std::cout << "\nwrote " << result.log << "\n      " << result.database << "\n      " << result.summary
+                  << "\n      " << result.picture << std::endl;
+        return 0;
+    }
+
+    int plan(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "planner", "time", "query", "seed"});
+        if (args.positional.size() != 1)
+            throw UsageError("plan takes one problem file");
+        if (!args.has("planner"))
+            throw UsageError("plan needs --planner NAME (see michi list-planners)");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        const Problem problem = loadProblem(args.positional[0]);
+        const double seed = args.number("seed", problem.benchmark.seed, true);
+        ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(seed));
+        const std::size_t query = args.index("query");
+        PlanningContext ctx = makePlanningContext(problem, query);
+        const std::string name = args.get("planner");
+        PlannerSpec spec{name, {}};
+        for (const auto &s : problem.planners)
+            if (s.name == name)
+                spec = s;
+        ompl::base::PlannerPtr planner;
+        try
+        {
+            planner = allocatePlanner(name, ctx.setup->getSpaceInformation());
+        }
+        catch (const std::invalid_argument &e)
+        {
+            throw UsageError(e.what());
+        }
+        applyPlannerParams(*planner, spec, problem.file);
+        ctx.setup->setPlanner(planner);
+        const double time = args.number("time", problem.benchmark.timeLimit);
+        const auto status = ctx.setup->solve(time);
+        if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
+        {
+            std::cerr << "michi plan: " << problem.file << ": " << name << " found no path within " << time
+                      << " s (" << status.asString() << ")" << std::endl;
+            return 1;
+        }
+        ctx.setup->simplifySolution();
+        auto &path = ctx.setup->getSolutionPath();
+        std::vector<std::vector<double>> states;
+        for (const auto *s : path.getStates())
+        {
+            std::vector<double> values;
+            ctx.setup->getStateSpace()->copyToReals(values, s);
+            states.push_back(values);
+        }
+        std::ostringstream comment;
+        comment << problem.name << " query " << query << ", " << name << ", " << states.size()
+                << " states, length " << path.length() << ", clearance " << path.clearance();
+        std::cout << "# " << comment.str() << "\n";
+        for (const auto &s : states)
+        {
+            for (std::size_t i = 0; i < s.size(); ++i)
+                std::cout << (i ? " " : "") << s[i];
+            std::cout << "\n";
+        }
+        const fs::path out = args.get("out", ".");
+        fs::create_directories(out);
+        const std::string stem = (out / (problem.name + "-" + fileSafe(name))).string();
+        writePathFile(stem + ".path", problem.valueNames(), states, comment.str());
+        writeProblemSvg(problem, {PlotPath{name, states}}, stem + ".svg", query);
+        std::cerr << "michi plan: wrote " << stem << ".path and " << stem << ".svg" << std::endl;
+        return 0;
+    }
+
+    int listPlanners()
+    {
+        for (const auto &name : plannerNames())
+            std::cout << name << "\n";
+        return 0;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "help")
+    {
+        std::cout << USAGE;
+        return argc < 2 ? 2 : 0;
+    }
+    const std::string command = argv[1];
+    try
+    {
+        if (command == "bench")
+            return bench(argc, argv);
+        if (command == "plan")
+            return plan(argc, argv);
+        if (command == "list-planners")
+            return listPlanners();
+        throw UsageError("unknown command '" + command + "'");
+    }
+    catch (const UsageError &e)
+    {
+        std::cerr << "michi: " << e.what() << "\n" << USAGE;
+        return 2;
+    }
+    catch (const std::exception &e)
+    {
+        std::cerr << "michi " << command << ": " << e.what() << std::endl;
+        return 1;
+    }
+}

@@ -1,0 +1,46 @@
+// The problem the conformance suite plans on, and the independent checker that re-validates solutions.
+#ifndef MICHI_TESTS_SUPPORT_CONFORMANCE_PROBLEM_
+#define MICHI_TESTS_SUPPORT_CONFORMANCE_PROBLEM_
+
+#include <michi/validity/FclValidityChecker.h>
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <map>
+#include <ostream>
+#include <string>
+
+namespace michi
+{
+    namespace test
+    {
+        struct ConformanceCase
+        {
+            std::string planner;                        ///< registry name
+            std::map<std::string, std::string> params;  ///< set by name before solving
+            double timeLimit{10.};                      ///< generous cap; the problem is easy
+        };
+
+        inline std::ostream &operator<<(std::ostream &out, const ConformanceCase &c)
+        {
+            return out << c.planner;
+        }
+
+        /** \brief The conformance problem: a planar 2-link arm (thin capsule links of 0.5 m and 0.4 m) among
+            polygon obstacles, start and goal on both sides of an obstacle so the straight joint motion collides. */
+        struct ConformanceProblem
+        {
+            ompl::geometric::SimpleSetupPtr setup;
+            std::shared_ptr<validity::FclValidityChecker> checker;
+        };
+        ConformanceProblem makeConformanceProblem();
+
+        /** \brief Independent re-check of a path: interpolated at 1/10 of the space's resolution, each state's
+            link rectangles (Boost.Geometry: the links are cylinders lying in the plane) must keep off every obstacle polygon.
+            Returns an empty string when valid, else what failed. */
+        std::string independentPathCheck(const ompl::geometric::PathGeometric &path);
+    }
+}
+
+#endif

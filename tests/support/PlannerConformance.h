@@ -1,0 +1,116 @@
+// Conformance suite every michi planner passes. A planner's test file includes this header once and instantiates
+// the suite:
+//
+//   INSTANTIATE_TEST_SUITE_P(MyPlanner, PlannerConformance,
+//                            ::testing::Values(michi::test::ConformanceCase{"michi::MyPlanner", {{"p", "1"}}}));
+//
+// The checks: built by its registry allocator from `si` alone; every declared parameter can be read and set back by
+// name, and the case's parameters are accepted; solve -> clear -> solve gives exact solutions both times; with a
+// termination condition that is already true, solve() returns without a solution and after at most a handful of
+// validity checks (counted, not timed); every solution is re-validated at 1/10 of the space's resolution by an
+// independent checker (Boost.Geometry, not FCL); getPlannerData() is not empty.
+#ifndef MICHI_TESTS_SUPPORT_PLANNER_CONFORMANCE_
+#define MICHI_TESTS_SUPPORT_PLANNER_CONFORMANCE_
+
+#include "support/ConformanceProblem.h"
+
+#include <michi/tools/PlannerRegistry.h>
+#include <michi/validity/FclValidityChecker.h>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <ostream>
+#include <string>
+
+class PlannerConformance : public ::testing::TestWithParam<michi::test::ConformanceCase>
+{
+protected:
+    void SetUp() override
+    {
+        ompl::RNG::setSeed(42);
+        problem_ = michi::test::makeConformanceProblem();
+        planner_ = michi::tools::allocatePlanner(GetParam().planner, problem_.setup->getSpaceInformation());
+        ASSERT_TRUE(planner_ != nullptr);
+        for (const auto &kv : GetParam().params)
+            ASSERT_TRUE(planner_->params().setParam(kv.first, kv.second)) << kv.first << " = " << kv.second;
+        problem_.setup->setPlanner(planner_);
+    }
+
+    ompl::base::PlannerStatus solve()
+    {
+        return problem_.setup->solve(GetParam().timeLimit);
+    }
+
+    michi::test::ConformanceProblem problem_;
+    ompl::base::PlannerPtr planner_;
+};
+
+TEST_P(PlannerConformance, BuiltFromSpaceInformationAlone)
+{
+    // a fresh planner from the allocator alone: named, bound to si, declares its settings, and sets itself up
+    auto fresh = michi::tools::allocatePlanner(GetParam().planner, problem_.setup->getSpaceInformation());
+    EXPECT_FALSE(fresh->getName().empty());
+    EXPECT_EQ(fresh->getSpaceInformation(), problem_.setup->getSpaceInformation());
+    EXPECT_GT(fresh->params().size(), 0u) << "settings must be declared with declareParam";
+    fresh->setProblemDefinition(problem_.setup->getProblemDefinition());
+    fresh->setup();
+    EXPECT_TRUE(fresh->isSetup());
+}
+
+TEST_P(PlannerConformance, ParametersSettableByName)
+{
+    std::vector<std::string> names;
+    planner_->params().getParamNames(names);
+    for (const auto &name : names)
+    {
+        const std::string value = planner_->params()[name].getValue();
+        EXPECT_TRUE(planner_->params().setParam(name, value)) << name << " = " << value;
+        EXPECT_EQ(planner_->params()[name].getValue(), value) << name;
+    }
+    EXPECT_FALSE(planner_->params().setParam("no_such_parameter_xyz", "1"));
+}
+
+TEST_P(PlannerConformance, SolveClearSolve)
+{
+    for (int round = 0; round < 2; ++round)
+    {
+        ASSERT_EQ(solve(), ompl::base::PlannerStatus::EXACT_SOLUTION) << "round " << round;
+        auto &path = problem_.setup->getSolutionPath();
+        ASSERT_GE(path.getStateCount(), 2u);
+        const auto *si = problem_.setup->getSpaceInformation().get();
+        EXPECT_TRUE(si->equalStates(path.getState(0), problem_.setup->getProblemDefinition()->getStartState(0)));
+        EXPECT_TRUE(problem_.setup->getGoal()->isSatisfied(path.getStates().back()));
+        EXPECT_TRUE(path.check()) << "round " << round;
+        EXPECT_EQ(michi::test::independentPathCheck(path), "") << "round " << round;
+        planner_->clear();
+        problem_.setup->getProblemDefinition()->clearSolutionPaths();
+    }
+}
+
+TEST_P(PlannerConformance, ReturnsPromptlyWhenTerminated)
+{
+    problem_.setup->setup();
+    const auto before = problem_.checker->queryCount();
+    const ompl::base::PlannerTerminationCondition done([] { return true; });
+    const auto status = planner_->solve(done);
+    EXPECT_NE(status, ompl::base::PlannerStatus::EXACT_SOLUTION);
+    // a planner that honours the condition checks at most the start, the goal and a few more states
+    EXPECT_LE(problem_.checker->queryCount() - before, 50u);
+}
+
+TEST_P(PlannerConformance, ExportsPlannerData)
+{
+    ASSERT_EQ(solve(), ompl::base::PlannerStatus::EXACT_SOLUTION);
+    ompl::base::PlannerData data(problem_.setup->getSpaceInformation());
+    planner_->getPlannerData(data);
+    EXPECT_GT(data.numVertices(), 1u);
+    EXPECT_GE(data.numStartVertices(), 1u);
+}
+
+#endif

@@ -1,0 +1,272 @@
+#include <michi/tools/BenchmarkRunner.h>
+
+#include <michi/tools/PlannerRegistry.h>
+#include <michi/tools/PlanningContext.h>
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/filesystem.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <mutex>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = boost::filesystem;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+namespace ot = ompl::tools;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            double median(std::vector<double> v)
+            {
+                if (v.empty())
+                    return std::nan("");
+                std::sort(v.begin(), v.end());
+                const std::size_t n = v.size();
+                return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+            }
+
+            double property(const ot::Benchmark::RunProperties &run, const std::string &key)
+            {
+                auto it = run.find(key);
+                if (it == run.end() || it->second.empty())
+                    return std::nan("");
+                try
+                {
+                    return std::stod(it->second);
+                }
+                catch (const std::exception &)
+                {
+                    return std::nan("");
+                }
+            }
+
+            std::string shellQuote(const std::string &s)
+            {
+                std::string q = "'";
+                for (char c : s)
+                    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+                return q + "'";
+            }
+
+            /** A staging folder beside the output folder, removed unless committed. */
+            class Staging
+            {
+            public:
+                explicit Staging(const fs::path &out)
+                  : out_(fs::absolute(out))
+                  , dir_(out_.parent_path() / ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
+                {
+                    fs::remove_all(dir_);
+                    fs::create_directories(dir_);
+                }
+                ~Staging()
+                {
+                    boost::system::error_code ec;
+                    fs::remove_all(dir_, ec);
+                }
+                fs::path path(const std::string &name) const
+                {
+                    return dir_ / name;
+                }
+                /** Move every staged file into the output folder. */
+                void commit()
+                {
+                    fs::create_directories(out_);
+                    for (const auto &entry : fs::directory_iterator(dir_))
+                        fs::rename(entry.path(), out_ / entry.path().filename());
+                }
+                const fs::path &out() const
+                {
+                    return out_;
+                }
+
+            private:
+                fs::path out_;
+                fs::path dir_;
+            };
+        }
+
+        std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
+                                    double timeLimit, unsigned int runs)
+        {
+            std::ostringstream md;
+            md << "# " << problem.name << "\n\n";
+            if (!problem.description.empty())
+                md << problem.description << "\n\n";
+            md << "OMPL Benchmark, " << runs << " runs per planner, time limit " << timeLimit
+               << " s per run, FCL validity checker with conservative motion validation. Median time over all runs"
+                  " (failures count at the time they gave up); length and clearance over solved runs.\n\n";
+            md << "| planner | runs | success | median time (s) | median length | median clearance |\n";
+            md << "|---|---:|---:|---:|---:|---:|\n";
+            auto num = [](double v, int precision) {
+                if (std::isnan(v))
+                    return std::string("–");
+                std::ostringstream s;
+                s << std::setprecision(precision) << v;
+                return s.str();
+            };
+            for (const auto &p : planners)
+                md << "| " << p.name << " | " << p.runs << " | "
+                   << num(100. * p.solved / std::max(1u, p.runs), 3) << " % | " << num(p.medianTime, 4) << " | "
+                   << num(p.medianLength, 4) << " | " << num(p.medianClearance, 3) << " |\n";
+            return md.str();
+        }
+
+        BenchResult runBenchmark(const Problem &problem, const BenchOptions &options)
+        {
+            if (options.outDir.empty())
+                throw std::invalid_argument("no output folder given");
+            const double timeLimit = options.timeLimit > 0. ? options.timeLimit : problem.benchmark.timeLimit;
+            const unsigned int runs = options.runs > 0 ? options.runs : problem.benchmark.runs;
+            std::vector<PlannerSpec> specs;
+            if (options.planners.empty())
+                specs = problem.planners;
+            else
+                for (const auto &name : options.planners)
+                {
+                    auto it = std::find_if(problem.planners.begin(), problem.planners.end(),
+                                           [&](const PlannerSpec &s) { return s.name == name; });
+                    specs.push_back(it != problem.planners.end() ? *it : PlannerSpec{name, {}});
+                }
+
+            ompl::RNG::setSeed(problem.benchmark.seed);
+            PlanningContext ctx = makePlanningContext(problem, options.query);  // checks start and goal
+            auto si = ctx.setup->getSpaceInformation();
+
+            ot::Benchmark benchmark(*ctx.setup, problem.name);
+            std::vector<ob::PlannerPtr> planners;
+            for (const auto &spec : specs)
+            {
+                ob::PlannerPtr planner;
+                try
+                {
+                    planner = allocatePlanner(spec.name, si);
+                }
+                catch (const std::invalid_argument &e)
+                {
+                    throw ProblemError(problem.file, "planners", e.what());
+                }
+                applyPlannerParams(*planner, spec, problem.file);
+                benchmark.addPlanner(planner);
+                planners.push_back(planner);
+            }
+            benchmark.addExperimentParameter("query", "INTEGER", std::to_string(options.query));
+            benchmark.addExperimentParameter("seed", "INTEGER", std::to_string(problem.benchmark.seed));
+
+            BenchResult result;
+            std::mutex pathMutex;
+            std::map<std::string, PlotPath> firstPaths;
+            const std::size_t totalRuns = planners.size() * runs;
+            std::size_t done = 0;
+            std::ostream *progress = options.progress;
+            benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ot::Benchmark::RunProperties &run) {
+                std::lock_guard<std::mutex> lock(pathMutex);
+                ++done;
+                const bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
+                if (progress)
+                    *progress << "michi bench: [" << done << "/" << totalRuns << "] " << planner->getName() << ": "
+                              << (solved ? "solved" : "not solved") << " in " << std::setprecision(3)
+                              << property(run, "time REAL") << " s" << std::endl;
+                if (!solved || firstPaths.count(planner->getName()))
+                    return;
+                const auto pdef = planner->getProblemDefinition();
+                if (!pdef || !pdef->hasExactSolution())
+                    return;
+                auto *path = pdef->getSolutionPath()->as<og::PathGeometric>();
+                PlotPath plot;
+                plot.label = planner->getName();
+                for (const auto *s : path->getStates())
+                {
+                    std::vector<double> values;
+                    si->getStateSpace()->copyToReals(values, s);
+                    plot.states.push_back(values);
+                }
+                firstPaths[planner->getName()] = plot;
+            });
+
+            Staging staging(options.outDir);
+            if (progress)
+                *progress << "michi bench: " << problem.name << ": " << planners.size() << " planners x " << runs
+                          << " runs, " << timeLimit << " s each" << std::endl;
+            ot::Benchmark::Request request(timeLimit, problem.benchmark.memoryLimit, runs, 0.05, false, true,
+                                           problem.benchmark.simplify);
+            benchmark.benchmark(request);
+
+            const fs::path log = staging.path(problem.name + ".log");
+            if (!benchmark.saveResultsToFile(log.string().c_str()))
+                throw std::runtime_error(log.string() + ": cannot write the benchmark log");
+            const fs::path db = staging.path(problem.name + ".db");
+            const fs::path statsLog = staging.path("ompl_benchmark_statistics.out");
+            const std::string command = "ompl_benchmark_statistics " + shellQuote(log.string()) + " -d " +
+                                        shellQuote(db.string()) + " > " + shellQuote(statsLog.string()) + " 2>&1";
+            const int rc = std::system(command.c_str());
+            if (rc != 0 || !fs::exists(db))
+            {
+                std::ifstream in(statsLog.string());
+                std::string line, last;
+                while (std::getline(in, line))
+                    if (!line.empty())
+                        last = line;
+                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) +
+                                         "): " + last + " (is the ompl-demos package installed?)");
+            }
+            fs::remove(statsLog);
+
+            const auto &experiment = benchmark.getRecordedExperimentData();
+            for (const auto &p : experiment.planners)
+            {
+                PlannerSummary s;
+                s.name = p.name;
+                std::vector<double> times, lengths, clearances;
+                for (const auto &run : p.runs)
+                {
+                    ++s.runs;
+                    times.push_back(property(run, "time REAL"));
+                    if (property(run, "solved BOOLEAN") == 1.)
+                    {
+                        ++s.solved;
+                        lengths.push_back(property(run, "solution length REAL"));
+                        clearances.push_back(property(run, "solution clearance REAL"));
+                    }
+                }
+                s.medianTime = median(times);
+                s.medianLength = median(lengths);
+                s.medianClearance = median(clearances);
+                result.planners.push_back(s);
+            }
+            const fs::path summary = staging.path("summary.md");
+            {
+                std::ofstream out(summary.string());
+                out << summaryMarkdown(problem, result.planners, timeLimit, runs);
+                if (!out)
+                    throw std::runtime_error(summary.string() + ": cannot write");
+            }
+            for (const auto &planner : planners)
+                if (firstPaths.count(planner->getName()))
+                    result.paths.push_back(firstPaths[planner->getName()]);
+            const fs::path picture = staging.path(problem.name + ".svg");
+            writeProblemSvg(problem, result.paths, picture.string(), options.query);
+
+            staging.commit();
+            const fs::path out = staging.out();
+            result.log = (out / log.filename()).string();
+            result.database = (out / db.filename()).string();
+            result.summary = (out / summary.filename()).string();
+            result.picture = (out / picture.filename()).string();
+            return result;
+        }
+    }
+}

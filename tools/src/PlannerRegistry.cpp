@@ -1,0 +1,114 @@
+#include <michi/tools/PlannerRegistry.h>
+
+#include <ompl/geometric/planners/est/BiEST.h>
+#include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/est/ProjEST.h>
+#include <ompl/geometric/planners/fmt/BFMT.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/ABITstar.h>
+#include <ompl/geometric/planners/informedtrees/AITstar.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
+#include <ompl/geometric/planners/pdst/PDST.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/LazyPRMstar.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/prm/SPARS.h>
+#include <ompl/geometric/planners/prm/SPARStwo.h>
+#include <ompl/geometric/planners/rrt/BiTRRT.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/LazyRRT.h>
+#include <ompl/geometric/planners/rrt/LBTRRT.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/rrt/TRRT.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/geometric/planners/sst/SST.h>
+#include <ompl/geometric/planners/stride/STRIDE.h>
+
+#include <sstream>
+#include <stdexcept>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            template <typename P>
+            ob::PlannerAllocator allocator()
+            {
+                return [](const ob::SpaceInformationPtr &si) { return std::make_shared<P>(si); };
+            }
+        }
+
+        const std::map<std::string, ob::PlannerAllocator> &plannerAllocators()
+        {
+            // OMPL's stock geometric planners under MoveIt's ids. Those that use a projection (KPIECE1,
+            // BKPIECE1, LBKPIECE1, ProjEST, SBL, PDST, STRIDE) take the space's default projection: michi's
+            // joint spaces register one that works on OMPL 1.5.2. michi's own planners join this map as they
+            // arrive, under "michi::<Name>".
+            static const std::map<std::string, ob::PlannerAllocator> registry{
+                {"geometric::ABITstar", allocator<og::ABITstar>()},
+                {"geometric::AITstar", allocator<og::AITstar>()},
+                {"geometric::BFMT", allocator<og::BFMT>()},
+                {"geometric::BiEST", allocator<og::BiEST>()},
+                {"geometric::BiTRRT", allocator<og::BiTRRT>()},
+                {"geometric::BITstar", allocator<og::BITstar>()},
+                {"geometric::BKPIECE1", allocator<og::BKPIECE1>()},
+                {"geometric::EST", allocator<og::EST>()},
+                {"geometric::FMT", allocator<og::FMT>()},
+                {"geometric::InformedRRTstar", allocator<og::InformedRRTstar>()},
+                {"geometric::KPIECE1", allocator<og::KPIECE1>()},
+                {"geometric::LazyPRM", allocator<og::LazyPRM>()},
+                {"geometric::LazyPRMstar", allocator<og::LazyPRMstar>()},
+                {"geometric::LazyRRT", allocator<og::LazyRRT>()},
+                {"geometric::LBKPIECE1", allocator<og::LBKPIECE1>()},
+                {"geometric::LBTRRT", allocator<og::LBTRRT>()},
+                {"geometric::PDST", allocator<og::PDST>()},
+                {"geometric::PRM", allocator<og::PRM>()},
+                {"geometric::PRMstar", allocator<og::PRMstar>()},
+                {"geometric::ProjEST", allocator<og::ProjEST>()},
+                {"geometric::RRT", allocator<og::RRT>()},
+                {"geometric::RRTConnect", allocator<og::RRTConnect>()},
+                {"geometric::RRTstar", allocator<og::RRTstar>()},
+                {"geometric::SBL", allocator<og::SBL>()},
+                {"geometric::SPARS", allocator<og::SPARS>()},
+                {"geometric::SPARStwo", allocator<og::SPARStwo>()},
+                {"geometric::SST", allocator<og::SST>()},
+                {"geometric::STRIDE", allocator<og::STRIDE>()},
+                {"geometric::TRRT", allocator<og::TRRT>()},
+            };
+            return registry;
+        }
+
+        std::vector<std::string> plannerNames()
+        {
+            std::vector<std::string> names;
+            for (const auto &kv : plannerAllocators())
+                names.push_back(kv.first);
+            return names;
+        }
+
+        ob::PlannerPtr allocatePlanner(const std::string &name, const ob::SpaceInformationPtr &si)
+        {
+            const auto &registry = plannerAllocators();
+            auto it = registry.find(name);
+            if (it == registry.end())
+            {
+                std::ostringstream known;
+                for (const auto &n : plannerNames())
+                    known << " " << n;
+                throw std::invalid_argument("unknown planner '" + name + "' (known:" + known.str() + ")");
+            }
+            return it->second(si);
+        }
+    }
+}

@@ -1,0 +1,107 @@
+#include <michi/tools/PlanningContext.h>
+
+#include <michi/state_spaces/JointStateSpace.h>
+#include <michi/validity/ConservativeMotionValidator.h>
+
+#include <ompl/base/ScopedState.h>
+
+#include <sstream>
+
+namespace ob = ompl::base;
+
+namespace michi
+{
+    namespace tools
+    {
+        ob::StateSpacePtr makeStateSpace(const Problem &problem)
+        {
+            if (problem.kind == Problem::Kind::SE2)
+            {
+                const auto &b = problem.se2Bounds;
+                return state_spaces::makeSe2StateSpace(b[0], b[1], b[2], b[3]);
+            }
+            std::vector<state_spaces::JointSpec> joints;
+            for (int v : problem.groupVariables)
+            {
+                const auto &j = problem.model->variableJoint(v);
+                joints.push_back(state_spaces::JointSpec{j.name, j.lower, j.upper,
+                                                         j.type == validity::RobotJoint::Type::CONTINUOUS});
+            }
+            return state_spaces::makeJointStateSpace(joints);
+        }
+
+        namespace
+        {
+            void setState(ob::ScopedState<> &state, const std::vector<double> &values)
+            {
+                state.getSpace()->copyFromReals(state.get(), values);
+                state.getSpace()->enforceBounds(state.get());  // wraps SO(2) values into [-pi, pi)
+            }
+
+            void checkEndpoint(const Problem &problem, const PlanningContext &ctx, const std::vector<double> &values,
+                               const std::string &key)
+            {
+                ob::ScopedState<> state(ctx.setup->getStateSpace());
+                setState(state, values);
+                if (!ctx.setup->getSpaceInformation()->satisfiesBounds(state.get()))
+                    throw ProblemError(problem.file, key, "outside the state space bounds");
+                const std::string collision = ctx.checker->describeCollision(values.data());
+                if (!collision.empty())
+                    throw ProblemError(problem.file, key, "in collision: " + collision);
+            }
+        }
+
+        PlanningContext makePlanningContext(const Problem &problem, std::size_t query)
+        {
+            if (query >= problem.queries.size())
+                throw ProblemError(problem.file, "queries",
+                                   "query " + std::to_string(query) + " requested, the file has " +
+                                       std::to_string(problem.queries.size()));
+            PlanningContext ctx;
+            ctx.bodies = problem.bodies();
+            ctx.setup = std::make_shared<ompl::geometric::SimpleSetup>(makeStateSpace(problem));
+            auto si = ctx.setup->getSpaceInformation();
+            ctx.checker = std::make_shared<validity::FclValidityChecker>(si, ctx.bodies, problem.scene);
+            ctx.setup->setStateValidityChecker(ctx.checker);
+            si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, ctx.checker));
+            if (problem.validSegmentFraction > 0.)
+                si->setStateValidityCheckingResolution(problem.validSegmentFraction);
+            si->setup();  // the space's value locations (copyFromReals) exist only after setup
+
+            const std::string prefix = problem.queries.size() > 1 || query > 0 ?
+                                           "queries[" + std::to_string(query) + "]." :
+                                           std::string();
+            const Query &q = problem.queries[query];
+            checkEndpoint(problem, ctx, q.start, prefix.empty() ? "start" : prefix + "start");
+            checkEndpoint(problem, ctx, q.goal, prefix.empty() ? "goal" : prefix + "goal");
+            ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
+            setState(start, q.start);
+            setState(goal, q.goal);
+            // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
+            ctx.setup->setStartAndGoalStates(start, goal);
+            return ctx;
+        }
+
+        void applyPlannerParams(ob::Planner &planner, const PlannerSpec &spec, const std::string &file)
+        {
+            for (const auto &kv : spec.params)
+            {
+                auto &params = planner.params();
+                if (!params.hasParam(kv.first))
+                {
+                    std::vector<std::string> names;
+                    params.getParamNames(names);
+                    std::ostringstream known;
+                    for (std::size_t i = 0; i < names.size(); ++i)
+                        known << (i ? ", " : "") << names[i];
+                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                                       "unknown parameter of " + planner.getName() + " (known: " + known.str() + ")");
+                }
+                if (!params.setParam(kv.first, kv.second))
+                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                                       "value '" + kv.second + "' rejected by " + planner.getName() +
+                                           " (range " + params[kv.first].getRangeSuggestion() + ")");
+            }
+        }
+    }
+}
