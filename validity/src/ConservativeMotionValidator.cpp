@@ -22,8 +22,8 @@ namespace michi
             space->copyToReals(from, s1);
             space->copyToReals(to, s2);
             const double bound = checker_->bodies()->displacementBound(from.data(), to.data());
+            // with no displacement bound (a motion that moves nothing), OMPL's discrete resolution is the fallback
             const double length = space->distance(s1, s2);
-            // the discrete fallback step, as a fraction of the motion (OMPL's resolution)
             const double discreteStep =
                 length > 0. ? std::min(1., space->getLongestValidSegmentLength() / length) : 1.;
 
@@ -45,9 +45,9 @@ namespace michi
                 // Half the nearest distance (robot-obstacle or robot-robot): two bodies approach each other
                 // at most twice as fast as one body moves.
                 const double clearance = 0.5 * checker_->proximity(values.data(), true).distance;
-                double step = discreteStep;
-                if (clearance >= minClearanceStep_ && bound > 0.)
-                    step = std::max(step, clearance / bound);
+                // Near contact the clearance is tiny: keep moving by at most minClearanceStep_ of workspace
+                // displacement per check, so states stay dense in metres (never a coarse joint-space jump).
+                const double step = bound > 0. ? std::max(clearance, minClearanceStep_) / bound : discreteStep;
                 t = std::min(1., t + step);
             }
             si_->freeState(state);

@@ -12,10 +12,12 @@ namespace michi
         /** \brief Motion validation by conservative advancement: at a state with clearance c, no point of the
             robot can reach an obstacle before it has moved c, and CollisionBodies::displacementBound() says how
             far a joint-space step moves it. So the motion is walked in steps that are safe by construction, and
-            the check is exact with respect to the scene (no obstacle thinner than the state-space resolution is
-            missed). Where the clearance falls below \e minClearanceStep the validator falls back to discrete
-            checks at the space's resolution, as OMPL's DiscreteMotionValidator does; self-collision is checked
-            at every visited state. The interpolation is the space's own. Thread-safe. */
+            the check is exact with respect to the scene: no obstacle is missed however thin, except within
+            \e minClearanceStep of contact, where the walk advances by at most minClearanceStep of workspace motion
+            per check (1 mm by default; OMPL's DiscreteMotionValidator instead steps by a fraction of the joint
+            space, which can be centimetres at the end of an arm). Self-collision counts too: the step uses half the
+            smallest robot-obstacle or robot-robot distance, since two bodies close in at most twice as fast as one
+            moves. The interpolation is the space's own. Thread-safe. */
         class ConservativeMotionValidator : public ompl::base::MotionValidator
         {
         public:
