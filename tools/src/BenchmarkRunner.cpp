@@ -201,7 +201,8 @@ namespace michi
             if (progress)
                 *progress << "michi bench: " << problem.name << ": " << planners.size() << " planners x " << runs
                           << " runs, " << timeLimit << " s each" << std::endl;
-            ot::Benchmark::Request request(timeLimit, problem.benchmark.memoryLimit, runs, 0.05, false, true,
+            // saveConsoleOutput=false: OMPL would otherwise leave a .console file in the working directory
+            ot::Benchmark::Request request(timeLimit, problem.benchmark.memoryLimit, runs, 0.05, false, false,
                                            problem.benchmark.simplify);
             benchmark.benchmark(request);
 

@@ -44,7 +44,9 @@ namespace michi
                     break;
                 // Half the nearest distance (robot-obstacle or robot-robot): two bodies approach each other
                 // at most twice as fast as one body moves.
-                const double clearance = 0.5 * checker_->proximity(values.data(), true).distance;
+                // (FCL's answer with rel_err r is at most 1 + r times the true distance)
+                const double clearance =
+                    0.5 * checker_->proximity(values.data(), true, relativeError_).distance / (1. + relativeError_);
                 // Near contact the clearance is tiny: keep moving by at most minClearanceStep_ of workspace
                 // displacement per check, so states stay dense in metres (never a coarse joint-space jump).
                 const double step = bound > 0. ? std::max(clearance, minClearanceStep_) / bound : discreteStep;

@@ -166,7 +166,7 @@ namespace michi
             return proximity(values, false).distance;
         }
 
-        Proximity FclValidityChecker::proximity(const double *values, bool includeSelf) const
+        Proximity FclValidityChecker::proximity(const double *values, bool includeSelf, double relativeError) const
         {
             PosedBodies posed(*bodies_, values);
             Proximity best;
@@ -177,6 +177,8 @@ namespace michi
                     {
                         DistanceData data;
                         data.request.enable_nearest_points = true;
+                        data.request.rel_err = relativeError;
+                        data.request.gjk_solver_type = fcl::GST_INDEP;
                         data.query = object.get();
                         data.best = best.distance;
                         scene_->manager().distance(object.get(), &data, distanceCallback);
@@ -198,6 +200,8 @@ namespace michi
                         {
                             fcl::DistanceRequestd request;
                             request.enable_nearest_points = true;
+                            request.rel_err = relativeError;
+                            request.gjk_solver_type = fcl::GST_INDEP;
                             fcl::DistanceResultd result;
                             fcl::distance(a.get(), b.get(), request, result);
                             if (result.min_distance < best.distance)

@@ -370,8 +370,12 @@ namespace michi
             for (auto it = jointOrder_.rbegin(); it != jointOrder_.rend(); ++it)
             {
                 const RobotJoint &joint = joints_[*it];
-                reach[joint.parentLink] =
-                    std::max(reach[joint.parentLink], joint.origin.translation().norm() + reach[joint.childLink]);
+                // a prismatic joint carries its child up to max(|lower|, |upper|) away from the joint origin
+                const double extension = joint.type == RobotJoint::Type::PRISMATIC ?
+                                             std::max(std::abs(joint.lower), std::abs(joint.upper)) :
+                                             0.;
+                reach[joint.parentLink] = std::max(reach[joint.parentLink], joint.origin.translation().norm() +
+                                                                                extension + reach[joint.childLink]);
             }
             displacementBounds_.assign(variableJoints_.size(), 0.);
             for (std::size_t v = 0; v < variableJoints_.size(); ++v)

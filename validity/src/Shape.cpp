@@ -347,7 +347,8 @@ namespace michi
                 for (double z : {-half, half})
                 {
                     const Eigen::Vector3d c = pose * Eigen::Vector3d(0, 0, z);
-                    for (const auto &p : circlePolygon2(Point2(c.x(), c.y()), size_.x(), sides).outer())
+                    const Polygon2 circle = circlePolygon2(Point2(c.x(), c.y()), size_.x(), sides);
+                    for (const auto &p : circle.outer())
                         pts.push_back(p);
                 }
                 Polygon2 hull;

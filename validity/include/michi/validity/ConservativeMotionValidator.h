@@ -35,11 +35,22 @@ namespace michi
             {
                 return minClearanceStep_;
             }
+            /** \brief Relative error allowed in the distance queries (FCL's rel_err); the walk uses the lower
+                bound d / (1 + r). Larger values make each query cheaper on meshes and each step shorter. */
+            void setRelativeError(double r)
+            {
+                relativeError_ = r;
+            }
+            double getRelativeError() const
+            {
+                return relativeError_;
+            }
 
         private:
             bool walk(const ompl::base::State *s1, const ompl::base::State *s2, double *lastValidTime) const;
             FclValidityCheckerPtr checker_;
             double minClearanceStep_{1e-3};
+            double relativeError_{0.};
         };
     }
 }

@@ -44,8 +44,10 @@ namespace michi
             bool isValidConfiguration(const double *values) const;
             /** \brief Distance to the nearest obstacle; <= 0 in collision. */
             double clearanceConfiguration(const double *values) const;
-            /** \brief Nearest robot/scene pair, and self pairs when \e includeSelf. */
-            Proximity proximity(const double *values, bool includeSelf = false) const;
+            /** \brief Nearest robot/scene pair, and self pairs when \e includeSelf. With \e relativeError r > 0
+                FCL may stop early: the returned distance d is an upper bound and d / (1 + r) a lower bound of the
+                true one (cheaper for meshes). */
+            Proximity proximity(const double *values, bool includeSelf = false, double relativeError = 0.) const;
             /** \brief "link3 touches obstacle 'wall'" or "link1 touches link4"; empty when valid. */
             std::string describeCollision(const double *values) const;
 

@@ -1,0 +1,105 @@
+// Micro-benchmarks of the collision stack on the bundled problems (Google Benchmark; not part of ctest).
+//   build/tests/micro/bench_validity --benchmark_min_time=0.5
+// Figures compare against a baseline measured in the same process: the FCL boolean check is the baseline of the
+// clearance query, OMPL's DiscreteMotionValidator the baseline of the conservative motion validator.
+#include <michi/tools/PlanningContext.h>
+#include <michi/validity/ConservativeMotionValidator.h>
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <benchmark/benchmark.h>
+
+namespace
+{
+    struct Fixture
+    {
+        michi::tools::Problem problem;
+        michi::tools::PlanningContext ctx;
+        std::vector<ompl::base::State *> states;  // uniform samples, valid and invalid
+
+        explicit Fixture(const std::string &name)
+          : problem(michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
+          , ctx(michi::tools::makePlanningContext(problem))
+        {
+            ompl::RNG::setSeed(7);
+            auto si = ctx.setup->getSpaceInformation();
+            auto sampler = si->allocStateSampler();
+            for (int i = 0; i < 512; ++i)
+            {
+                states.push_back(si->allocState());
+                sampler->sampleUniform(states.back());
+            }
+        }
+    };
+
+    Fixture &fixture(const std::string &name)
+    {
+        static std::map<std::string, std::unique_ptr<Fixture>> cache;
+        auto &f = cache[name];
+        if (!f)
+            f = std::make_unique<Fixture>(name);
+        return *f;
+    }
+
+    void isValid(benchmark::State &bm, const std::string &name)
+    {
+        auto &f = fixture(name);
+        std::size_t i = 0, valid = 0;
+        for (auto _ : bm)
+            valid += f.ctx.checker->isValid(f.states[i++ % f.states.size()]);
+        bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
+    }
+
+    void clearance(benchmark::State &bm, const std::string &name)
+    {
+        auto &f = fixture(name);
+        std::size_t i = 0;
+        for (auto _ : bm)
+            benchmark::DoNotOptimize(f.ctx.checker->clearance(f.states[i++ % f.states.size()]));
+    }
+
+    void motion(benchmark::State &bm, const std::string &name, bool conservative)
+    {
+        auto &f = fixture(name);
+        auto si = f.ctx.setup->getSpaceInformation();
+        std::shared_ptr<ompl::base::MotionValidator> validator;
+        if (conservative)
+            validator = std::make_shared<michi::validity::ConservativeMotionValidator>(si, f.ctx.checker);
+        else
+            validator = std::make_shared<ompl::base::DiscreteMotionValidator>(si);
+        // motions between valid samples, short ones (a tenth of the way) as planners mostly make
+        std::vector<std::pair<ompl::base::State *, ompl::base::State *>> motions;
+        for (std::size_t a = 0; a + 1 < f.states.size() && motions.size() < 200; ++a)
+            if (si->isValid(f.states[a]))
+            {
+                auto *b = si->allocState();
+                si->getStateSpace()->interpolate(f.states[a], f.states[a + 1], 0.1, b);
+                if (si->isValid(b))
+                    motions.emplace_back(f.states[a], b);
+            }
+        // acceptance over the distinct motions, once (the conservative validator may only accept fewer)
+        std::size_t accepted = 0;
+        for (const auto &m : motions)
+            accepted += validator->checkMotion(m.first, m.second);
+        bm.counters["motions"] = static_cast<double>(motions.size());
+        bm.counters["accepted"] = static_cast<double>(accepted);
+        std::size_t i = 0;
+        for (auto _ : bm)
+        {
+            const auto &m = motions[i++ % motions.size()];
+            benchmark::DoNotOptimize(validator->checkMotion(m.first, m.second));
+        }
+    }
+}
+
+BENCHMARK_CAPTURE(isValid, planar_2link, std::string("planar_2link"));
+BENCHMARK_CAPTURE(clearance, planar_2link, std::string("planar_2link"));
+BENCHMARK_CAPTURE(motion, discrete_planar_2link, std::string("planar_2link"), false);
+BENCHMARK_CAPTURE(motion, conservative_planar_2link, std::string("planar_2link"), true);
+BENCHMARK_CAPTURE(isValid, xarm6_ring, std::string("xarm6_ring"));
+BENCHMARK_CAPTURE(clearance, xarm6_ring, std::string("xarm6_ring"));
+BENCHMARK_CAPTURE(motion, discrete_xarm6_ring, std::string("xarm6_ring"), false);
+BENCHMARK_CAPTURE(motion, conservative_xarm6_ring, std::string("xarm6_ring"), true);
+
+BENCHMARK_MAIN();
