@@ -14,6 +14,7 @@ PACKAGES=(
     libgtest-dev libgmock-dev
     libbenchmark-dev
     python3 sqlite3
+    libtinyxml2-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,10 +1,15 @@
 #include <michi/tools/Problem.h>
 
+#include <michi/tools/MoveItImport.h>
+#include <michi/tools/MovingAiMap.h>
+
 #include <yaml-cpp/yaml.h>
 
 #include <boost/filesystem.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -260,13 +265,133 @@ namespace michi
                 r.fail(key, "expected one of box, sphere, cylinder, capsule, polygon, mesh");
             }
 
-            void readScene(const Reader &r, const YAML::Node &scene, Problem &problem)
+            /** What scene.movingai adds besides obstacles: the map's extent and the scenario queries. */
+            struct GridMapInfo
+            {
+                bool present{false};
+                std::array<double, 4> bounds{{0., 1., 0., 1.}};  ///< x min, x max, y min, y max
+                std::vector<Query> queries;
+            };
+
+            void readMoveItSceneKey(const Reader &r, const YAML::Node &node, Problem &problem)
+            {
+                const std::string path = r.path(node, "scene.moveit");
+                const MoveItScene moveit = readMoveItScene(path, problem.model.get());  // errors name the scene file
+                for (auto &o : moveit.obstacles)
+                {
+                    const std::string name = o.name;
+                    try
+                    {
+                        problem.scene->add(std::move(o));
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail("scene.moveit", "object '" + name + "': " + e.what());
+                    }
+                }
+                for (const auto &pair : moveit.allowedCollisions)
+                    problem.model->allowCollision(pair.first, pair.second);  // robot links, checked by the reader
+            }
+
+            void readMovingAiKey(const Reader &r, const YAML::Node &node, Problem &problem, GridMapInfo &info)
+            {
+                const std::string key = "scene.movingai";
+                if (!node.IsMap())
+                    r.fail(key, "expected a mapping {map: FILE.map, resolution, height, origin, scenarios}");
+                for (const auto &kv : node)
+                {
+                    const std::string k = kv.first.as<std::string>();
+                    if (k != "map" && k != "resolution" && k != "height" && k != "origin" && k != "scenarios")
+                        r.fail(key + "." + k, "unknown key (expected map, resolution, height, origin, scenarios)");
+                }
+                const std::string file = r.path(r.require(node, "map", key), key + ".map");
+                const double resolution = r.number(node, "resolution", key, 1.);
+                if (!(resolution > 0.))
+                    r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                const double height = r.number(node, "height", key, 1.);
+                if (!(height > 0.))
+                    r.fail(key + ".height", "expected a positive number (metres)");
+                Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+                if (node["origin"])
+                {
+                    const auto o = r.numbers(node["origin"], key + ".origin", 2);
+                    origin = Eigen::Vector2d(o[0], o[1]);
+                }
+                const MovingAiMap map = readMovingAiMap(file);  // errors name the map file
+                for (auto &o : movingAiObstacles(map, resolution, origin, height))
+                {
+                    const std::string name = o.name;
+                    try
+                    {
+                        problem.scene->add(std::move(o));
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail(key, "cells '" + name + "': " + e.what());
+                    }
+                }
+                info.present = true;
+                info.bounds = {{origin.x(), origin.x() + map.width * resolution, origin.y(),
+                                origin.y() + map.height * resolution}};
+
+                const YAML::Node scen = node["scenarios"];
+                if (!scen)
+                    return;
+                const std::string sk = key + ".scenarios";
+                if (problem.kind != Problem::Kind::SE2)
+                    r.fail(sk, "scenarios become SE2 queries: needs robot.type se2");
+                if (!scen.IsMap())
+                    r.fail(sk, "expected a mapping {file: FILE.scen, bucket, count}");
+                for (const auto &kv : scen)
+                {
+                    const std::string k = kv.first.as<std::string>();
+                    if (k != "file" && k != "bucket" && k != "count")
+                        r.fail(sk + "." + k, "unknown key (expected file, bucket, count)");
+                }
+                const std::string scenFile = r.path(r.require(scen, "file", sk), sk + ".file");
+                int bucket = -1;
+                if (scen["bucket"])
+                {
+                    const double b = r.number(scen["bucket"], sk + ".bucket");
+                    if (b < 0. || b != std::floor(b))
+                        r.fail(sk + ".bucket", "expected a bucket number (0, 1, ...)");
+                    bucket = static_cast<int>(b);
+                }
+                const unsigned int count =
+                    scen["count"] ? r.count(scen["count"], sk + ".count") : std::numeric_limits<unsigned int>::max();
+                for (const auto &s : readMovingAiScenarios(scenFile))
+                {
+                    if (bucket >= 0 && s.bucket != bucket)
+                        continue;
+                    if (info.queries.size() >= count)
+                        break;
+                    const std::string line = "line " + std::to_string(s.line);
+                    if (s.mapWidth != map.width || s.mapHeight != map.height)
+                        throw ProblemError(scenFile, line,
+                                           "map size " + std::to_string(s.mapWidth) + " x " +
+                                               std::to_string(s.mapHeight) + ", but '" + file + "' is " +
+                                               std::to_string(map.width) + " x " + std::to_string(map.height));
+                    for (const auto &cell : {std::make_pair(s.startX, s.startY), std::make_pair(s.goalX, s.goalY)})
+                        if (cell.first < 0 || cell.first >= map.width || cell.second < 0 || cell.second >= map.height)
+                            throw ProblemError(scenFile, line,
+                                               "cell (" + std::to_string(cell.first) + ", " +
+                                                   std::to_string(cell.second) + ") outside the map");
+                    const Eigen::Vector2d a = movingAiCellCentre(map, s.startX, s.startY, resolution, origin);
+                    const Eigen::Vector2d b = movingAiCellCentre(map, s.goalX, s.goalY, resolution, origin);
+                    info.queries.push_back(Query{{a.x(), a.y(), 0.}, {b.x(), b.y(), 0.}});
+                }
+                if (info.queries.empty())
+                    r.fail(sk, "no scenario in '" + scenFile + "'" +
+                                   (bucket >= 0 ? " with bucket " + std::to_string(bucket) : std::string()));
+            }
+
+            void readScene(const Reader &r, const YAML::Node &scene, Problem &problem, GridMapInfo &gridMap)
             {
                 problem.scene = std::make_shared<validity::Scene>();
                 if (!scene)
                     return;
                 if (!scene.IsMap())
-                    r.fail("scene", "expected a mapping with obstacles and/or map");
+                    r.fail("scene", "expected a mapping with obstacles, map, moveit and/or movingai");
                 if (const YAML::Node list = scene["obstacles"])
                 {
                     if (!list.IsSequence())
@@ -328,15 +453,21 @@ namespace michi
                         r.fail(key + ".pgm", e.what());
                     }
                 }
+                if (const YAML::Node moveit = scene["moveit"])
+                    readMoveItSceneKey(r, moveit, problem);
+                if (const YAML::Node movingai = scene["movingai"])
+                    readMovingAiKey(r, movingai, problem, gridMap);
                 for (const auto &kv : scene)
                 {
                     const std::string k = kv.first.as<std::string>();
-                    if (k != "obstacles" && k != "map")
-                        r.fail("scene." + k, "unknown key (expected obstacles, map)");
+                    if (k != "obstacles" && k != "map" && k != "moveit" && k != "movingai")
+                        r.fail("scene." + k, "unknown key (expected obstacles, map, moveit, movingai)");
                 }
             }
 
-            void readArm(const Reader &r, const YAML::Node &robot, Problem &problem)
+            /** \e request: the problem's first MoveIt request (empty when none); its group_name is the planned
+                group when robot.group is not given. */
+            void readArm(const Reader &r, const YAML::Node &robot, Problem &problem, const MoveItRequest &request)
             {
                 const std::string urdf = r.path(r.require(robot, "urdf", "robot"), "robot.urdf");
                 problem.model = validity::RobotModel::fromUrdfFile(urdf);  // UrdfError names the URDF
@@ -374,20 +505,36 @@ namespace michi
                         }
                     }
                 }
-                if (problem.groups.empty() || !robot["group"])
+                if (robot["srdf"])
                 {
-                    if (robot["group"])
+                    // disabled pairs and groups of the SRDF; a group of robot.groups wins over one of the same name
+                    const SrdfModel srdf = readSrdf(r.path(robot["srdf"], "robot.srdf"), model);
+                    for (const auto &pair : srdf.disabledCollisions)
+                        problem.model->allowCollision(pair.first, pair.second);
+                    for (const auto &g : srdf.groups)
+                        problem.groups.emplace(g.first, g.second);
+                }
+                const std::string groupSources = robot["srdf"] ? "robot.groups or robot.srdf" : "robot.groups";
+                if (robot["group"])
+                {
+                    if (problem.groups.empty())
                         r.fail("robot.group", "names a group but robot.groups is missing");
-                    problem.groups.emplace("all", model.variableNames());
-                    problem.group = problem.groups.size() == 1 ? problem.groups.begin()->first : "all";
-                    problem.groups["all"] = model.variableNames();
-                    problem.group = "all";
+                    problem.group = r.text(robot["group"], "robot.group");
+                    if (!problem.groups.count(problem.group))
+                        r.fail("robot.group", "no group named '" + problem.group + "' in " + groupSources);
+                }
+                else if (!request.groupName.empty())
+                {
+                    problem.group = request.groupName;
+                    if (!problem.groups.count(problem.group))
+                        throw ProblemError(
+                            request.file, "group_name",
+                            "no group named '" + problem.group + "' in " + groupSources + " of '" + r.file() + "'");
                 }
                 else
                 {
-                    problem.group = r.text(robot["group"], "robot.group");
-                    if (!problem.groups.count(problem.group))
-                        r.fail("robot.group", "no group named '" + problem.group + "' in robot.groups");
+                    problem.groups["all"] = model.variableNames();
+                    problem.group = "all";
                 }
                 for (const auto &joint : problem.groups[problem.group])
                     problem.groupVariables.push_back(model.variableIndex(joint));
@@ -433,7 +580,8 @@ namespace michi
                 }
             }
 
-            void readSe2(const Reader &r, const YAML::Node &robot, Problem &problem)
+            /** \e mapBounds: robot.bounds may be left out (the bounds of the scene's grid map are used then). */
+            void readSe2(const Reader &r, const YAML::Node &robot, Problem &problem, bool mapBounds)
             {
                 problem.kind = Problem::Kind::SE2;
                 problem.footprint = r.polygon(r.require(robot, "footprint", "robot"), "robot.footprint");
@@ -446,6 +594,8 @@ namespace michi
                     r.fail("robot.footprint", e.what());
                 }
                 problem.footprintHeight = r.number(robot, "height", "robot", 1.);
+                if (mapBounds && !robot["bounds"])
+                    return;
                 const YAML::Node bounds = r.require(robot, "bounds", "robot");
                 const auto x = r.numbers(r.require(bounds, "x", "robot.bounds"), "robot.bounds.x", 2);
                 const auto y = r.numbers(r.require(bounds, "y", "robot.bounds"), "robot.bounds.y", 2);
@@ -454,10 +604,10 @@ namespace michi
                 problem.se2Bounds = {{x[0], x[1], y[0], y[1]}};
             }
 
-            std::vector<double> readConfiguration(const Reader &r, const YAML::Node &n, const std::string &key,
-                                                  const Problem &problem)
+            /** Joint limits (ARM) or bounds (SE2) of a configuration; \e indexKeys: name value i "key[i]". */
+            void checkConfiguration(const Reader &r, const std::vector<double> &values, const std::string &key,
+                                    const Problem &problem, bool indexKeys = true)
             {
-                const auto values = r.numbers(n, key, problem.dimension());
                 if (problem.kind == Problem::Kind::ARM)
                     for (std::size_t i = 0; i < values.size(); ++i)
                     {
@@ -468,7 +618,7 @@ namespace michi
                             std::ostringstream msg;
                             msg << "joint '" << joint.name << "' value " << values[i] << " outside its limits ["
                                 << joint.lower << ", " << joint.upper << "]";
-                            r.fail(key + "[" + std::to_string(i) + "]", msg.str());
+                            r.fail(indexKeys ? key + "[" + std::to_string(i) + "]" : key, msg.str());
                         }
                     }
                 else
@@ -477,7 +627,75 @@ namespace michi
                     if (values[0] < b[0] || values[0] > b[1] || values[1] < b[2] || values[1] > b[3])
                         r.fail(key, "position outside robot.bounds");
                 }
+            }
+
+            std::vector<double> readConfiguration(const Reader &r, const YAML::Node &n, const std::string &key,
+                                                  const Problem &problem)
+            {
+                const auto values = r.numbers(n, key, problem.dimension());
+                checkConfiguration(r, values, key, problem);
                 return values;
+            }
+
+            /** The start and goal of a MoveIt MotionPlanRequest for the planned group. \e first: the problem's
+                first request, whose start state also fixes the robot's other joints it names (unless
+                robot.fixed_joints gives them). */
+            Query readRequestQuery(const Reader &r, const YAML::Node &node, const std::string &key, Problem &problem,
+                                   const YAML::Node &robot, bool first)
+            {
+                if (problem.kind != Problem::Kind::ARM)
+                    r.fail(key, "a MoveIt request needs a urdf robot");
+                const MoveItRequest request = readMoveItRequest(r.path(node, key));
+                const Reader rr(request.file);
+                if (!robot["group"] && !request.groupName.empty() && request.groupName != problem.group)
+                    rr.fail("group_name", "'" + request.groupName + "' differs from the planned group '" +
+                                              problem.group + "' (the first request's)");
+                const auto joints = problem.valueNames();
+                Query query;
+                query.start = jointValues(joints, request.startNames, request.startPositions, request.file,
+                                          "start_state.joint_state.name");
+                std::vector<std::string> goalNames;
+                std::vector<double> goalValues;
+                for (const auto &c : request.goal)
+                {
+                    goalNames.push_back(c.first);
+                    goalValues.push_back(c.second);
+                }
+                query.goal =
+                    jointValues(joints, goalNames, goalValues, request.file, "goal_constraints[0].joint_constraints");
+                checkConfiguration(rr, query.start, "start_state.joint_state", problem, false);
+                checkConfiguration(rr, query.goal, "goal_constraints[0].joint_constraints", problem, false);
+                if (!first)
+                    return query;
+                const YAML::Node fixed = robot["fixed_joints"];
+                for (std::size_t i = 0; i < request.startNames.size(); ++i)
+                {
+                    const std::string &joint = request.startNames[i];
+                    if (std::find(joints.begin(), joints.end(), joint) != joints.end() ||
+                        (fixed && fixed.IsMap() && fixed[joint]))
+                        continue;
+                    int v = -1;
+                    try
+                    {
+                        v = problem.model->variableIndex(joint);
+                    }
+                    catch (const std::out_of_range &)
+                    {
+                        continue;  // a fixed joint of the URDF or not a joint of this robot (virtual joints)
+                    }
+                    const auto &j = problem.model->variableJoint(v);
+                    const double value = request.startPositions[i];
+                    if (j.type != validity::RobotJoint::Type::CONTINUOUS &&
+                        (value < j.lower - 1e-9 || value > j.upper + 1e-9))
+                    {
+                        std::ostringstream msg;
+                        msg << "joint '" << joint << "' value " << value << " outside its limits [" << j.lower << ", "
+                            << j.upper << "]";
+                        rr.fail("start_state.joint_state", msg.str());
+                    }
+                    problem.fixedValues[v] = value;
+                }
+                return query;
             }
 
             void readPlanners(const Reader &r, const YAML::Node &list, Problem &problem)
@@ -584,9 +802,9 @@ namespace michi
             }
             if (!root.IsMap())
                 r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
-            static const std::set<std::string> known{"name",    "description", "robot",     "scene",    "start",
-                                                     "goal",    "queries",     "planners",  "benchmark", "collision",
-                                                     "extras"};
+            static const std::set<std::string> known{"name",     "description", "robot",     "scene",
+                                                     "start",    "goal",        "request",   "queries",
+                                                     "planners", "benchmark",   "collision", "extras"};
             for (const auto &kv : root)
                 if (!known.count(kv.first.as<std::string>()))
                     r.fail(kv.first.as<std::string>(), "unknown top-level key");
@@ -601,29 +819,73 @@ namespace michi
             if (!robot.IsMap())
                 r.fail("robot", "expected a mapping (urdf: ... or type: se2)");
             const std::string type = robot["type"] ? r.text(robot["type"], "robot.type") : "urdf";
+
+            // the first MoveIt request (top-level request, else the first query's) may name the planned group
+            YAML::Node firstRequest;
+            std::string firstRequestKey;
+            if (root["request"])
+            {
+                if (root["start"] || root["goal"])
+                    r.fail("request", "give either request or start and goal, not both");
+                firstRequest = root["request"];
+                firstRequestKey = "request";
+            }
+            else if (root["queries"] && root["queries"].IsSequence())
+                for (std::size_t i = 0; i < root["queries"].size() && firstRequestKey.empty(); ++i)
+                    if (root["queries"][i].IsMap() && root["queries"][i]["request"])
+                    {
+                        firstRequest = root["queries"][i]["request"];
+                        firstRequestKey = "queries[" + std::to_string(i) + "].request";
+                    }
+            MoveItRequest request;
+            if (!firstRequestKey.empty() && (type == "urdf" || type == "arm"))
+                request = readMoveItRequest(r.path(firstRequest, firstRequestKey));
+
+            const YAML::Node sceneNode = root["scene"];
+            const bool gridMap = sceneNode && sceneNode.IsMap() && sceneNode["movingai"];
             if (type == "urdf" || type == "arm")
-                readArm(r, robot, problem);
+                readArm(r, robot, problem, request);
             else if (type == "se2")
-                readSe2(r, robot, problem);
+                readSe2(r, robot, problem, gridMap);
             else
                 r.fail("robot.type", "expected 'urdf' or 'se2', got '" + type + "'");
 
-            readScene(r, root["scene"], problem);
+            GridMapInfo gridMapInfo;
+            readScene(r, sceneNode, problem, gridMapInfo);
+            if (problem.kind == Problem::Kind::SE2 && !robot["bounds"])
+                problem.se2Bounds = gridMapInfo.bounds;  // readSe2 required them unless there is a grid map
+            for (const auto &q : gridMapInfo.queries)
+                for (const auto *values : {&q.start, &q.goal})
+                    checkConfiguration(r, *values, "scene.movingai.scenarios", problem);
 
+            std::vector<Query> requestQuery;
+            if (root["request"])
+                requestQuery.push_back(readRequestQuery(r, root["request"], "request", problem, robot, true));
             if (root["queries"])
             {
                 const YAML::Node q = root["queries"];
                 if (!q.IsSequence() || q.size() == 0)
-                    r.fail("queries", "expected a non-empty list of {start, goal}");
+                    r.fail("queries", "expected a non-empty list of {start, goal} or {request}");
                 for (std::size_t i = 0; i < q.size(); ++i)
                 {
                     const std::string key = "queries[" + std::to_string(i) + "]";
+                    if (q[i].IsMap() && q[i]["request"])
+                    {
+                        if (q[i]["start"] || q[i]["goal"])
+                            r.fail(key, "give either request or start and goal, not both");
+                        problem.queries.push_back(readRequestQuery(r, q[i]["request"], key + ".request", problem, robot,
+                                                                   key + ".request" == firstRequestKey));
+                        continue;
+                    }
                     problem.queries.push_back(
                         Query{readConfiguration(r, r.require(q[i], "start", key), key + ".start", problem),
                               readConfiguration(r, r.require(q[i], "goal", key), key + ".goal", problem)});
                 }
             }
-            if (root["start"] || root["goal"] || problem.queries.empty())
+            problem.queries.insert(problem.queries.end(), gridMapInfo.queries.begin(), gridMapInfo.queries.end());
+            if (!requestQuery.empty())
+                problem.queries.insert(problem.queries.begin(), requestQuery.front());
+            else if (root["start"] || root["goal"] || problem.queries.empty())
             {
                 const auto start = readConfiguration(r, r.require(root, "start", ""), "start", problem);
                 const auto goal = readConfiguration(r, r.require(root, "goal", ""), "goal", problem);
