@@ -5,6 +5,7 @@
 #include "support/TestScenes.h"
 
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/WorkspaceMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
@@ -217,18 +218,73 @@ TEST(ConservativeMotionValidator, AgreesWithAFineCheckOnRandomMotions)
 
 TEST(ConservativeMotionValidator, SettingsKeepThinObstaclesCaught)
 {
-    // a coarser minimum step (5 mm, still below the wall's 10 mm) and inexact distances (FCL may answer up to 1.5
-    // times the true distance; the walk divides by 1.5) keep the walk safe
+    // a coarser minimum step (5 mm, still below the wall's 10 mm) keeps the walk safe
     const auto setup = ballThroughThinWall(0.2);
     ConservativeMotionValidator validator(setup.si, setup.checker);
     EXPECT_DOUBLE_EQ(validator.getMinClearanceStep(), 1e-3);
-    EXPECT_DOUBLE_EQ(validator.getRelativeError(), 0.);
     validator.setMinClearanceStep(5e-3);
-    validator.setRelativeError(0.5);
     EXPECT_DOUBLE_EQ(validator.getMinClearanceStep(), 5e-3);
-    EXPECT_DOUBLE_EQ(validator.getRelativeError(), 0.5);
     EXPECT_FALSE(validator.checkMotion(state(setup.si, {-1.5}).get(), state(setup.si, {1.5}).get()));
     EXPECT_FALSE(validator.checkMotion(state(setup.si, {1.9}).get(), state(setup.si, {-1.9}).get()));
     EXPECT_TRUE(validator.checkMotion(state(setup.si, {-1.5}).get(), state(setup.si, {0.85}).get()));
     EXPECT_TRUE(validator.checkMotion(state(setup.si, {1.95}).get(), state(setup.si, {1.15}).get()));
+}
+
+TEST(WorkspaceMotionValidator, ChecksEveryMaxStepOfDisplacement)
+{
+    // on random motions of a 3-link arm, no point of a link's cylinder axis moves more than max_step between two
+    // consecutive checked states
+    const auto setup = test::planarArmSetup({0.4, 0.35, 0.3}, {}, {}, 0.05);
+    validity::WorkspaceMotionValidator validator(setup.si, setup.checker, 0.02);
+    ompl::RNG rng(9);
+    const auto &bodies = *setup.checker->bodies();
+    for (int i = 0; i < 50; ++i)
+    {
+        std::vector<double> from(3), to(3);
+        for (int j = 0; j < 3; ++j)
+        {
+            from[j] = rng.uniformReal(-M_PI, M_PI);
+            to[j] = rng.uniformReal(-M_PI, M_PI);
+        }
+        const auto s1 = state(setup.si, from), s2 = state(setup.si, to);
+        const unsigned int n = validator.stepCount(s1.get(), s2.get());
+        ASSERT_GE(n, 1u);
+        std::vector<Eigen::Isometry3d> before, after;
+        std::vector<double> a, b;
+        ob::ScopedState<> sa(setup.si), sb(setup.si);
+        for (unsigned int k = 0; k < n; ++k)
+        {
+            setup.si->getStateSpace()->interpolate(s1.get(), s2.get(), static_cast<double>(k) / n, sa.get());
+            setup.si->getStateSpace()->interpolate(s1.get(), s2.get(), static_cast<double>(k + 1) / n, sb.get());
+            setup.si->getStateSpace()->copyToReals(a, sa.get());
+            setup.si->getStateSpace()->copyToReals(b, sb.get());
+            bodies.bodyPoses(a.data(), before);
+            bodies.bodyPoses(b.data(), after);
+            for (std::size_t body = 0; body < before.size(); ++body)
+                for (const auto &s : bodies.bodies()[body].shapes)
+                    for (double z : {-0.5, 0., 0.5})
+                    {
+                        const Eigen::Vector3d p(0., 0., z * s.shape->size().z());
+                        const double moved = ((after[body] * s.origin * p) - (before[body] * s.origin * p)).norm();
+                        EXPECT_LE(moved, 0.02 + 1e-12) << "motion " << i << " step " << k;
+                    }
+        }
+    }
+    EXPECT_THROW(validator.setMaxStep(0.), std::invalid_argument);
+}
+
+TEST(WorkspaceMotionValidator, CatchesAWallThickerThanItsStep)
+{
+    // the 10 mm wall with 5 mm steps: rejected both ways, where OMPL's discrete validator steps over it
+    const auto setup = ballThroughThinWall(0.2);
+    validity::WorkspaceMotionValidator validator(setup.si, setup.checker, 0.005);
+    const auto s1 = state(setup.si, {-1.5}), s2 = state(setup.si, {1.5});
+    EXPECT_FALSE(validator.checkMotion(s1.get(), s2.get()));
+    EXPECT_FALSE(validator.checkMotion(s2.get(), s1.get()));
+    ob::ScopedState<> last(setup.si);
+    std::pair<ob::State *, double> lastValid{last.get(), -1.};
+    EXPECT_FALSE(validator.checkMotion(s1.get(), s2.get(), lastValid));
+    EXPECT_TRUE(setup.si->isValid(last.get()));
+    EXPECT_LT(lastValid.second, firstInvalidFraction(setup.si, s1.get(), s2.get()));
+    EXPECT_TRUE(validator.checkMotion(s1.get(), state(setup.si, {0.85}).get()));
 }

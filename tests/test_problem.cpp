@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <typeinfo>
 
 namespace fs = boost::filesystem;
 using michi::tools::ProblemError;
@@ -136,6 +137,19 @@ TEST_F(ProblemFiles, ErrorsNameFileAndKey)
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\nbenchmark: {runs: -1}\n", "benchmark.runs"},
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\nbenchmark: {time_limit: 0}\n", "benchmark.time_limit"},
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\nplanners: [{params: {}}]\n", "planners[0].name"},
+        {"robot: {urdf: arm.urdf}\nscene: {obstacles: [{box: [1, 1, 1], posee: {xyz: [0, 0, 0]}}]}\n"
+         "start: [0, 0]\ngoal: [1, 1]\n",
+         "scene.obstacles[0].posee"},
+        {"robot: {urdf: arm.urdf}\nscene: {obstacles: [{box: [1, 1, 1], sphere: 1}]}\nstart: [0, 0]\ngoal: [1, 1]\n",
+         "scene.obstacles[0]"},
+        {"robot: {urdf: arm.urdf, base_pos: {xyz: [0, 0, 0]}}\nstart: [0, 0]\ngoal: [1, 1]\n", "robot.base_pos"},
+        {"robot: {urdf: arm.urdf, fixed_joints: {j2: 7}, groups: {a: [j1]}, group: a}\nstart: [0]\ngoal: [1]\n",
+         "robot.fixed_joints.j2"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\nbenchmark: {memory_limit: -5}\n",
+         "benchmark.memory_limit"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {motion_validator: exact}\n",
+         "collision.motion_validator"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {max_step: 0}\n", "collision.max_step"},
         {"robot: {type: se2, footprint: [[0, 0], [1, 0]], bounds: {x: [0, 1], y: [0, 1]}}\nstart: [0, 0, 0]\n"
          "goal: [1, 1, 0]\n",
          "robot.footprint"},
@@ -150,6 +164,21 @@ TEST_F(ProblemFiles, ErrorsNameFileAndKey)
         EXPECT_NE(what.find(file), std::string::npos) << "case " << i << ": " << what;
         EXPECT_NE(what.find(cases[i].key), std::string::npos) << "case " << i << ": " << what;
     }
+}
+
+TEST_F(ProblemFiles, MotionValidatorIsChosenByTheProblem)
+{
+    const std::map<std::string, std::string> expected{{"workspace", "WorkspaceMotionValidator"},
+                                                      {"conservative", "ConservativeMotionValidator"},
+                                                      {"discrete", "DiscreteMotionValidator"}};
+    for (const auto &kv : expected)
+    {
+        const auto p = michi::tools::loadProblem(problem("collision: {motion_validator: " + kv.first + "}\n"));
+        auto ctx = michi::tools::makePlanningContext(p);
+        const auto *validator = ctx.setup->getSpaceInformation()->getMotionValidator().get();
+        EXPECT_NE(std::string(typeid(*validator).name()).find(kv.second), std::string::npos) << kv.first;
+    }
+    EXPECT_EQ(michi::tools::loadProblem(problem()).motionValidator, "workspace");
 }
 
 TEST_F(ProblemFiles, BadUrdfNamesTheUrdf)

@@ -191,7 +191,7 @@ namespace
                       << " s (" << status.asString() << ")" << std::endl;
             return 1;
         }
-        ctx.setup->simplifySolution();
+        ctx.setup->simplifySolution(time);  // bounded like the solve: OMPL's unbounded default can take minutes
         auto &path = ctx.setup->getSolutionPath();
         std::vector<std::vector<double>> states;
         for (const auto *s : path.getStates())
@@ -211,7 +211,8 @@ namespace
             std::cout << "\n";
         }
         const fs::path out = args.get("out", ".");
-        fs::create_directories(out);
+        if (!fs::exists(out))
+            fs::create_directories(out);
         const std::string stem = (out / (problem.name + "-" + fileSafe(name))).string();
         writePathFile(stem + ".path", problem.valueNames(), states, comment.str());
         writeProblemSvg(problem, {PlotPath{name, states}}, stem + ".svg", query);

@@ -2,6 +2,7 @@
 
 #include <michi/state_spaces/JointStateSpace.h>
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/WorkspaceMotionValidator.h>
 
 #include <ompl/base/ScopedState.h>
 
@@ -63,7 +64,12 @@ namespace michi
             auto si = ctx.setup->getSpaceInformation();
             ctx.checker = std::make_shared<validity::FclValidityChecker>(si, ctx.bodies, problem.scene);
             ctx.setup->setStateValidityChecker(ctx.checker);
-            si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, ctx.checker));
+            if (problem.motionValidator == "conservative")
+                si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, ctx.checker));
+            else if (problem.motionValidator == "workspace")
+                si->setMotionValidator(
+                    std::make_shared<validity::WorkspaceMotionValidator>(si, ctx.checker, problem.maxStep));
+            // "discrete": SpaceInformation's own DiscreteMotionValidator
             if (problem.validSegmentFraction > 0.)
                 si->setStateValidityCheckingResolution(problem.validSegmentFraction);
             si->setup();  // the space's value locations (copyFromReals) exist only after setup

@@ -207,12 +207,39 @@ namespace michi
                     return sign * factor * M_PI / divisor;
                 }
 
+                /** Every key of mapping \e n must be one of \e allowed (a misspelt key is an error, not ignored). */
+                void keys(const YAML::Node &n, const std::string &key, const std::set<std::string> &allowed) const
+                {
+                    if (!n || !n.IsMap())  // absent (or not a mapping: the caller's own check reports that)
+                        return;
+                    for (const auto &kv : n)
+                    {
+                        const std::string k = kv.first.as<std::string>();
+                        if (!allowed.count(k))
+                        {
+                            std::string list;
+                            for (const auto &a : allowed)
+                                list += (list.empty() ? "" : ", ") + a;
+                            fail(key.empty() ? k : key + "." + k, "unknown key (expected one of " + list + ")");
+                        }
+                    }
+                }
+
             private:
                 std::string file_;
             };
 
             std::shared_ptr<const Shape> readShape(const Reader &r, const YAML::Node &o, const std::string &key)
             {
+                int kinds = 0;
+                for (const char *kind : {"box", "sphere", "cylinder", "capsule", "polygon", "mesh"})
+                    kinds += o[kind] ? 1 : 0;
+                if (kinds > 1)
+                    r.fail(key, "more than one shape given (one of box, sphere, cylinder, capsule, polygon, mesh)");
+                for (const char *kind : {"cylinder", "capsule"})
+                    r.keys(o[kind], key + "." + kind, {"radius", "length"});
+                r.keys(o["polygon"], key + ".polygon", {"points", "z"});
+                r.keys(o["mesh"], key + ".mesh", {"file", "scale"});
                 try
                 {
                     if (o["box"])
@@ -403,6 +430,8 @@ namespace michi
                         const YAML::Node o = list[i];
                         if (!o.IsMap())
                             r.fail(key, "expected a mapping");
+                        r.keys(o, key,
+                               {"name", "box", "sphere", "cylinder", "capsule", "polygon", "mesh", "pose", "trajectory"});
                         Obstacle obstacle;
                         obstacle.name = o["name"] ? r.text(o["name"], key + ".name") : "obstacle" + std::to_string(i);
                         if (!names.insert(obstacle.name).second)
@@ -431,6 +460,7 @@ namespace michi
                 if (const YAML::Node map = scene["map"])
                 {
                     const std::string key = "scene.map";
+                    r.keys(map, key, {"pgm", "resolution", "origin", "height", "threshold"});
                     const std::string pgm = r.path(r.require(map, "pgm", key), key + ".pgm");
                     const double resolution = r.number(r.require(map, "resolution", key), key + ".resolution");
                     if (!(resolution > 0.))
@@ -469,6 +499,8 @@ namespace michi
                 group when robot.group is not given. */
             void readArm(const Reader &r, const YAML::Node &robot, Problem &problem, const MoveItRequest &request)
             {
+                r.keys(robot, "robot",
+                       {"type", "urdf", "srdf", "base_pose", "groups", "group", "fixed_joints", "allowed_collisions"});
                 const std::string urdf = r.path(r.require(robot, "urdf", "robot"), "robot.urdf");
                 problem.model = validity::RobotModel::fromUrdfFile(urdf);  // UrdfError names the URDF
                 const auto &model = *problem.model;
@@ -557,6 +589,11 @@ namespace michi
                         const std::string key = "robot.fixed_joints." + joint;
                         const int v = checkJoint(joint, key);
                         problem.fixedValues[v] = r.number(kv.second, key);
+                        const auto &j = model.variableJoint(v);
+                        if (j.type != validity::RobotJoint::Type::CONTINUOUS &&
+                            (problem.fixedValues[v] < j.lower - 1e-9 || problem.fixedValues[v] > j.upper + 1e-9))
+                            r.fail(key, "value outside the joint's limits [" + std::to_string(j.lower) + ", " +
+                                            std::to_string(j.upper) + "]");
                     }
                 }
                 if (const YAML::Node allowed = robot["allowed_collisions"])
@@ -584,6 +621,8 @@ namespace michi
             void readSe2(const Reader &r, const YAML::Node &robot, Problem &problem, bool mapBounds)
             {
                 problem.kind = Problem::Kind::SE2;
+                r.keys(robot, "robot", {"type", "footprint", "height", "bounds"});
+                r.keys(robot["bounds"], "robot.bounds", {"x", "y"});
                 problem.footprint = r.polygon(r.require(robot, "footprint", "robot"), "robot.footprint");
                 try
                 {
@@ -750,7 +789,11 @@ namespace michi
                             r.fail(key, "expected a positive number of seconds");
                     }
                     else if (k == "memory_limit")
+                    {
                         s.memoryLimit = r.number(kv.second, key);
+                        if (!(s.memoryLimit > 0.))
+                            r.fail(key, "expected a positive number of megabytes");
+                    }
                     else if (k == "runs")
                         s.runs = r.count(kv.second, key);
                     else if (k == "seed")
@@ -895,9 +938,34 @@ namespace michi
             readBenchmark(r, root["benchmark"], problem);
             if (const YAML::Node c = root["collision"])
             {
-                problem.validSegmentFraction = r.number(c, "valid_segment_fraction", "collision", 0.);
-                if (problem.validSegmentFraction < 0. || problem.validSegmentFraction >= 1.)
-                    r.fail("collision.valid_segment_fraction", "expected a number in [0, 1)");
+                if (!c.IsMap())
+                    r.fail("collision", "expected a mapping (motion_validator, max_step, valid_segment_fraction)");
+                for (const auto &kv : c)
+                {
+                    const std::string k = kv.first.as<std::string>(), key = "collision." + k;
+                    if (k == "valid_segment_fraction")
+                    {
+                        problem.validSegmentFraction = r.number(kv.second, key);
+                        if (problem.validSegmentFraction <= 0. || problem.validSegmentFraction >= 1.)
+                            r.fail(key, "expected a number in (0, 1)");
+                    }
+                    else if (k == "max_step")
+                    {
+                        problem.maxStep = r.number(kv.second, key);
+                        if (!(problem.maxStep > 0.))
+                            r.fail(key, "expected a positive number of metres");
+                    }
+                    else if (k == "motion_validator")
+                    {
+                        problem.motionValidator = r.text(kv.second, key);
+                        if (problem.motionValidator != "workspace" && problem.motionValidator != "conservative" &&
+                            problem.motionValidator != "discrete")
+                            r.fail(key, "expected workspace, conservative or discrete, got '" +
+                                            problem.motionValidator + "'");
+                    }
+                    else
+                        r.fail(key, "unknown key (expected motion_validator, max_step, valid_segment_fraction)");
+                }
             }
             return problem;
         }

@@ -75,6 +75,20 @@ namespace michi
             return bound;
         }
 
+        void RobotGroupBodies::bodyDisplacementBounds(const double *from, const double *to,
+                                                      std::vector<double> &bounds) const
+        {
+            bounds.assign(bodies_.size(), 0.);
+            for (std::size_t i = 0; i < variables_.size(); ++i)
+            {
+                const auto &joint = model_->variableJoint(variables_[i]);
+                const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i]) :
+                                                                              std::abs(to[i] - from[i]);
+                for (std::size_t b = 0; b < bodies_.size(); ++b)
+                    bounds[b] += model_->displacementBound(variables_[i], bodyLinks_[b]) * dq;
+            }
+        }
+
         PlanarRigidBody::PlanarRigidBody(std::vector<Eigen::Vector2d> footprint, double zMin, double zMax)
           : footprint_(std::move(footprint))
         {
@@ -94,6 +108,12 @@ namespace michi
         double PlanarRigidBody::displacementBound(const double *from, const double *to) const
         {
             return std::hypot(to[0] - from[0], to[1] - from[1]) + circumradius_ * angleDifference(from[2], to[2]);
+        }
+
+        void PlanarRigidBody::bodyDisplacementBounds(const double *from, const double *to,
+                                                     std::vector<double> &bounds) const
+        {
+            bounds.assign(1, displacementBound(from, to));
         }
     }
 }

@@ -3,6 +3,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace michi
 {
@@ -18,39 +19,60 @@ namespace michi
                                                double *lastValidTime) const
         {
             const auto &space = si_->getStateSpace();
-            std::vector<double> from, to, values;
+            const auto &bodies = *checker_->bodies();
+            std::vector<double> from, to, values, bounds;
             space->copyToReals(from, s1);
             space->copyToReals(to, s2);
-            const double bound = checker_->bodies()->displacementBound(from.data(), to.data());
-            // with no displacement bound (a motion that moves nothing), OMPL's discrete resolution is the fallback
-            const double length = space->distance(s1, s2);
-            const double discreteStep =
-                length > 0. ? std::min(1., space->getLongestValidSegmentLength() / length) : 1.;
+            // how far each body can move over the whole motion; bodies and pairs that do not move are skipped
+            bodies.bodyDisplacementBounds(from.data(), to.data(), bounds);
+            const auto &pairs = bodies.selfCheckPairs();
+            std::vector<char> wantBodies(bounds.size()), wantPairs(pairs.size());
+            for (std::size_t b = 0; b < bounds.size(); ++b)
+                wantBodies[b] = bounds[b] > 0.;
+            for (std::size_t k = 0; k < pairs.size(); ++k)
+                wantPairs[k] = bounds[pairs[k].first] + bounds[pairs[k].second] > 0.;
 
+            const double maxBound = bounds.empty() ? 0. : *std::max_element(bounds.begin(), bounds.end());
             ompl::base::State *state = si_->allocState();
+            std::vector<double> obstacle, self;
             double t = 0., lastGood = 0.;
-            bool valid = true;
+            bool valid = true, lastStepSafe = false;
             while (true)
             {
                 space->interpolate(s1, s2, t, state);
                 space->copyToReals(values, state);
                 if (!si_->satisfiesBounds(state) || !checker_->isValidConfiguration(values.data()))
                 {
+                    // after a step within the clearance every state short of t is free: report one just before t
+                    if (lastStepSafe && t > lastGood && maxBound > 0.)
+                        lastGood = std::max(lastGood, t - minClearanceStep_ / maxBound);
                     valid = false;
                     break;
                 }
                 lastGood = t;
                 if (t >= 1.)
                     break;
-                // Half the nearest distance (robot-obstacle or robot-robot): two bodies approach each other
-                // at most twice as fast as one body moves.
-                // (FCL's answer with rel_err r is at most 1 + r times the true distance)
-                const double clearance =
-                    0.5 * checker_->proximity(values.data(), true, relativeError_).distance / (1. + relativeError_);
-                // Near contact the clearance is tiny: keep moving by at most minClearanceStep_ of workspace
-                // displacement per check, so states stay dense in metres (never a coarse joint-space jump).
-                const double step = bound > 0. ? std::max(clearance, minClearanceStep_) / bound : discreteStep;
-                t = std::min(1., t + step);
+                checker_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
+                // a body moving at most bounds[b] * dt cannot reach an obstacle at distance d in less than
+                // d / bounds[b]; two bodies close in at most as fast as the sum of their bounds. Near contact,
+                // advance by at most minClearanceStep_ of displacement so states stay dense in metres.
+                double step = std::numeric_limits<double>::infinity();
+                double safeStep = step;  // the same without the near-contact minimum
+                for (std::size_t b = 0; b < bounds.size(); ++b)
+                    if (wantBodies[b])
+                    {
+                        step = std::min(step, std::max(obstacle[b], minClearanceStep_) / bounds[b]);
+                        safeStep = std::min(safeStep, obstacle[b] / bounds[b]);
+                    }
+                for (std::size_t k = 0; k < pairs.size(); ++k)
+                    if (wantPairs[k])
+                    {
+                        const double closing = bounds[pairs[k].first] + bounds[pairs[k].second];
+                        step = std::min(step, std::max(self[k], minClearanceStep_) / closing);
+                        safeStep = std::min(safeStep, self[k] / closing);
+                    }
+                lastStepSafe = step <= safeStep;
+                t = std::min(1., t + step);  // step is +inf when nothing moves: one more check at the end
             }
             si_->freeState(state);
             if (lastValidTime != nullptr)

@@ -216,5 +216,47 @@ namespace michi
                         }
             return best;
         }
+
+        void FclValidityChecker::bodyDistances(const double *values, const std::vector<char> &wantBodies,
+                                               const std::vector<char> &wantPairs, std::vector<double> &obstacle,
+                                               std::vector<double> &self) const
+        {
+            const double inf = std::numeric_limits<double>::infinity();
+            PosedBodies posed(*bodies_, values);
+            obstacle.assign(posed.objects.size(), inf);
+            {
+                auto lock = scene_->lockShared();
+                for (std::size_t b = 0; b < posed.objects.size(); ++b)
+                {
+                    if (!wantBodies[b])
+                        continue;
+                    for (const auto &object : posed.objects[b])
+                    {
+                        DistanceData data;
+                        data.request.gjk_solver_type = fcl::GST_INDEP;
+                        data.query = object.get();
+                        data.best = obstacle[b];
+                        scene_->manager().distance(object.get(), &data, distanceCallback);
+                        obstacle[b] = std::min(obstacle[b], data.best);
+                    }
+                }
+            }
+            const auto &pairs = bodies_->selfCheckPairs();
+            self.assign(pairs.size(), inf);
+            for (std::size_t k = 0; k < pairs.size(); ++k)
+            {
+                if (!wantPairs[k])
+                    continue;
+                for (const auto &a : posed.objects[pairs[k].first])
+                    for (const auto &b : posed.objects[pairs[k].second])
+                    {
+                        fcl::DistanceRequestd request;
+                        request.gjk_solver_type = fcl::GST_INDEP;
+                        fcl::DistanceResultd result;
+                        fcl::distance(a.get(), b.get(), request, result);
+                        self[k] = std::min(self[k], result.min_distance);
+                    }
+            }
+        }
     }
 }

@@ -385,6 +385,27 @@ namespace michi
                 // a translation moves every point below the joint by dq (prismatic reach then adds nothing)
                 displacementBounds_[v] = joint.type == RobotJoint::Type::PRISMATIC ? 1. : reach[joint.childLink];
             }
+            // per link: walk up from each link, growing the distance from the current frame to its geometry
+            linkDisplacementBounds_.assign(variableJoints_.size(), std::vector<double>(links_.size(), 0.));
+            for (std::size_t l = 0; l < links_.size(); ++l)
+            {
+                double distance = 0.;  // from the current frame's origin to link l's geometry, any configuration
+                for (const auto &c : links_[l].collisions)
+                    distance = std::max(distance, c.origin.translation().norm() + c.shape->boundingRadius());
+                if (links_[l].collisions.empty())
+                    continue;
+                for (int j = links_[l].parentJoint; j >= 0; j = links_[joints_[j].parentLink].parentJoint)
+                {
+                    const RobotJoint &joint = joints_[j];
+                    if (joint.variable >= 0)
+                        linkDisplacementBounds_[joint.variable][l] =
+                            joint.type == RobotJoint::Type::PRISMATIC ? 1. : distance;
+                    const double extension = joint.type == RobotJoint::Type::PRISMATIC ?
+                                                 std::max(std::abs(joint.lower), std::abs(joint.upper)) :
+                                                 0.;
+                    distance += joint.origin.translation().norm() + extension;
+                }
+            }
         }
     }
 }

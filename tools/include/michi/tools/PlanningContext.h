@@ -10,8 +10,8 @@ namespace michi
 {
     namespace tools
     {
-        /** \brief A problem made ready for OMPL: state space, FCL validity checker, conservative motion
-            validator, start and goal of one query. */
+        /** \brief A problem made ready for OMPL: state space, FCL validity checker, the problem's motion
+            validator (workspace-resolution by default), start and goal of one query. */
         struct PlanningContext
         {
             ompl::geometric::SimpleSetupPtr setup;

@@ -91,6 +91,11 @@ namespace michi
             std::vector<PlannerSpec> planners;
             BenchmarkSettings benchmark;
             double validSegmentFraction{0.};  ///< 0: OMPL's default; else longestValidSegmentFraction
+            /** \brief How motions are checked: "workspace" (validity::WorkspaceMotionValidator, checks at most
+                maxStep metres apart, the default), "conservative" (validity::ConservativeMotionValidator, exact) or
+                "discrete" (OMPL's DiscreteMotionValidator at validSegmentFraction). */
+            std::string motionValidator{"workspace"};
+            double maxStep{0.01};  ///< metres, for "workspace"
 
             /** \brief Collision bodies of the planned robot (RobotGroupBodies or PlanarRigidBody). */
             validity::CollisionBodiesPtr bodies() const;

@@ -38,6 +38,9 @@ namespace michi
             /** \brief Upper bound on how far any point of any body moves between two configurations (metres),
                 used by the conservative motion validator. */
             virtual double displacementBound(const double *from, const double *to) const = 0;
+            /** \brief The same bound for each body separately (bodies that do not move get 0). */
+            virtual void bodyDisplacementBounds(const double *from, const double *to,
+                                                std::vector<double> &bounds) const = 0;
         };
 
         using CollisionBodiesPtr = std::shared_ptr<const CollisionBodies>;
@@ -64,6 +67,8 @@ namespace michi
                 return pairs_;
             }
             double displacementBound(const double *from, const double *to) const override;
+            void bodyDisplacementBounds(const double *from, const double *to,
+                                        std::vector<double> &bounds) const override;
 
             /** \brief The full configuration for group values \e values. */
             std::vector<double> fullConfiguration(const double *values) const;
@@ -111,6 +116,8 @@ namespace michi
                 return pairs_;
             }
             double displacementBound(const double *from, const double *to) const override;
+            void bodyDisplacementBounds(const double *from, const double *to,
+                                        std::vector<double> &bounds) const override;
             const std::vector<Eigen::Vector2d> &footprint() const
             {
                 return footprint_;

@@ -48,6 +48,12 @@ namespace michi
                 FCL may stop early: the returned distance d is an upper bound and d / (1 + r) a lower bound of the
                 true one (cheaper for meshes). */
             Proximity proximity(const double *values, bool includeSelf = false, double relativeError = 0.) const;
+            /** \brief Distance of each body to the scene (\e obstacle, one per body) and of each self-check pair
+                (\e self, in selfCheckPairs() order). Entries whose flag in \e wantBodies / \e wantPairs is 0 are
+                skipped and set to +inf (so a body that does not move costs nothing). */
+            void bodyDistances(const double *values, const std::vector<char> &wantBodies,
+                               const std::vector<char> &wantPairs, std::vector<double> &obstacle,
+                               std::vector<double> &self) const;
             /** \brief "link3 touches obstacle 'wall'" or "link1 touches link4"; empty when valid. */
             std::string describeCollision(const double *values) const;
 

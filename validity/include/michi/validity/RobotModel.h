@@ -147,6 +147,11 @@ namespace michi
             {
                 return displacementBounds_[variable];
             }
+            /** \brief The same bound for the geometry of one link only: 0 when the joint is not above the link. */
+            double displacementBound(std::size_t variable, int link) const
+            {
+                return linkDisplacementBounds_[variable][link];
+            }
 
         private:
             RobotModel() = default;
@@ -161,6 +166,7 @@ namespace michi
             Eigen::Isometry3d basePose_{Eigen::Isometry3d::Identity()};
             std::set<std::pair<int, int>> allowed_;
             std::vector<double> displacementBounds_;
+            std::vector<std::vector<double>> linkDisplacementBounds_;  ///< [variable][link]
         };
 
         using RobotModelPtr = std::shared_ptr<RobotModel>;
