@@ -67,13 +67,14 @@ namespace
         }
         fs::path dir_;
     };
-}
+}  // namespace
 
 TEST_F(Cli, BenchWritesLogDatabaseSummaryAndPicture)
 {
     const fs::path out = dir_ / "bench";
-    const CommandRun run = runMichi("bench " + problemFile("planar_2link") +
-                          " --planners geometric::RRTConnect,geometric::PRM --runs 3 --time 1 --out " + out.string());
+    const CommandRun run =
+        runMichi("bench " + problemFile("planar_2link") +
+                 " --planners geometric::RRTConnect,geometric::PRM --runs 3 --time 1 --out " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("[6/6]"), std::string::npos) << "progress lines expected: " << run.output;
     const std::string log = slurp(out / "planar_2link.log");
@@ -101,8 +102,8 @@ TEST_F(Cli, BadProblemAndBadUrdfWriteNothing)
     for (const std::string name : {"broken", "badurdf"})
     {
         const fs::path out = dir_ / ("out-" + name);
-        const CommandRun run = runMichi("bench " + (dir_ / (name + ".yaml")).string() + " --runs 1 --time 1 --out " +
-                              out.string());
+        const CommandRun run =
+            runMichi("bench " + (dir_ / (name + ".yaml")).string() + " --runs 1 --time 1 --out " + out.string());
         EXPECT_GT(run.exitCode, 0) << run.output;
         EXPECT_LT(run.exitCode, 128) << "crashed: " << run.output;
         EXPECT_NE(run.output.find(name == "broken" ? "broken.yaml" : "bad.urdf"), std::string::npos) << run.output;
@@ -114,7 +115,7 @@ TEST_F(Cli, BadProblemAndBadUrdfWriteNothing)
 TEST_F(Cli, BadPlannerNameAndOptionsAreRejected)
 {
     CommandRun run = runMichi("bench " + problemFile("planar_2link") + " --planners geometric::Nope --runs 1 --out " +
-                    (dir_ / "x").string());
+                              (dir_ / "x").string());
     EXPECT_NE(run.exitCode, 0);
     EXPECT_NE(run.output.find("geometric::Nope"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(dir_ / "x"));
@@ -127,8 +128,8 @@ TEST_F(Cli, BadPlannerNameAndOptionsAreRejected)
 
 TEST_F(Cli, PlanWritesAValidPath)
 {
-    const CommandRun run = runMichi("plan " + problemFile("planar_2link") + " --planner geometric::RRTConnect --time 5 --out " +
-                          dir_.string());
+    const CommandRun run = runMichi("plan " + problemFile("planar_2link") +
+                                    " --planner geometric::RRTConnect --time 5 --out " + dir_.string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const fs::path pathFile = dir_ / "planar_2link-geometric__RRTConnect.path";
     ASSERT_TRUE(fs::exists(pathFile)) << run.output;
@@ -161,13 +162,12 @@ TEST_F(Cli, PlanFailsClearlyWhenNoPathExists)
         <geometry><cylinder radius="0.01" length="0.5"/></geometry></collision></link>
       <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
         <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>)";
-    std::ofstream(dir_ / "blocked.yaml")
-        << "robot: {urdf: arm.urdf}\nscene:\n  obstacles:\n"
-           "    - {name: a, box: [0.05, 0.2, 1], pose: {xyz: [0.3, 0.15, 0]}}\n"
-           "    - {name: b, box: [0.05, 0.2, 1], pose: {xyz: [0.3, -0.15, 0]}}\n"
-           "start: [1.5]\ngoal: [0]\nbenchmark: {time_limit: 0.5}\n";
-    const CommandRun run = runMichi("plan " + (dir_ / "blocked.yaml").string() + " --planner geometric::RRTConnect --out " +
-                          (dir_ / "out").string());
+    std::ofstream(dir_ / "blocked.yaml") << "robot: {urdf: arm.urdf}\nscene:\n  obstacles:\n"
+                                            "    - {name: a, box: [0.05, 0.2, 1], pose: {xyz: [0.3, 0.15, 0]}}\n"
+                                            "    - {name: b, box: [0.05, 0.2, 1], pose: {xyz: [0.3, -0.15, 0]}}\n"
+                                            "start: [1.5]\ngoal: [0]\nbenchmark: {time_limit: 0.5}\n";
+    const CommandRun run = runMichi("plan " + (dir_ / "blocked.yaml").string() +
+                                    " --planner geometric::RRTConnect --out " + (dir_ / "out").string());
     EXPECT_EQ(run.exitCode, 1) << run.output;
     EXPECT_NE(run.output.find("no path"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(dir_ / "out" / "blocked-geometric__RRTConnect.path"));

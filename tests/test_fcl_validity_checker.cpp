@@ -192,7 +192,8 @@ namespace
             const double a = std::asin((0.3 - gap - radius) / 0.5);
             const std::vector<double> q{a, -a};
             EXPECT_EQ(setup.checker->isValidConfiguration(q.data()), gap > 0.) << gap;
-            if (gap > 0.) EXPECT_NEAR(setup.checker->clearanceConfiguration(q.data()), gap, tol);
+            if (gap > 0.)
+                EXPECT_NEAR(setup.checker->clearanceConfiguration(q.data()), gap, tol);
         }
     }
 }  // namespace
@@ -365,8 +366,14 @@ TEST(FclValidityChecker, ConcurrentQueriesGiveTheSameAnswers)
     const std::uint64_t queriesBefore = setup.checker->queryCount();
     std::vector<Answers> results(4);
     std::vector<std::thread> threads;
-    for (int t = 0; t < 4; ++t) threads.emplace_back([&, t] { results[t] = answer(setup, configurations); });
-    for (auto &thread : threads) thread.join();
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back(
+            [&, t]
+            {
+                results[t] = answer(setup, configurations);
+            });
+    for (auto &thread : threads)
+        thread.join();
     for (int t = 0; t < 4; ++t)
     {
         EXPECT_EQ(results[t].valid, reference.valid) << "thread " << t;
@@ -395,8 +402,14 @@ TEST(FclValidityChecker, ConcurrentQueriesWhileTheSceneTimeChanges)
         });
     std::vector<Answers> results(4);
     std::vector<std::thread> threads;
-    for (int t = 0; t < 4; ++t) threads.emplace_back([&, t] { results[t] = answer(setup, configurations); });
-    for (auto &thread : threads) thread.join();
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back(
+            [&, t]
+            {
+                results[t] = answer(setup, configurations);
+            });
+    for (auto &thread : threads)
+        thread.join();
     done = true;
     clock.join();
 

@@ -48,7 +48,11 @@ namespace
         EXPECT_TRUE(SEEDED);
         space->setup();
         og::SimpleSetup ss(space);
-        ss.setStateValidityChecker([](const ob::State *) { return true; });
+        ss.setStateValidityChecker(
+            [](const ob::State *)
+            {
+                return true;
+            });
         ob::ScopedState<> start(space), goal(space);
         space->copyFromReals(start.get(), std::vector<double>(space->getDimension(), -0.8));
         space->copyFromReals(goal.get(), std::vector<double>(space->getDimension(), 0.8));
@@ -59,7 +63,8 @@ namespace
             ob::plannerOrTerminationCondition(ob::exactSolnPlannerTerminationCondition(ss.getProblemDefinition()),
                                               ob::IterationTerminationCondition(200000)));
         EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << space->getName();
-        if (status != ob::PlannerStatus::EXACT_SOLUTION) return nullptr;
+        if (status != ob::PlannerStatus::EXACT_SOLUTION)
+            return nullptr;
         EXPECT_EQ(planner->getProjectionEvaluator()->getDimension(), projectionDimension);
         auto path = std::make_shared<og::PathGeometric>(ss.getSolutionPath());
         EXPECT_TRUE(path->check());
@@ -153,7 +158,8 @@ TEST(JointStateSpace, CopyToRealsFollowsTheJointOrder)
         space->setup();
         ob::ScopedState<> s(space);
         auto *values = s->as<ob::RealVectorStateSpace::StateType>()->values;
-        for (unsigned int i = 0; i < 4; ++i) values[i] = 0.25 * (i + 1);
+        for (unsigned int i = 0; i < 4; ++i)
+            values[i] = 0.25 * (i + 1);
         EXPECT_EQ(reals(space, s.get()), (std::vector<double>{0.25, 0.5, 0.75, 1.}));
     }
     {
@@ -242,7 +248,8 @@ TEST(JointStateSpace, DefaultProjectionTakesTheLeadingValues)
         space->copyFromReals(s.get(), values);
         Eigen::VectorXd projected(projection->getDimension());
         projection->project(s.get(), projected);
-        for (unsigned int i = 0; i < projection->getDimension(); ++i) EXPECT_DOUBLE_EQ(projected[i], values[i]);
+        for (unsigned int i = 0; i < projection->getDimension(); ++i)
+            EXPECT_DOUBLE_EQ(projected[i], values[i]);
     }
 
     // on a compound space, continuous joints have cells of 2 pi / 20

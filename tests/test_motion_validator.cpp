@@ -37,7 +37,8 @@ namespace
         {
             const double t = static_cast<double>(i) / steps;
             si->getStateSpace()->interpolate(s1, s2, t, s.get());
-            if (!si->isValid(s.get())) return t;
+            if (!si->isValid(s.get()))
+                return t;
         }
         return 2.;
     }
@@ -183,8 +184,10 @@ TEST(ConservativeMotionValidator, AgreesWithAFineCheckOnRandomMotions)
         std::vector<double> q(3);
         while (true)
         {
-            for (auto &v : q) v = rng.uniformReal(-M_PI, M_PI);
-            if (setup.checker->isValidConfiguration(q.data())) return q;
+            for (auto &v : q)
+                v = rng.uniformReal(-M_PI, M_PI);
+            if (setup.checker->isValidConfiguration(q.data()))
+                return q;
         }
     };
     int checked = 0, accepted = 0, free = 0, agree = 0, discreteMissed = 0;
@@ -195,9 +198,11 @@ TEST(ConservativeMotionValidator, AgreesWithAFineCheckOnRandomMotions)
         auto to = randomValidState();
         // half of the motions short, so that many are free
         if (i % 2 == 0)
-            for (int j = 0; j < 3; ++j) to[j] = from[j] + 0.25 * (to[j] - from[j]);
+            for (int j = 0; j < 3; ++j)
+                to[j] = from[j] + 0.25 * (to[j] - from[j]);
         const auto s1 = state(setup.si, from), s2 = state(setup.si, to);
-        if (!setup.si->isValid(s2.get())) continue;
+        if (!setup.si->isValid(s2.get()))
+            continue;
         ++checked;
         const bool ok = validator.checkMotion(s1.get(), s2.get());
         const bool fineOk = fineDiscrete.checkMotion(state(fine.si, from).get(), state(fine.si, to).get());

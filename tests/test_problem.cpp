@@ -49,10 +49,11 @@ namespace
         std::string problem(const std::string &extra = "", const std::string &start = "[0, 0]",
                             const std::string &goal = "[1, 1]")
         {
-            return write("p.yaml", "name: p\nrobot: {urdf: arm.urdf}\n"
-                                   "scene:\n  obstacles:\n    - {name: wall, box: [0.1, 0.1, 1], pose: {xyz: [0, 0.7, 0]}}\n"
-                                   "start: " +
-                                       start + "\ngoal: " + goal + "\n" + extra);
+            return write("p.yaml",
+                         "name: p\nrobot: {urdf: arm.urdf}\n"
+                         "scene:\n  obstacles:\n    - {name: wall, box: [0.1, 0.1, 1], pose: {xyz: [0, 0.7, 0]}}\n"
+                         "start: " +
+                             start + "\ngoal: " + goal + "\n" + extra);
         }
         /** Load and return the error message; fails the test if loading succeeds. */
         std::string error(const std::string &path)
@@ -73,7 +74,7 @@ namespace
         }
         fs::path dir_;
     };
-}
+}  // namespace
 
 TEST_F(ProblemFiles, ValidProblemLoads)
 {
@@ -92,15 +93,15 @@ TEST_F(ProblemFiles, ValidProblemLoads)
 
 TEST_F(ProblemFiles, PiFormsAndGroups)
 {
-    const auto p = michi::tools::loadProblem(
-        problem("", "[pi/4, -0.5*pi]", "[-pi/3, 1]") +
-        "");  // group defaults to all movable joints
+    const auto p = michi::tools::loadProblem(problem("", "[pi/4, -0.5*pi]", "[-pi/3, 1]") +
+                                             "");  // group defaults to all movable joints
     EXPECT_NEAR(p.queries[0].start[0], M_PI / 4, 1e-12);
     EXPECT_NEAR(p.queries[0].start[1], -M_PI / 2, 1e-12);
     EXPECT_NEAR(p.queries[0].goal[0], -M_PI / 3, 1e-12);
     const auto g = michi::tools::loadProblem(
-        write("g.yaml", "robot: {urdf: arm.urdf, groups: {elbow: [j2]}, group: elbow, fixed_joints: {j1: 0.3}}\n"
-                        "start: [0.1]\ngoal: [1.2]\n"));
+        write("g.yaml",
+              "robot: {urdf: arm.urdf, groups: {elbow: [j2]}, group: elbow, fixed_joints: {j1: 0.3}}\n"
+              "start: [0.1]\ngoal: [1.2]\n"));
     EXPECT_EQ(g.name, "g");
     EXPECT_EQ(g.dimension(), 1u);
     EXPECT_EQ(g.groupVariables, std::vector<int>{1});
@@ -183,8 +184,9 @@ TEST_F(ProblemFiles, MotionValidatorIsChosenByTheProblem)
 
 TEST_F(ProblemFiles, BadUrdfNamesTheUrdf)
 {
-    write("bad.urdf", "<robot name=\"x\"><link name=\"a\"/><joint name=\"j\" type=\"revolute\"><parent link=\"a\"/>"
-                      "</joint></robot>");
+    write("bad.urdf",
+          "<robot name=\"x\"><link name=\"a\"/><joint name=\"j\" type=\"revolute\"><parent link=\"a\"/>"
+          "</joint></robot>");
     const std::string what = error(write("b.yaml", "robot: {urdf: bad.urdf}\nstart: [0, 0]\ngoal: [1, 1]\n"));
     EXPECT_NE(what.find("bad.urdf"), std::string::npos) << what;
 }

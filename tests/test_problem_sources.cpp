@@ -59,7 +59,8 @@ namespace
     std::map<std::string, Obstacle> obstaclesByName(const validity::Scene &scene)
     {
         std::map<std::string, Obstacle> byName;
-        for (const auto &o : scene.obstacles()) byName[o.name] = o;
+        for (const auto &o : scene.obstacles())
+            byName[o.name] = o;
         return byName;
     }
 
@@ -220,18 +221,28 @@ TEST(ProblemSources, MalformedSrdfNamesTheSrdf)
     {
         SCOPED_TRACE(c.first);
         const std::string path = dir.write(c.first + ".srdf", c.second.first);
-        expectProblemError([&] { tools::readSrdf(path, *model); }, path, c.second.second);
+        expectProblemError(
+            [&]
+            {
+                tools::readSrdf(path, *model);
+            },
+            path, c.second.second);
     }
     // through a problem file the error still names the SRDF (and the unknown link)
     const std::string srdf = dir.path() + "/unknown_link.srdf";
     const ProblemError e = problemError(
         [&]
-        { loadYaml(dir, "robot: {urdf: arm.urdf, srdf: unknown_link.srdf}\nstart: [0, 0, 0]\ngoal: [1, 1, 1]\n"); });
+        {
+            loadYaml(dir, "robot: {urdf: arm.urdf, srdf: unknown_link.srdf}\nstart: [0, 0, 0]\ngoal: [1, 1, 1]\n");
+        });
     EXPECT_EQ(e.file(), srdf);
     EXPECT_NE(std::string(e.what()).find("'elbow'"), std::string::npos) << e.what();
     // a missing SRDF is the problem file's robot.srdf key
     expectProblemError(
-        [&] { loadYaml(dir, "robot: {urdf: arm.urdf, srdf: none.srdf}\nstart: [0, 0, 0]\ngoal: [1, 1, 1]\n"); },
+        [&]
+        {
+            loadYaml(dir, "robot: {urdf: arm.urdf, srdf: none.srdf}\nstart: [0, 0, 0]\ngoal: [1, 1, 1]\n");
+        },
         dir.path() + "/problem.yaml", "robot.srdf");
 }
 
@@ -328,7 +339,10 @@ TEST(ProblemSources, MalformedMoveItSceneNamesTheScene)
 {
     test::TempDir dir("michi_bad_scene");
     writeArm(dir);
-    auto object = [](const std::string &body) { return "world:\n  collision_objects:\n    - id: thing\n" + body; };
+    auto object = [](const std::string &body)
+    {
+        return "world:\n  collision_objects:\n    - id: thing\n" + body;
+    };
     const std::string pose = "      primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n";
     const std::map<std::string, std::pair<std::string, std::string>> cases{
         {"unknown_type",
@@ -414,7 +428,9 @@ queries:
     EXPECT_EQ(second.queries[1].goal, (std::vector<double>{-0.5, 1.2, 0.25}));
     // "whole" needs joint3 in the goal, which request.yaml lacks
     const auto groupOfThree = [&]
-    { loadYaml(dir, "robot: {urdf: arm.urdf, srdf: arm.srdf, group: whole}\nrequest: request.yaml\n"); };
+    {
+        loadYaml(dir, "robot: {urdf: arm.urdf, srdf: arm.srdf, group: whole}\nrequest: request.yaml\n");
+    };
     expectProblemError(groupOfThree, dir.path() + "/request.yaml", "goal_constraints[0].joint_constraints");
 }
 
@@ -448,8 +464,11 @@ TEST(ProblemSources, MalformedMoveItRequestNamesTheRequest)
         SCOPED_TRACE(c.first);
         const std::string path = dir.write(c.first + ".yaml", c.second.first);
         expectProblemError(
-            [&] { loadYaml(dir, "robot: {urdf: arm.urdf, srdf: arm.srdf}\nrequest: " + c.first + ".yaml\n"); }, path,
-            c.second.second);
+            [&]
+            {
+                loadYaml(dir, "robot: {urdf: arm.urdf, srdf: arm.srdf}\nrequest: " + c.first + ".yaml\n");
+            },
+            path, c.second.second);
     }
     // request and start/goal together: the problem file's error
     dir.write("good.yaml", "group_name: arm\n" + start +
@@ -529,7 +548,8 @@ scene:
     EXPECT_EQ(problem.queries[0].start, (std::vector<double>{0.75, 0.25, 0.}));  // cell (1, 2): bottom row
     EXPECT_EQ(problem.queries[0].goal, (std::vector<double>{1.75, 0.75, 0.}));
     EXPECT_EQ(problem.queries[1].start, (std::vector<double>{0.25, 0.25, 0.}));
-    for (std::size_t q = 0; q < problem.queries.size(); ++q) EXPECT_NO_THROW(tools::makePlanningContext(problem, q));
+    for (std::size_t q = 0; q < problem.queries.size(); ++q)
+        EXPECT_NO_THROW(tools::makePlanningContext(problem, q));
 
     // explicit start/goal come first; count limits the scenarios
     const auto counted = loadYaml(dir, R"(
@@ -565,7 +585,12 @@ TEST(ProblemSources, MalformedMovingAiFilesNameTheFile)
     {
         SCOPED_TRACE(c.first);
         const std::string path = dir.write(c.first + ".map", c.second.first);
-        expectProblemError([&] { tools::readMovingAiMap(path); }, path, c.second.second);
+        expectProblemError(
+            [&]
+            {
+                tools::readMovingAiMap(path);
+            },
+            path, c.second.second);
         expectProblemError(
             [&]
             {
@@ -575,9 +600,19 @@ TEST(ProblemSources, MalformedMovingAiFilesNameTheFile)
             path, c.second.second);
     }
     const std::string scen = dir.write("bad.scen", "version 1\n0\tgrid.map\t4\t3\t0\n");
-    expectProblemError([&] { tools::readMovingAiScenarios(scen); }, scen, "line 2");
+    expectProblemError(
+        [&]
+        {
+            tools::readMovingAiScenarios(scen);
+        },
+        scen, "line 2");
     const std::string version = dir.write("old.scen", "version 2\n");
-    expectProblemError([&] { tools::readMovingAiScenarios(version); }, version, "version");
+    expectProblemError(
+        [&]
+        {
+            tools::readMovingAiScenarios(version);
+        },
+        version, "version");
 }
 
 TEST(ProblemSources, BundledPandaTablePickLoadsWithValidStartAndGoal)
@@ -621,12 +656,14 @@ TEST(ProblemSources, BundledMovingAiArenaLoads)
     const auto problem = tools::loadProblem(test::sourcePath("problems/movingai_arena.yaml"));
     EXPECT_EQ(problem.kind, tools::Problem::Kind::SE2);
     const std::array<double, 4> bounds{{0., 4.9, 0., 4.9}};  // 49 cells of 0.1 m
-    for (int i = 0; i < 4; ++i) EXPECT_NEAR(problem.se2Bounds[i], bounds[i], 1e-12);
+    for (int i = 0; i < 4; ++i)
+        EXPECT_NEAR(problem.se2Bounds[i], bounds[i], 1e-12);
     ASSERT_EQ(problem.queries.size(), 3u);
     // arena.map.scen, bucket 15, first line: start cell (1, 3), goal cell (41, 47)
     EXPECT_NEAR(problem.queries[0].start[0], 0.15, 1e-12);
     EXPECT_NEAR(problem.queries[0].start[1], 4.55, 1e-12);
     EXPECT_NEAR(problem.queries[0].goal[0], 4.15, 1e-12);
     EXPECT_NEAR(problem.queries[0].goal[1], 0.15, 1e-12);
-    for (std::size_t q = 0; q < problem.queries.size(); ++q) EXPECT_NO_THROW(tools::makePlanningContext(problem, q));
+    for (std::size_t q = 0; q < problem.queries.size(); ++q)
+        EXPECT_NO_THROW(tools::makePlanningContext(problem, q));
 }

@@ -136,7 +136,8 @@ namespace
         for (const auto &p : model.selfCollisionPairs())
         {
             std::string a = model.links()[p.first].name, b = model.links()[p.second].name;
-            if (b < a) std::swap(a, b);
+            if (b < a)
+                std::swap(a, b);
             names.insert({a, b});
         }
         return names;
@@ -471,7 +472,8 @@ TEST(RobotModel, Xarm6ForwardKinematicsMatchesProductOfTransforms)
 TEST(RobotModel, Xarm6UrdfFileGivesTheSameForwardKinematics)
 {
     const std::string path = test::sourcePath("problems/robots/xarm6.urdf");
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " does not exist yet";
+    if (!std::filesystem::exists(path))
+        GTEST_SKIP() << path << " does not exist yet";
     const auto model = RobotModel::fromUrdfFile(path);
     ASSERT_GE(model->variableCount(), 6u);
     const int first = model->variableJoint(0).parentLink;  // the frame joint 1 is placed in
@@ -577,7 +579,8 @@ TEST(RobotModel, SelfCollisionPairsExcludeAdjacentAndWeldedLinks)
         {"base_link", "wrist"}, {"base_link", "slider"}, {"slider", "upper"}, {"bracket", "slider"},
         {"base_link", "tool"},  {"tool", "upper"},       {"bracket", "tool"}};
     EXPECT_EQ(pairNames(*model), expected);
-    for (const auto &p : model->selfCollisionPairs()) EXPECT_LT(p.first, p.second);
+    for (const auto &p : model->selfCollisionPairs())
+        EXPECT_LT(p.first, p.second);
 
     EXPECT_FALSE(model->isCollisionAllowed(model->linkIndex("upper"), model->linkIndex("slider")));
     model->allowCollision("slider", "upper");
@@ -627,7 +630,8 @@ namespace
         for (std::size_t v = 0; v < model.variableCount(); ++v)
         {
             double dq = std::abs(to[v] - from[v]);
-            if (model.variableJoint(v).type == RobotJoint::Type::CONTINUOUS) dq = std::min(dq, 2. * M_PI - dq);
+            if (model.variableJoint(v).type == RobotJoint::Type::CONTINUOUS)
+                dq = std::min(dq, 2. * M_PI - dq);
             bound += model.displacementBound(v) * dq;
         }
         // walk the straight joint-space line finely: the path length of every point is bounded too
@@ -638,7 +642,8 @@ namespace
         std::vector<double> travelled(points.size(), 0.);
         for (int s = 1; s <= steps; ++s)
         {
-            for (std::size_t v = 0; v < q.size(); ++v) q[v] = from[v] + (to[v] - from[v]) * s / steps;
+            for (std::size_t v = 0; v < q.size(); ++v)
+                q[v] = from[v] + (to[v] - from[v]) * s / steps;
             current = model.forwardKinematics(q);
             for (std::size_t i = 0; i < points.size(); ++i)
             {

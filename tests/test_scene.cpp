@@ -45,7 +45,8 @@ namespace
     Obstacle findObstacle(const Scene &scene, const std::string &name)
     {
         for (const auto &o : scene.obstacles())
-            if (o.name == name) return o;
+            if (o.name == name)
+                return o;
         ADD_FAILURE() << "no obstacle " << name;
         return {};
     }
@@ -265,8 +266,10 @@ namespace
         std::string data = "P5\n# written by test_scene\n" + std::to_string(image[0].size()) + " " +
                            std::to_string(image.size()) + "\n255\n";
         for (const auto &row : image)
-            for (int v : row) data.push_back(static_cast<char>(v));
-        if (truncate) data.resize(data.size() - 3);
+            for (int v : row)
+                data.push_back(static_cast<char>(v));
+        if (truncate)
+            data.resize(data.size() - 3);
         return data;
     }
 
@@ -276,7 +279,8 @@ namespace
                            "\n" + std::to_string(maxValue) + "\n";
         for (const auto &row : image)
         {
-            for (int v : row) data += std::to_string(v * maxValue / 255) + " ";
+            for (int v : row)
+                data += std::to_string(v * maxValue / 255) + " ";
             data += "\n";
         }
         return data;
@@ -340,10 +344,12 @@ TEST(Scene, OccupancyObstaclesCoverExactlyTheDarkCells)
         EXPECT_NEAR(obstacles[1].pose.translation().x(), 0.5, 1e-12);
         EXPECT_NEAR(obstacles[1].shape->size().x(), 1., 1e-12);
         std::set<std::string> names;
-        for (const auto &o : obstacles) names.insert(o.name);
+        for (const auto &o : obstacles)
+            names.insert(o.name);
         EXPECT_EQ(names.size(), obstacles.size()) << "names are unique, so they can all go into one scene";
         Scene scene;
-        for (const auto &o : obstacles) scene.add(o);
+        for (const auto &o : obstacles)
+            scene.add(o);
         EXPECT_NEAR(bg::area(scene.polygons2d()), 7 * 0.25, 1e-12);
     }
 }

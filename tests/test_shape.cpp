@@ -34,7 +34,8 @@ namespace
                 fcl::CollisionObjectd oa(ga, poseA), ob(gb, poseB);
                 fcl::CollisionRequestd request;
                 fcl::CollisionResultd result;
-                if (fcl::collide(&oa, &ob, request, result) > 0) return true;
+                if (fcl::collide(&oa, &ob, request, result) > 0)
+                    return true;
             }
         return false;
     }
@@ -64,7 +65,8 @@ namespace
     double trianglesArea(const test::Outline &outline, const std::vector<std::array<int, 3>> &triangles)
     {
         double sum = 0.;
-        for (const auto &t : triangles) sum += test::outlineArea({outline[t[0]], outline[t[1]], outline[t[2]]});
+        for (const auto &t : triangles)
+            sum += test::outlineArea({outline[t[0]], outline[t[1]], outline[t[2]]});
         return sum;
     }
 
@@ -203,7 +205,8 @@ TEST(Shape, NonConvexPrismDetectsBodiesInsideAndNotInTheNotch)
     for (bool clockwise : {false, true})
     {
         auto outline = lShape();
-        if (clockwise) std::reverse(outline.begin(), outline.end());
+        if (clockwise)
+            std::reverse(outline.begin(), outline.end());
         const auto prism = Shape::prism(outline, 0., 1.);
         EXPECT_EQ(prism->type(), Shape::Type::PRISM);
         EXPECT_GT(prism->geometries().size(), 1u) << "a non-convex outline is split into convex pieces";
@@ -257,11 +260,13 @@ TEST(Shape, TriangulationAreasSumToThePolygonArea)
     options.count = 40;
     options.minSides = 3;
     options.maxSides = 14;
-    for (const auto &p : test::randomPolygons(7, options)) outlines.push_back(p);
+    for (const auto &p : test::randomPolygons(7, options))
+        outlines.push_back(p);
     for (auto outline : outlines)
         for (bool reversed : {false, true})
         {
-            if (reversed) std::reverse(outline.begin(), outline.end());
+            if (reversed)
+                std::reverse(outline.begin(), outline.end());
             const auto triangles = validity::triangulatePolygon(outline);
             EXPECT_EQ(triangles.size(), outline.size() - 2);
             EXPECT_NEAR(trianglesArea(outline, triangles), test::outlineArea(outline), 1e-12);
@@ -313,7 +318,8 @@ TEST(Shape, FootprintsContainTheTrueShadow)
                                                   at(1, 2, 3) * Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()),
                                                   at(-1, 0, 0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX())};
     for (const auto &shape : shapes)
-        for (const auto &pose : poses) expectFootprintContainsShadow(*shape, pose);
+        for (const auto &pose : poses)
+            expectFootprintContainsShadow(*shape, pose);
 }
 
 TEST(Shape, FootprintsAreTightForUprightShapes)

@@ -141,7 +141,8 @@ namespace
     std::size_t count(const std::string &text, const std::string &what)
     {
         std::size_t n = 0;
-        for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+        for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size()))
+            ++n;
         return n;
     }
 

@@ -21,11 +21,11 @@ namespace michi
                     if (!j.continuous && !(j.lower < j.upper))
                         throw std::invalid_argument("joint '" + j.name + "': lower limit must be below upper");
             }
-        }
+        }  // namespace
 
         LeadingValuesProjection::LeadingValuesProjection(const ob::StateSpace *space, unsigned int dims)
-          : ob::ProjectionEvaluator(space)
-          , dims_(dims == 0 ? std::min(3u, space->getDimension()) : std::min(dims, space->getDimension()))
+            : ob::ProjectionEvaluator(space)
+            , dims_(dims == 0 ? std::min(3u, space->getDimension()) : std::min(dims, space->getDimension()))
         {
         }
 
@@ -64,7 +64,7 @@ namespace michi
         }
 
         BoundedJointStateSpace::BoundedJointStateSpace(const std::vector<JointSpec> &joints)
-          : ob::RealVectorStateSpace(static_cast<unsigned int>(joints.size()))
+            : ob::RealVectorStateSpace(static_cast<unsigned int>(joints.size()))
         {
             checkJoints(joints);
             setName("Joints" + getName());
@@ -132,5 +132,5 @@ namespace michi
             space->setBounds(bounds);
             return space;
         }
-    }
-}
+    }  // namespace state_spaces
+}  // namespace michi

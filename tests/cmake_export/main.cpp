@@ -20,11 +20,13 @@ int main()
       <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
         <limit lower="-3.1" upper="3.1" effort="1" velocity="1"/></joint></robot>)";
     auto model = michi::validity::RobotModel::fromUrdfString(urdf, "consumer.urdf", ".");
-    auto bodies = std::make_shared<michi::validity::RobotGroupBodies>(model, std::vector<int>{0},
-                                                                      std::vector<double>{0.});
+    auto bodies =
+        std::make_shared<michi::validity::RobotGroupBodies>(model, std::vector<int>{0}, std::vector<double>{0.});
     auto scene = std::make_shared<michi::validity::Scene>();
-    scene->add({"post", michi::validity::Shape::box(Eigen::Vector3d(0.1, 0.1, 1.)),
-                Eigen::Isometry3d(Eigen::Translation3d(0., -0.4, 0.)), {}});
+    scene->add({"post",
+                michi::validity::Shape::box(Eigen::Vector3d(0.1, 0.1, 1.)),
+                Eigen::Isometry3d(Eigen::Translation3d(0., -0.4, 0.)),
+                {}});
     auto space = michi::state_spaces::makeJointStateSpace({{"j1", -3.1, 3.1, false}});
     ompl::geometric::SimpleSetup ss(space);
     auto si = ss.getSpaceInformation();

@@ -19,8 +19,8 @@ namespace
         std::vector<ompl::base::State *> states;  // uniform samples, valid and invalid
 
         explicit Fixture(const std::string &name)
-          : problem(michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
-          , ctx(michi::tools::makePlanningContext(problem))
+            : problem(michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
+            , ctx(michi::tools::makePlanningContext(problem))
         {
             ompl::RNG::setSeed(7);
             auto si = ctx.setup->getSpaceInformation();
@@ -91,7 +91,7 @@ namespace
             benchmark::DoNotOptimize(validator->checkMotion(m.first, m.second));
         }
     }
-}
+}  // namespace
 
 BENCHMARK_CAPTURE(isValid, planar_2link, std::string("planar_2link"));
 BENCHMARK_CAPTURE(clearance, planar_2link, std::string("planar_2link"));

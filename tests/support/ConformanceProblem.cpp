@@ -36,12 +36,15 @@ namespace michi
             std::vector<std::vector<Eigen::Vector2d>> obstacleOutlines()
             {
                 return {
-                    {{0.55, 0.35}, {0.7, 0.35}, {0.7, 0.5}, {0.55, 0.5}},  // upper right: beyond link 1, in link 2's way
+                    {{0.55, 0.35},
+                     {0.7, 0.35},
+                     {0.7, 0.5},
+                     {0.55, 0.5}},  // upper right: beyond link 1, in link 2's way
                     {{-0.6, -0.3}, {-0.3, -0.3}, {-0.3, -0.1}, {-0.45, -0.1}, {-0.45, 0.1}, {-0.6, 0.1}},  // L
-                    {{0.2, -0.75}, {0.5, -0.75}, {0.35, -0.55}},                                  // triangle
+                    {{0.2, -0.75}, {0.5, -0.75}, {0.35, -0.55}},                                           // triangle
                 };
             }
-        }
+        }  // namespace
 
         ConformanceProblem makeConformanceProblem()
         {
@@ -64,8 +67,8 @@ namespace michi
             problem.setup->setStateValidityChecker(problem.checker);
             si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, problem.checker));
             ompl::base::ScopedState<> start(space), goal(space);
-            start = std::vector<double>{0.2, 0.3};   // arm pointing right, below the upper-right box
-            goal = std::vector<double>{1.2, -0.4};   // arm pointing up-left, past the box
+            start = std::vector<double>{0.2, 0.3};  // arm pointing right, below the upper-right box
+            goal = std::vector<double>{1.2, -0.4};  // arm pointing up-left, past the box
             problem.setup->setStartAndGoalStates(start, goal);
             return problem;
         }
@@ -93,8 +96,8 @@ namespace michi
                 const int n = std::max(1, static_cast<int>(std::ceil(d / step)));
                 for (int s = 0; s <= n && failure.empty(); ++s)
                 {
-                    si->getStateSpace()->interpolate(fine.getState(k), fine.getState(k + 1),
-                                                     static_cast<double>(s) / n, state);
+                    si->getStateSpace()->interpolate(fine.getState(k), fine.getState(k + 1), static_cast<double>(s) / n,
+                                                     state);
                     si->getStateSpace()->copyToReals(q, state);
                     const validity::Point2 base(0., 0.);
                     const validity::Point2 elbow(L1 * std::cos(q[0]), L1 * std::sin(q[0]));
@@ -106,9 +109,10 @@ namespace michi
                         const double dx = ends.second.x() - ends.first.x(), dy = ends.second.y() - ends.first.y();
                         const double len = std::hypot(dx, dy);
                         const double nx = -dy / len * RADIUS, ny = dx / len * RADIUS;
-                        const auto rect = validity::makePolygon2(
-                            {{ends.first.x() + nx, ends.first.y() + ny}, {ends.second.x() + nx, ends.second.y() + ny},
-                             {ends.second.x() - nx, ends.second.y() - ny}, {ends.first.x() - nx, ends.first.y() - ny}});
+                        const auto rect = validity::makePolygon2({{ends.first.x() + nx, ends.first.y() + ny},
+                                                                  {ends.second.x() + nx, ends.second.y() + ny},
+                                                                  {ends.second.x() - nx, ends.second.y() - ny},
+                                                                  {ends.first.x() - nx, ends.first.y() - ny}});
                         if (bg::intersects(rect, obstacles))
                         {
                             std::ostringstream out;
@@ -122,5 +126,5 @@ namespace michi
             si->freeState(state);
             return failure;
         }
-    }
-}
+    }  // namespace test
+}  // namespace michi

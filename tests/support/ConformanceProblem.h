@@ -37,10 +37,10 @@ namespace michi
         ConformanceProblem makeConformanceProblem();
 
         /** \brief Independent re-check of a path: interpolated at 1/10 of the space's resolution, each state's
-            link rectangles (Boost.Geometry: the links are cylinders lying in the plane) must keep off every obstacle polygon.
-            Returns an empty string when valid, else what failed. */
+            link rectangles (Boost.Geometry: the links are cylinders lying in the plane) must keep off every obstacle
+           polygon. Returns an empty string when valid, else what failed. */
         std::string independentPathCheck(const ompl::geometric::PathGeometric &path);
-    }
-}
+    }  // namespace test
+}  // namespace michi
 
 #endif

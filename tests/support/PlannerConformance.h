@@ -97,7 +97,11 @@ TEST_P(PlannerConformance, ReturnsPromptlyWhenTerminated)
 {
     problem_.setup->setup();
     const auto before = problem_.checker->queryCount();
-    const ompl::base::PlannerTerminationCondition done([] { return true; });
+    const ompl::base::PlannerTerminationCondition done(
+        []
+        {
+            return true;
+        });
     const auto status = planner_->solve(done);
     EXPECT_NE(status, ompl::base::PlannerStatus::EXACT_SOLUTION);
     // a planner that honours the condition checks at most the start, the goal and a few more states

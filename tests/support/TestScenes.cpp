@@ -27,7 +27,8 @@ namespace michi
 
         std::string planarArmUrdf(const std::vector<double> &linkLengths, const PlanarArmOptions &options)
         {
-            if (linkLengths.empty()) throw std::invalid_argument("a planar arm needs at least one link");
+            if (linkLengths.empty())
+                throw std::invalid_argument("a planar arm needs at least one link");
             std::ostringstream out;
             out << std::setprecision(17);
             out << "<?xml version=\"1.0\"?>\n<robot name=\"" << options.name << "\">\n";
@@ -183,16 +184,19 @@ namespace michi
                 {
                     centre = Eigen::Vector2d(rng.uniformReal(options.lo.x(), options.hi.x()),
                                              rng.uniformReal(options.lo.y(), options.hi.y()));
-                    if ((centre - options.keepClearCentre).norm() - options.maxRadius >= options.keepClearRadius) break;
+                    if ((centre - options.keepClearCentre).norm() - options.maxRadius >= options.keepClearRadius)
+                        break;
                     if (attempt > 10000)
                         throw std::invalid_argument("randomPolygons: no room outside the keep-clear disk");
                 }
                 const int sides = rng.uniformInt(options.minSides, options.maxSides);
                 std::vector<double> angles;
-                for (int i = 0; i < sides; ++i) angles.push_back(rng.uniformReal(0., 2. * M_PI));
+                for (int i = 0; i < sides; ++i)
+                    angles.push_back(rng.uniformReal(0., 2. * M_PI));
                 std::sort(angles.begin(), angles.end());
                 // spread the angles so that no two vertices nearly coincide
-                for (int i = 0; i < sides; ++i) angles[i] = 0.5 * angles[i] + 0.5 * (2. * M_PI * i / sides);
+                for (int i = 0; i < sides; ++i)
+                    angles[i] = 0.5 * angles[i] + 0.5 * (2. * M_PI * i / sides);
                 Outline outline;
                 for (double a : angles)
                     outline.push_back(centre + rng.uniformReal(options.minRadius, options.maxRadius) *
@@ -244,7 +248,8 @@ namespace michi
                     path_ = p.string();
                     return;
                 }
-                if (attempt > 100) throw std::runtime_error("cannot create a temporary directory " + p.string());
+                if (attempt > 100)
+                    throw std::runtime_error("cannot create a temporary directory " + p.string());
             }
         }
 
@@ -260,7 +265,8 @@ namespace michi
             fs::create_directories(p.parent_path());
             std::ofstream out(p, std::ios::binary);
             out << content;
-            if (!out) throw std::runtime_error("cannot write " + p.string());
+            if (!out)
+                throw std::runtime_error("cannot write " + p.string());
             return p.string();
         }
     }  // namespace test

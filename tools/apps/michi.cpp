@@ -187,8 +187,8 @@ namespace
         const auto status = ctx.setup->solve(time);
         if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
         {
-            std::cerr << "michi plan: " << problem.file << ": " << name << " found no path within " << time
-                      << " s (" << status.asString() << ")" << std::endl;
+            std::cerr << "michi plan: " << problem.file << ": " << name << " found no path within " << time << " s ("
+                      << status.asString() << ")" << std::endl;
             return 1;
         }
         ctx.setup->simplifySolution(time);  // bounded like the solve: OMPL's unbounded default can take minutes
@@ -201,8 +201,8 @@ namespace
             states.push_back(values);
         }
         std::ostringstream comment;
-        comment << problem.name << " query " << query << ", " << name << ", " << states.size()
-                << " states, length " << path.length() << ", clearance " << path.clearance();
+        comment << problem.name << " query " << query << ", " << name << ", " << states.size() << " states, length "
+                << path.length() << ", clearance " << path.clearance();
         std::cout << "# " << comment.str() << "\n";
         for (const auto &s : states)
         {
@@ -226,7 +226,7 @@ namespace
             std::cout << name << "\n";
         return 0;
     }
-}
+}  // namespace
 
 int main(int argc, char **argv)
 {

@@ -66,8 +66,9 @@ namespace michi
             {
             public:
                 explicit Staging(const fs::path &out)
-                  : out_(fs::absolute(out))
-                  , dir_(out_.parent_path() / ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
+                    : out_(fs::absolute(out))
+                    , dir_(out_.parent_path() /
+                           ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
                 {
                     fs::remove_all(dir_);
                     fs::create_directories(dir_);
@@ -97,7 +98,7 @@ namespace michi
                 fs::path out_;
                 fs::path dir_;
             };
-        }
+        }  // namespace
 
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
                                     double timeLimit, unsigned int runs)
@@ -111,7 +112,8 @@ namespace michi
                   " (failures count at the time they gave up); length and clearance over solved runs.\n\n";
             md << "| planner | runs | success | median time (s) | median length | median clearance |\n";
             md << "|---|---:|---:|---:|---:|---:|\n";
-            auto num = [](double v, int precision) {
+            auto num = [](double v, int precision)
+            {
                 if (std::isnan(v))
                     return std::string("–");
                 std::ostringstream s;
@@ -119,9 +121,9 @@ namespace michi
                 return s.str();
             };
             for (const auto &p : planners)
-                md << "| " << p.name << " | " << p.runs << " | "
-                   << num(100. * p.solved / std::max(1u, p.runs), 3) << " % | " << num(p.medianTime, 4) << " | "
-                   << num(p.medianLength, 4) << " | " << num(p.medianClearance, 3) << " |\n";
+                md << "| " << p.name << " | " << p.runs << " | " << num(100. * p.solved / std::max(1u, p.runs), 3)
+                   << " % | " << num(p.medianTime, 4) << " | " << num(p.medianLength, 4) << " | "
+                   << num(p.medianClearance, 3) << " |\n";
             return md.str();
         }
 
@@ -138,7 +140,10 @@ namespace michi
                 for (const auto &name : options.planners)
                 {
                     auto it = std::find_if(problem.planners.begin(), problem.planners.end(),
-                                           [&](const PlannerSpec &s) { return s.name == name; });
+                                           [&](const PlannerSpec &s)
+                                           {
+                                               return s.name == name;
+                                           });
                     specs.push_back(it != problem.planners.end() ? *it : PlannerSpec{name, {}});
                 }
 
@@ -172,30 +177,32 @@ namespace michi
             const std::size_t totalRuns = planners.size() * runs;
             std::size_t done = 0;
             std::ostream *progress = options.progress;
-            benchmark.setPostRunEvent([&](const ob::PlannerPtr &planner, ot::Benchmark::RunProperties &run) {
-                std::lock_guard<std::mutex> lock(pathMutex);
-                ++done;
-                const bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
-                if (progress)
-                    *progress << "michi bench: [" << done << "/" << totalRuns << "] " << planner->getName() << ": "
-                              << (solved ? "solved" : "not solved") << " in " << std::setprecision(3)
-                              << property(run, "time REAL") << " s" << std::endl;
-                if (!solved || firstPaths.count(planner->getName()))
-                    return;
-                const auto pdef = planner->getProblemDefinition();
-                if (!pdef || !pdef->hasExactSolution())
-                    return;
-                auto *path = pdef->getSolutionPath()->as<og::PathGeometric>();
-                PlotPath plot;
-                plot.label = planner->getName();
-                for (const auto *s : path->getStates())
+            benchmark.setPostRunEvent(
+                [&](const ob::PlannerPtr &planner, ot::Benchmark::RunProperties &run)
                 {
-                    std::vector<double> values;
-                    si->getStateSpace()->copyToReals(values, s);
-                    plot.states.push_back(values);
-                }
-                firstPaths[planner->getName()] = plot;
-            });
+                    std::lock_guard<std::mutex> lock(pathMutex);
+                    ++done;
+                    const bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
+                    if (progress)
+                        *progress << "michi bench: [" << done << "/" << totalRuns << "] " << planner->getName() << ": "
+                                  << (solved ? "solved" : "not solved") << " in " << std::setprecision(3)
+                                  << property(run, "time REAL") << " s" << std::endl;
+                    if (!solved || firstPaths.count(planner->getName()))
+                        return;
+                    const auto pdef = planner->getProblemDefinition();
+                    if (!pdef || !pdef->hasExactSolution())
+                        return;
+                    auto *path = pdef->getSolutionPath()->as<og::PathGeometric>();
+                    PlotPath plot;
+                    plot.label = planner->getName();
+                    for (const auto *s : path->getStates())
+                    {
+                        std::vector<double> values;
+                        si->getStateSpace()->copyToReals(values, s);
+                        plot.states.push_back(values);
+                    }
+                    firstPaths[planner->getName()] = plot;
+                });
 
             Staging staging(options.outDir);
             if (progress)
@@ -221,8 +228,8 @@ namespace michi
                 while (std::getline(in, line))
                     if (!line.empty())
                         last = line;
-                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) +
-                                         "): " + last + " (is the ompl-demos package installed?)");
+                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) + "): " + last +
+                                         " (is the ompl-demos package installed?)");
             }
             fs::remove(statsLog);
 
@@ -269,5 +276,5 @@ namespace michi
             result.picture = (out / picture.filename()).string();
             return result;
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

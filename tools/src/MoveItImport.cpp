@@ -99,26 +99,31 @@ namespace michi
                         fail("", "not valid YAML (line " + std::to_string(e.mark.line + 1) + ", column " +
                                      std::to_string(e.mark.column + 1) + "): " + e.msg);
                     }
-                    if (!root.IsMap()) fail("", "expected a mapping at the top level (a MoveIt " + what + ")");
+                    if (!root.IsMap())
+                        fail("", "expected a mapping at the top level (a MoveIt " + what + ")");
                     return root;
                 }
 
                 YAML::Node require(const YAML::Node &map, const std::string &name, const std::string &key) const
                 {
-                    if (!map.IsMap()) fail(key, "expected a mapping");
+                    if (!map.IsMap())
+                        fail(key, "expected a mapping");
                     const YAML::Node n = map[name];
-                    if (!n || n.IsNull()) fail(key.empty() ? name : key + "." + name, "missing (required)");
+                    if (!n || n.IsNull())
+                        fail(key.empty() ? name : key + "." + name, "missing (required)");
                     return n;
                 }
 
                 double number(const YAML::Node &n, const std::string &key) const
                 {
-                    if (!n.IsScalar()) fail(key, "expected a number");
+                    if (!n.IsScalar())
+                        fail(key, "expected a number");
                     try
                     {
                         std::size_t used = 0;
                         const double v = std::stod(n.Scalar(), &used);
-                        if (used == n.Scalar().size() && std::isfinite(v)) return v;
+                        if (used == n.Scalar().size() && std::isfinite(v))
+                            return v;
                     }
                     catch (const std::exception &)
                     {
@@ -128,8 +133,10 @@ namespace michi
 
                 std::string text(const YAML::Node &n, const std::string &key) const
                 {
-                    if (n.IsNull()) return "";
-                    if (!n.IsScalar()) fail(key, "expected a string");
+                    if (n.IsNull())
+                        return "";
+                    if (!n.IsScalar())
+                        fail(key, "expected a string");
                     return n.Scalar();
                 }
 
@@ -139,22 +146,26 @@ namespace michi
                     {
                         std::string s = n.Scalar();
                         std::transform(s.begin(), s.end(), s.begin(), ::tolower);
-                        if (s == "true" || s == "1") return true;
-                        if (s == "false" || s == "0") return false;
+                        if (s == "true" || s == "1")
+                            return true;
+                        if (s == "false" || s == "0")
+                            return false;
                     }
                     fail(key, "expected true or false");
                 }
 
                 YAML::Node sequence(const YAML::Node &n, const std::string &key) const
                 {
-                    if (!n.IsSequence()) fail(key, "expected a list");
+                    if (!n.IsSequence())
+                        fail(key, "expected a list");
                     return n;
                 }
 
                 /** Optional list: an absent or null node is an empty list. */
                 std::size_t optionalSize(const YAML::Node &n, const std::string &key) const
                 {
-                    if (!n || n.IsNull()) return 0;
+                    if (!n || n.IsNull())
+                        return 0;
                     return sequence(n, key).size();
                 }
 
@@ -181,7 +192,8 @@ namespace michi
                 {
                     if (n.IsSequence())
                     {
-                        if (n.size() != 3) fail(key, "expected 3 numbers [x, y, z], got " + std::to_string(n.size()));
+                        if (n.size() != 3)
+                            fail(key, "expected 3 numbers [x, y, z], got " + std::to_string(n.size()));
                         return Eigen::Vector3d(number(n[0], key + "[0]"), number(n[1], key + "[1]"),
                                                number(n[2], key + "[2]"));
                     }
@@ -191,7 +203,8 @@ namespace michi
                         for (int i = 0; i < 3; ++i)
                         {
                             const char *c = i == 0 ? "x" : i == 1 ? "y" : "z";
-                            if (n[c]) v[i] = number(n[c], key + "." + c);
+                            if (n[c])
+                                v[i] = number(n[c], key + "." + c);
                         }
                         return v;
                     }
@@ -206,33 +219,40 @@ namespace michi
                     {
                         if (n.size() != 4)
                             fail(key, "expected 4 numbers [x, y, z, w], got " + std::to_string(n.size()));
-                        for (int i = 0; i < 4; ++i) q[i] = number(n[i], key + "[" + std::to_string(i) + "]");
+                        for (int i = 0; i < 4; ++i)
+                            q[i] = number(n[i], key + "[" + std::to_string(i) + "]");
                     }
                     else if (n.IsMap())
                     {
                         for (int i = 0; i < 4; ++i)
                         {
                             const char *c = i == 0 ? "x" : i == 1 ? "y" : i == 2 ? "z" : "w";
-                            if (n[c]) q[i] = number(n[c], key + "." + c);
+                            if (n[c])
+                                q[i] = number(n[c], key + "." + c);
                         }
                     }
                     else
                         fail(key, "expected a quaternion [x, y, z, w] or {x, y, z, w}");
                     const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
-                    if (quat.norm() == 0.) return Eigen::Quaterniond::Identity();
-                    if (quat.norm() < 1e-6) fail(key, "quaternion of nearly zero norm");
+                    if (quat.norm() == 0.)
+                        return Eigen::Quaterniond::Identity();
+                    if (quat.norm() < 1e-6)
+                        fail(key, "quaternion of nearly zero norm");
                     return quat.normalized();
                 }
 
                 /** {position, orientation} (geometry_msgs Pose) or {translation, rotation} (Transform). */
                 Eigen::Isometry3d pose(const YAML::Node &n, const std::string &key) const
                 {
-                    if (!n.IsMap()) fail(key, "expected a pose {position: [x, y, z], orientation: [x, y, z, w]}");
+                    if (!n.IsMap())
+                        fail(key, "expected a pose {position: [x, y, z], orientation: [x, y, z, w]}");
                     Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
                     for (const char *name : {"position", "translation"})
-                        if (n[name]) t.translation() = vector3(n[name], key + "." + name);
+                        if (n[name])
+                            t.translation() = vector3(n[name], key + "." + name);
                     for (const char *name : {"orientation", "rotation"})
-                        if (n[name]) t.linear() = quaternion(n[name], key + "." + name).toRotationMatrix();
+                        if (n[name])
+                            t.linear() = quaternion(n[name], key + "." + name).toRotationMatrix();
                     return t;
                 }
 
@@ -249,12 +269,14 @@ namespace michi
             std::shared_ptr<const Shape> readPrimitive(const MessageReader &r, const YAML::Node &p,
                                                        const std::string &key)
             {
-                if (!p.IsMap()) r.fail(key, "expected a primitive {type, dimensions}");
+                if (!p.IsMap())
+                    r.fail(key, "expected a primitive {type, dimensions}");
                 std::string type = r.text(r.require(p, "type", key), key + ".type");
                 std::transform(type.begin(), type.end(), type.begin(), ::tolower);
                 static const std::map<std::string, std::string> numbers{
                     {"1", "box"}, {"2", "sphere"}, {"3", "cylinder"}, {"4", "cone"}, {"5", "prism"}};
-                if (numbers.count(type)) type = numbers.at(type);
+                if (numbers.count(type))
+                    type = numbers.at(type);
                 const auto d = r.numbers(r.require(p, "dimensions", key), key + ".dimensions");
                 auto expect = [&](std::size_t size, const std::string &meaning)
                 {
@@ -288,7 +310,8 @@ namespace michi
             /** A shape_msgs/Mesh: vertices [{x, y, z}] and triangles [{vertex_indices: [a, b, c]}]. */
             std::shared_ptr<const Shape> readMesh(const MessageReader &r, const YAML::Node &m, const std::string &key)
             {
-                if (!m.IsMap()) r.fail(key, "expected a mesh {vertices, triangles}");
+                if (!m.IsMap())
+                    r.fail(key, "expected a mesh {vertices, triangles}");
                 const YAML::Node vertices = r.sequence(r.require(m, "vertices", key), key + ".vertices");
                 const YAML::Node triangles = r.sequence(r.require(m, "triangles", key), key + ".triangles");
                 std::vector<Eigen::Vector3d> points;
@@ -301,7 +324,8 @@ namespace michi
                     const YAML::Node t =
                         triangles[i].IsMap() ? r.require(triangles[i], "vertex_indices", k) : triangles[i];
                     const auto idx = r.numbers(t, k);
-                    if (idx.size() != 3) r.fail(k, "expected 3 vertex indices");
+                    if (idx.size() != 3)
+                        r.fail(k, "expected 3 vertex indices");
                     Eigen::Vector3i face;
                     for (int c = 0; c < 3; ++c)
                     {
@@ -312,14 +336,16 @@ namespace michi
                     }
                     faces.push_back(face);
                 }
-                if (faces.empty()) r.fail(key + ".triangles", "expected at least one triangle");
+                if (faces.empty())
+                    r.fail(key + ".triangles", "expected at least one triangle");
                 return Shape::mesh(std::move(points), std::move(faces), r.file() + ":" + key);
             }
 
             int rootLink(const RobotModel &model)
             {
                 for (std::size_t l = 0; l < model.links().size(); ++l)
-                    if (model.links()[l].parentJoint < 0) return static_cast<int>(l);
+                    if (model.links()[l].parentJoint < 0)
+                        return static_cast<int>(l);
                 return 0;
             }
 
@@ -327,7 +353,8 @@ namespace michi
                                        MoveItScene &scene)
             {
                 const std::string key = "allowed_collision_matrix";
-                if (!acm.IsMap()) r.fail(key, "expected a mapping (entry_names, entry_values)");
+                if (!acm.IsMap())
+                    r.fail(key, "expected a mapping (entry_names, entry_values)");
                 auto isLink = [&](const std::string &name)
                 {
                     try
@@ -361,7 +388,8 @@ namespace michi
                         for (std::size_t j = 0; j < row.size(); ++j)
                         {
                             const bool v = r.flag(row[j], k + "[" + std::to_string(j) + "]");
-                            if (i != j) entries[std::minmax(names[i], names[j])] = v;
+                            if (i != j)
+                                entries[std::minmax(names[i], names[j])] = v;
                         }
                     }
                 }
@@ -381,13 +409,15 @@ namespace michi
                 }
                 std::set<std::pair<std::string, std::string>> allowed;
                 for (const auto &e : entries)
-                    if (e.second && isLink(e.first.first) && isLink(e.first.second)) allowed.insert(e.first);
+                    if (e.second && isLink(e.first.first) && isLink(e.first.second))
+                        allowed.insert(e.first);
                 for (const auto &d : defaults)
                     if (d.second && isLink(d.first))
                         for (const auto &link : model.links())
                         {
                             const auto pair = std::minmax(d.first, link.name);
-                            if (link.name != d.first && !entries.count(pair)) allowed.insert(pair);
+                            if (link.name != d.first && !entries.count(pair))
+                                allowed.insert(pair);
                         }
                 scene.allowedCollisions.assign(allowed.begin(), allowed.end());
             }
@@ -437,7 +467,8 @@ namespace michi
             std::function<const std::set<int> &(const std::string &, const tinyxml2::XMLElement *)> resolve =
                 [&](const std::string &group, const tinyxml2::XMLElement *user) -> const std::set<int> &
             {
-                if (resolved.count(group)) return resolved[group];
+                if (resolved.count(group))
+                    return resolved[group];
                 const auto found = groupElements.find(group);
                 if (found == groupElements.end())
                     throw ProblemError(path, elementKey(user), "subgroup '" + group + "': no such group");
@@ -447,7 +478,8 @@ namespace michi
                 auto addJoint = [&](int joint)
                 {
                     const auto &j = model.joints()[joint];
-                    if (j.movable()) variables.insert(j.variable);
+                    if (j.movable())
+                        variables.insert(j.variable);
                 };
                 for (const tinyxml2::XMLElement *c = found->second->FirstChildElement(); c; c = c->NextSiblingElement())
                 {
@@ -459,7 +491,8 @@ namespace michi
                     else if (kind == "link")
                     {
                         const int link = srdfLink(path, c, "name", model);
-                        if (model.links()[link].parentJoint >= 0) addJoint(model.links()[link].parentJoint);
+                        if (model.links()[link].parentJoint >= 0)
+                            addJoint(model.links()[link].parentJoint);
                     }
                     else if (kind == "chain")
                     {
@@ -470,7 +503,8 @@ namespace michi
                             throw ProblemError(path, elementKey(c),
                                                "tip_link '" + model.links()[tip].name + "' is not below base_link '" +
                                                    model.links()[base].name + "'");
-                        for (std::size_t k = toBase.size(); k < toTip.size(); ++k) addJoint(toTip[k]);
+                        for (std::size_t k = toBase.size(); k < toTip.size(); ++k)
+                            addJoint(toTip[k]);
                     }
                     else if (kind == "group")
                     {
@@ -487,7 +521,8 @@ namespace michi
                 std::vector<std::string> joints;
                 for (int v : variables)  // std::set: configuration order
                     joints.push_back(model.variableJoint(v).name);
-                if (!joints.empty()) srdf.groups[group] = joints;
+                if (!joints.empty())
+                    srdf.groups[group] = joints;
             }
             return srdf;
         }
@@ -513,11 +548,13 @@ namespace michi
                     frames[child] = t ? r.pose(t, key + ".transform") : Eigen::Isometry3d::Identity();
                 }
             }
-            if (model) frames[model->links()[rootLink(*model)].name] = model->basePose();
+            if (model)
+                frames[model->links()[rootLink(*model)].name] = model->basePose();
             auto frame = [&](const std::string &id, const std::string &key)
             {
                 const auto found = frames.find(id);
-                if (found != frames.end()) return found->second;
+                if (found != frames.end())
+                    return found->second;
                 if (model)
                 {
                     try
@@ -543,7 +580,8 @@ namespace michi
             const YAML::Node world = root["world"];
             if (world && !world.IsNull())
             {
-                if (!world.IsMap()) r.fail("world", "expected a mapping (collision_objects, octomap)");
+                if (!world.IsMap())
+                    r.fail("world", "expected a mapping (collision_objects, octomap)");
                 if (const YAML::Node octomap = world["octomap"])
                     if (octomap.IsMap() && octomap["octomap"] && octomap["octomap"]["data"] &&
                         octomap["octomap"]["data"].size() > 0)
@@ -555,8 +593,10 @@ namespace michi
                     const std::string key = "world.collision_objects[" + std::to_string(i) + "]";
                     const YAML::Node o = objects[i];
                     const std::string id = r.text(r.require(o, "id", key), key + ".id");
-                    if (id.empty()) r.fail(key + ".id", "expected a non-empty object id");
-                    if (!ids.insert(id).second) r.fail(key + ".id", "duplicate object id '" + id + "'");
+                    if (id.empty())
+                        r.fail(key + ".id", "expected a non-empty object id");
+                    if (!ids.insert(id).second)
+                        r.fail(key + ".id", "duplicate object id '" + id + "'");
                     if (const YAML::Node op = o["operation"])
                     {
                         const std::string operation = r.text(op, key + ".operation");
@@ -599,7 +639,8 @@ namespace michi
 
             if (model)
                 if (const YAML::Node acm = root["allowed_collision_matrix"])
-                    if (!acm.IsNull()) readAllowedCollisions(r, acm, *model, scene);
+                    if (!acm.IsNull())
+                        readAllowedCollisions(r, acm, *model, scene);
             return scene;
         }
 
@@ -609,7 +650,8 @@ namespace michi
             const YAML::Node root = r.load("MotionPlanRequest");
             MoveItRequest request;
             request.file = path;
-            if (root["group_name"]) request.groupName = r.text(root["group_name"], "group_name");
+            if (root["group_name"])
+                request.groupName = r.text(root["group_name"], "group_name");
 
             const YAML::Node joints = r.require(r.require(root, "start_state", ""), "joint_state", "start_state");
             const std::string key = "start_state.joint_state";
@@ -624,7 +666,8 @@ namespace michi
                 r.fail("goal_constraints", "missing (required): a joint-space goal in goal_constraints[0]");
             r.sequence(goals, "goal_constraints");
             const YAML::Node goal = goals[0];
-            if (!goal.IsMap()) r.fail("goal_constraints[0]", "expected a mapping (joint_constraints)");
+            if (!goal.IsMap())
+                r.fail("goal_constraints[0]", "expected a mapping (joint_constraints)");
             if (r.optionalSize(goal["joint_constraints"], "goal_constraints[0].joint_constraints") == 0)
                 r.fail("goal_constraints[0].joint_constraints",
                        "missing: only joint-space goals (joint_constraints) are supported");

@@ -13,8 +13,10 @@ namespace michi
             /** getline without the '\r' of CRLF files. */
             bool readLine(std::istream &in, std::string &line)
             {
-                if (!std::getline(in, line)) return false;
-                if (!line.empty() && line.back() == '\r') line.pop_back();
+                if (!std::getline(in, line))
+                    return false;
+                if (!line.empty() && line.back() == '\r')
+                    line.pop_back();
                 return true;
             }
 
@@ -51,7 +53,8 @@ namespace michi
         MovingAiMap readMovingAiMap(const std::string &path)
         {
             std::ifstream in(path);
-            if (!in) throw ProblemError(path, "", "cannot open the map file");
+            if (!in)
+                throw ProblemError(path, "", "cannot open the map file");
             MovingAiMap map;
             map.file = path;
             std::string line;
@@ -60,13 +63,16 @@ namespace michi
             bool haveType = false;
             while (true)
             {
-                if (!readLine(in, line)) throw ProblemError(path, "header", "ends before 'map'; " + expected);
+                if (!readLine(in, line))
+                    throw ProblemError(path, "header", "ends before 'map'; " + expected);
                 ++lineNumber;
                 std::istringstream words(line);
                 std::string word, value, extra;
                 words >> word;
-                if (word.empty()) continue;
-                if (word == "map") break;
+                if (word.empty())
+                    continue;
+                if (word == "map")
+                    break;
                 if (!(words >> value) || (words >> extra))
                     throw ProblemError(path, "header (line " + std::to_string(lineNumber) + ")",
                                        "'" + line + "': " + expected);
@@ -88,7 +94,8 @@ namespace michi
                     throw ProblemError(path, "header (line " + std::to_string(lineNumber) + ")",
                                        "unknown header line '" + line + "': " + expected);
             }
-            if (!haveType) throw ProblemError(path, "header.type", "missing; " + expected);
+            if (!haveType)
+                throw ProblemError(path, "header.type", "missing; " + expected);
             if (map.height == 0 || map.width == 0)
                 throw ProblemError(path, map.height == 0 ? "header.height" : "header.width", "missing; " + expected);
             while (static_cast<int>(map.rows.size()) < map.height)
@@ -128,7 +135,8 @@ namespace michi
         {
             if (!(resolution > 0.))
                 throw ProblemError(map.file, "resolution", "expected a positive number (metres per cell)");
-            if (!(height > 0.)) throw ProblemError(map.file, "height", "expected a positive number (metres)");
+            if (!(height > 0.))
+                throw ProblemError(map.file, "height", "expected a positive number (metres)");
             std::vector<validity::Obstacle> obstacles;
             for (int r = 0; r < map.height; ++r)
             {
@@ -142,7 +150,8 @@ namespace michi
                         continue;
                     }
                     const int start = c;
-                    while (c < map.width && map.blocked(c, r)) ++c;
+                    while (c < map.width && map.blocked(c, r))
+                        ++c;
                     validity::Obstacle o;
                     o.name = "cells_r" + std::to_string(r) + "_c" + std::to_string(start);
                     o.shape = validity::Shape::box(Eigen::Vector3d((c - start) * resolution, resolution, height));
@@ -157,7 +166,8 @@ namespace michi
         std::vector<MovingAiScenario> readMovingAiScenarios(const std::string &path)
         {
             std::ifstream in(path);
-            if (!in) throw ProblemError(path, "", "cannot open the scenario file");
+            if (!in)
+                throw ProblemError(path, "", "cannot open the scenario file");
             std::string line;
             if (!readLine(in, line))
                 throw ProblemError(path, "version", "empty file, expected 'version 1' then one scenario per line");
@@ -173,7 +183,8 @@ namespace michi
             while (readLine(in, line))
             {
                 ++lineNumber;
-                if (line.find_first_not_of(" \t") == std::string::npos) continue;
+                if (line.find_first_not_of(" \t") == std::string::npos)
+                    continue;
                 std::istringstream words(line);
                 MovingAiScenario s;
                 s.line = lineNumber;

@@ -65,5 +65,5 @@ namespace michi
             }
             return states;
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

@@ -45,9 +45,12 @@ namespace michi
             template <typename P>
             ob::PlannerAllocator allocator()
             {
-                return [](const ob::SpaceInformationPtr &si) { return std::make_shared<P>(si); };
+                return [](const ob::SpaceInformationPtr &si)
+                {
+                    return std::make_shared<P>(si);
+                };
             }
-        }
+        }  // namespace
 
         const std::map<std::string, ob::PlannerAllocator> &plannerAllocators()
         {
@@ -110,5 +113,5 @@ namespace michi
             }
             return it->second(si);
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

@@ -50,7 +50,7 @@ namespace michi
                 if (!collision.empty())
                     throw ProblemError(problem.file, key, "in collision: " + collision);
             }
-        }
+        }  // namespace
 
         PlanningContext makePlanningContext(const Problem &problem, std::size_t query)
         {
@@ -74,9 +74,8 @@ namespace michi
                 si->setStateValidityCheckingResolution(problem.validSegmentFraction);
             si->setup();  // the space's value locations (copyFromReals) exist only after setup
 
-            const std::string prefix = problem.queries.size() > 1 || query > 0 ?
-                                           "queries[" + std::to_string(query) + "]." :
-                                           std::string();
+            const std::string prefix =
+                problem.queries.size() > 1 || query > 0 ? "queries[" + std::to_string(query) + "]." : std::string();
             const Query &q = problem.queries[query];
             checkEndpoint(problem, ctx, q.start, prefix.empty() ? "start" : prefix + "start");
             checkEndpoint(problem, ctx, q.goal, prefix.empty() ? "goal" : prefix + "goal");
@@ -105,9 +104,9 @@ namespace michi
                 }
                 if (!params.setParam(kv.first, kv.second))
                     throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
-                                       "value '" + kv.second + "' rejected by " + planner.getName() +
-                                           " (range " + params[kv.first].getRangeSuggestion() + ")");
+                                       "value '" + kv.second + "' rejected by " + planner.getName() + " (range " +
+                                           params[kv.first].getRangeSuggestion() + ")");
             }
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

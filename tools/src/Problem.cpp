@@ -72,8 +72,8 @@ namespace michi
                 std::vector<double> numbers(const YAML::Node &n, const std::string &key, std::size_t size = 0) const
                 {
                     if (!n.IsSequence())
-                        fail(key, size ? "expected a list of " + std::to_string(size) + " numbers" :
-                                         "expected a list of numbers");
+                        fail(key, size ? "expected a list of " + std::to_string(size) + " numbers"
+                                       : "expected a list of numbers");
                     if (size && n.size() != size)
                         fail(key, "expected " + std::to_string(size) + " numbers, got " + std::to_string(n.size()));
                     std::vector<double> values;
@@ -255,8 +255,8 @@ namespace michi
                             const std::string k = key + "." + kind;
                             const double radius = r.number(r.require(o[kind], "radius", k), k + ".radius");
                             const double length = r.number(r.require(o[kind], "length", k), k + ".length");
-                            return std::string(kind) == "cylinder" ? Shape::cylinder(radius, length) :
-                                                                     Shape::capsule(radius, length);
+                            return std::string(kind) == "cylinder" ? Shape::cylinder(radius, length)
+                                                                   : Shape::capsule(radius, length);
                         }
                     if (o["polygon"])
                     {
@@ -430,8 +430,9 @@ namespace michi
                         const YAML::Node o = list[i];
                         if (!o.IsMap())
                             r.fail(key, "expected a mapping");
-                        r.keys(o, key,
-                               {"name", "box", "sphere", "cylinder", "capsule", "polygon", "mesh", "pose", "trajectory"});
+                        r.keys(
+                            o, key,
+                            {"name", "box", "sphere", "cylinder", "capsule", "polygon", "mesh", "pose", "trajectory"});
                         Obstacle obstacle;
                         obstacle.name = o["name"] ? r.text(o["name"], key + ".name") : "obstacle" + std::to_string(i);
                         if (!names.insert(obstacle.name).second)
@@ -509,7 +510,8 @@ namespace michi
                 if (robot["base_pose"])
                     problem.model->setBasePose(r.pose(robot["base_pose"], "robot.base_pose"));
 
-                auto checkJoint = [&](const std::string &joint, const std::string &key) {
+                auto checkJoint = [&](const std::string &joint, const std::string &key)
+                {
                     try
                     {
                         return model.variableIndex(joint);
@@ -741,8 +743,8 @@ namespace michi
             {
                 if (!list)
                 {
-                    for (const char *name : {"geometric::RRTConnect", "geometric::PRM", "geometric::RRTstar",
-                                             "geometric::BITstar"})
+                    for (const char *name :
+                         {"geometric::RRTConnect", "geometric::PRM", "geometric::RRTstar", "geometric::BITstar"})
                         problem.planners.push_back(PlannerSpec{name, {}});
                     return;
                 }
@@ -804,7 +806,7 @@ namespace michi
                         r.fail(key, "unknown key (expected time_limit, runs, memory_limit, seed, simplify)");
                 }
             }
-        }
+        }  // namespace
 
         validity::CollisionBodiesPtr Problem::bodies() const
         {
@@ -969,5 +971,5 @@ namespace michi
             }
             return problem;
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

@@ -57,15 +57,18 @@ namespace michi
             {
                 const double unit = std::pow(10., decimals);
                 value = std::round(value * unit) / unit;
-                if (value == 0.) value = 0.;  // drops the sign of -0
+                if (value == 0.)
+                    value = 0.;  // drops the sign of -0
                 char buffer[64];
                 const auto result =
                     std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::fixed, decimals);
                 std::string text(buffer, result.ptr);
                 if (text.find('.') != std::string::npos)
                 {
-                    while (text.back() == '0') text.pop_back();
-                    if (text.back() == '.') text.pop_back();
+                    while (text.back() == '0')
+                        text.pop_back();
+                    if (text.back() == '.')
+                        text.pop_back();
                 }
                 return text;
             }
@@ -73,7 +76,8 @@ namespace michi
             std::string escapeXml(const std::string &text)
             {
                 std::string escaped;
-                for (char c : text) switch (c)
+                for (char c : text)
+                    switch (c)
                     {
                         case '&':
                             escaped += "&amp;";
@@ -153,19 +157,22 @@ namespace michi
                 /** The document, with every element still open closed. */
                 std::string finish()
                 {
-                    while (!open_.empty()) close();
+                    while (!open_.empty())
+                        close();
                     return out_.str();
                 }
 
             private:
                 void indent()
                 {
-                    for (std::size_t i = 0; i < open_.size(); ++i) out_ << "  ";
+                    for (std::size_t i = 0; i < open_.size(); ++i)
+                        out_ << "  ";
                 }
 
                 void writeAttributes(const Attributes &attributes)
                 {
-                    for (const auto &a : attributes) out_ << ' ' << a.first << "=\"" << escapeXml(a.second) << '"';
+                    for (const auto &a : attributes)
+                        out_ << ' ' << a.first << "=\"" << escapeXml(a.second) << '"';
                 }
 
                 std::ostringstream out_;
@@ -196,7 +203,8 @@ namespace michi
                 }
                 void add(double x, double y)
                 {
-                    if (!std::isfinite(x) || !std::isfinite(y)) return;
+                    if (!std::isfinite(x) || !std::isfinite(y))
+                        return;
                     xMin = std::min(xMin, x);
                     xMax = std::max(xMax, x);
                     yMin = std::min(yMin, y);
@@ -208,12 +216,14 @@ namespace michi
                 }
                 void add(const Polyline &line)
                 {
-                    for (const auto &p : line) add(p);
+                    for (const auto &p : line)
+                        add(p);
                 }
                 void add(const MultiPolygon2 &shape)
                 {
                     for (const auto &polygon : shape)
-                        for (const auto &p : polygon.outer()) add(p.x(), p.y());
+                        for (const auto &p : polygon.outer())
+                            add(p.x(), p.y());
                 }
                 void add(const Extent &other)
                 {
@@ -228,7 +238,8 @@ namespace michi
             /** The extent with a margin, never degenerate and never thinner than 1:4, for a world panel. */
             Extent framed(Extent e)
             {
-                if (e.empty()) e.add(0., 0.);
+                if (e.empty())
+                    e.add(0., 0.);
                 const double pad = std::max(0.05 * std::max(e.width(), e.height()), 0.05);
                 e.xMin -= pad;
                 e.xMax += pad;
@@ -291,7 +302,8 @@ namespace michi
                     std::string text;
                     for (const auto &p : line)
                     {
-                        if (!text.empty()) text += ' ';
+                        if (!text.empty())
+                            text += ' ';
                         text += num(x(p.x())) + ',' + num(y(p.y()));
                     }
                     return text;
@@ -303,7 +315,8 @@ namespace michi
                     for (const auto &polygon : shape)
                     {
                         appendRing(polygon.outer(), data);
-                        for (const auto &ring : polygon.inners()) appendRing(ring, data);
+                        for (const auto &ring : polygon.inners())
+                            appendRing(ring, data);
                     }
                 }
 
@@ -311,7 +324,8 @@ namespace michi
                 template <typename Ring>
                 void appendRing(const Ring &ring, std::string &data) const
                 {
-                    if (ring.size() < 3) return;
+                    if (ring.size() < 3)
+                        return;
                     char command = 'M';
                     for (const auto &p : ring)
                     {
@@ -363,8 +377,10 @@ namespace michi
                 /** \e count states evenly spaced by length, the first and last state included. */
                 std::vector<Values> evenlySpaced(std::size_t count) const
                 {
-                    if (states_.empty()) return {};
-                    if (states_.size() == 1 || length() <= 0.) return {states_.front()};
+                    if (states_.empty())
+                        return {};
+                    if (states_.size() == 1 || length() <= 0.)
+                        return {states_.front()};
                     std::vector<Values> result;
                     for (std::size_t i = 0; i < count; ++i)
                         result.push_back(at(length() * static_cast<double>(i) / static_cast<double>(count - 1)));
@@ -382,7 +398,8 @@ namespace michi
                         for (std::size_t j = 0; j < steps; ++j)
                             result.push_back(interpolate(k, static_cast<double>(j) / steps));
                     }
-                    if (!states_.empty()) result.push_back(states_.back());
+                    if (!states_.empty())
+                        result.push_back(states_.back());
                     return result;
                 }
 
@@ -411,7 +428,8 @@ namespace michi
                 Values at(double s) const
                 {
                     const auto next = std::upper_bound(cumulative_.begin(), cumulative_.end(), s);
-                    if (next == cumulative_.end()) return states_.back();
+                    if (next == cumulative_.end())
+                        return states_.back();
                     const std::size_t k = std::max<std::ptrdiff_t>(next - cumulative_.begin() - 1, 0);
                     const double segment = cumulative_[k + 1] - cumulative_[k];
                     return interpolate(k, segment > 0. ? (s - cumulative_[k]) / segment : 0.);
@@ -445,7 +463,8 @@ namespace michi
                     if (problem.kind == Problem::Kind::SE2)
                     {
                         wraps_ = {false, false, true};
-                        for (const auto &p : problem.footprint) headingLength_ = std::max(headingLength_, p.norm());
+                        for (const auto &p : problem.footprint)
+                            headingLength_ = std::max(headingLength_, p.norm());
                         return;
                     }
                     if (!problem.model)
@@ -487,7 +506,8 @@ namespace michi
                 {
                     if (problem_.kind == Problem::Kind::SE2)
                         return (view * Eigen::Vector3d(values[0], values[1], 0.)).head<2>();
-                    if (skeleton_.empty()) return Vec2::Zero();
+                    if (skeleton_.empty())
+                        return Vec2::Zero();
                     const auto poses = problem_.model->forwardKinematics(fullConfiguration(values));
                     return (view * poses[skeleton_.back()].translation()).head<2>();
                 }
@@ -496,10 +516,12 @@ namespace michi
                 std::vector<MultiPolygon2> fixedLinks(const Values &values, const Eigen::Isometry3d &view) const
                 {
                     std::vector<MultiPolygon2> shapes;
-                    if (problem_.kind == Problem::Kind::SE2) return shapes;
+                    if (problem_.kind == Problem::Kind::SE2)
+                        return shapes;
                     const auto poses = problem_.model->forwardKinematics(fullConfiguration(values));
                     for (std::size_t l = 0; l < poses.size(); ++l)
-                        if (!moved_[l]) addLinkShapes(l, view * poses[l], shapes);
+                        if (!moved_[l])
+                            addLinkShapes(l, view * poses[l], shapes);
                     return shapes;
                 }
 
@@ -508,7 +530,8 @@ namespace michi
                 {
                     Values q = problem_.fixedValues;
                     q.resize(problem_.model->variableCount(), 0.);
-                    for (std::size_t i = 0; i < values.size(); ++i) q[problem_.groupVariables[i]] = values[i];
+                    for (std::size_t i = 0; i < values.size(); ++i)
+                        q[problem_.groupVariables[i]] = values[i];
                     return q;
                 }
 
@@ -522,8 +545,11 @@ namespace michi
                     for (std::size_t l = 0; l < model.links().size(); ++l)
                     {
                         const auto chain = model.chainTo(static_cast<int>(l));
-                        moved_[l] =
-                            std::any_of(chain.begin(), chain.end(), [&](int j) { return groupJoints.count(j) > 0; });
+                        moved_[l] = std::any_of(chain.begin(), chain.end(),
+                                                [&](int j)
+                                                {
+                                                    return groupJoints.count(j) > 0;
+                                                });
                     }
                     int end = -1;
                     std::size_t deepest = 0;
@@ -537,14 +563,18 @@ namespace michi
                             deepest = depth;
                         }
                     }
-                    if (end < 0) return;
+                    if (end < 0)
+                        return;
                     std::vector<std::vector<int>> children(model.links().size());
                     for (const auto &joint : model.joints())
-                        if (joint.parentLink >= 0) children[joint.parentLink].push_back(joint.childLink);
-                    while (children[end].size() == 1) end = children[end].front();
+                        if (joint.parentLink >= 0)
+                            children[joint.parentLink].push_back(joint.childLink);
+                    while (children[end].size() == 1)
+                        end = children[end].front();
                     const auto chain = model.chainTo(end);
                     skeleton_.push_back(chain.empty() ? end : model.joints()[chain.front()].parentLink);
-                    for (int j : chain) skeleton_.push_back(model.joints()[j].childLink);
+                    for (int j : chain)
+                        skeleton_.push_back(model.joints()[j].childLink);
                 }
 
                 /** A revolute joint about a non-vertical axis or a prismatic joint along a non-horizontal one
@@ -561,7 +591,8 @@ namespace michi
                             (joint.parentLink >= 0 ? poses[joint.parentLink] : model.basePose()) * joint.origin;
                         const double z = std::abs((frame.linear() * joint.axis).z());
                         const bool prismatic = joint.type == validity::RobotJoint::Type::PRISMATIC;
-                        if (prismatic ? z > 1e-9 : z < 1. - 1e-9) return true;
+                        if (prismatic ? z > 1e-9 : z < 1. - 1e-9)
+                            return true;
                     }
                     return false;
                 }
@@ -579,9 +610,12 @@ namespace michi
                     picture.arm = true;
                     const auto poses = problem_.model->forwardKinematics(fullConfiguration(values));
                     for (std::size_t l = 0; l < poses.size(); ++l)
-                        if (moved_[l]) addLinkShapes(l, view * poses[l], picture.shapes);
-                    for (int l : skeleton_) picture.skeleton.push_back((view * poses[l].translation()).head<2>());
-                    if (!picture.skeleton.empty()) picture.end = picture.skeleton.back();
+                        if (moved_[l])
+                            addLinkShapes(l, view * poses[l], picture.shapes);
+                    for (int l : skeleton_)
+                        picture.skeleton.push_back((view * poses[l].translation()).head<2>());
+                    if (!picture.skeleton.empty())
+                        picture.end = picture.skeleton.back();
                     return picture;
                 }
 
@@ -591,7 +625,9 @@ namespace michi
                     const Eigen::Rotation2Dd rotation(values[2]);
                     const Vec2 centre(values[0], values[1]);
                     auto project = [&](const Vec2 &p) -> Vec2
-                    { return (view * Eigen::Vector3d(p.x(), p.y(), 0.)).head<2>(); };
+                    {
+                        return (view * Eigen::Vector3d(p.x(), p.y(), 0.)).head<2>();
+                    };
                     std::vector<Point2> outline;
                     for (const auto &p : problem_.footprint)
                     {
@@ -655,18 +691,23 @@ namespace michi
                 {
                     Extent e;
                     for (const auto *group : {&obstacles, &keyFrames, &fixedLinks})
-                        for (const auto &shape : *group) e.add(shape);
-                    if (limits) e.add(*limits);
+                        for (const auto &shape : *group)
+                            e.add(shape);
+                    if (limits)
+                        e.add(*limits);
                     auto addRobot = [&e](const RobotPicture &robot)
                     {
-                        for (const auto &shape : robot.shapes) e.add(shape);
+                        for (const auto &shape : robot.shapes)
+                            e.add(shape);
                         e.add(robot.skeleton);
                     };
                     for (const auto *robot : {&start, &goal})
-                        if (*robot) addRobot(**robot);
+                        if (*robot)
+                            addRobot(**robot);
                     for (const auto &path : paths)
                     {
-                        for (const auto &pose : path.poses) addRobot(pose);
+                        for (const auto &pose : path.poses)
+                            addRobot(pose);
                         e.add(path.trace);
                     }
                     return e;
@@ -679,7 +720,8 @@ namespace michi
                 std::vector<std::size_t> indices;
                 if (size <= count)
                 {
-                    for (std::size_t i = 0; i < size; ++i) indices.push_back(i);
+                    for (std::size_t i = 0; i < size; ++i)
+                        indices.push_back(i);
                     return indices;
                 }
                 for (std::size_t i = 0; i < count; ++i)
@@ -690,11 +732,13 @@ namespace michi
 
             void addScene(const validity::Scene *scene, const Eigen::Isometry3d &view, WorldView &v)
             {
-                if (!scene) return;
+                if (!scene)
+                    return;
                 for (const auto &obstacle : scene->obstacles())
                 {
                     v.obstacles.push_back(obstacle.shape->footprint(view * obstacle.pose));
-                    if (obstacle.trajectory.empty()) continue;
+                    if (obstacle.trajectory.empty())
+                        continue;
                     Polyline route;
                     for (const auto &frame : obstacle.trajectory)
                         route.push_back((view * frame.pose.translation()).head<2>());
@@ -720,8 +764,10 @@ namespace michi
                 for (const auto &path : paths)
                 {
                     PathPicture picture;
-                    for (const auto &pose : path.poses) picture.poses.push_back(robot.picture(pose, view));
-                    for (const auto &values : path.dense) picture.trace.push_back(robot.endPoint(values, view));
+                    for (const auto &pose : path.poses)
+                        picture.poses.push_back(robot.picture(pose, view));
+                    for (const auto &values : path.dense)
+                        picture.trace.push_back(robot.endPoint(values, view));
                     v.paths.push_back(std::move(picture));
                 }
                 return v;
@@ -801,15 +847,18 @@ namespace michi
                             Attributes attributes)
             {
                 std::string data;
-                for (const auto &shape : shapes) t.appendPathData(shape, data);
-                if (data.empty()) return;
+                for (const auto &shape : shapes)
+                    t.appendPathData(shape, data);
+                if (data.empty())
+                    return;
                 attributes.emplace_back("d", data);
                 svg.element("path", attributes);
             }
 
             void drawPolyline(SvgWriter &svg, const ViewTransform &t, const Polyline &line, Attributes attributes)
             {
-                if (line.size() < 2) return;
+                if (line.size() < 2)
+                    return;
                 attributes.emplace_back("points", t.points(line));
                 attributes.emplace_back("fill", "none");
                 svg.element("polyline", attributes);
@@ -855,7 +904,8 @@ namespace michi
                 drawPolyline(svg, t, robot.skeleton,
                              {{"class", "skeleton"}, {"stroke", colour}, {"stroke-width", "2"}});
                 if (robot.arm)
-                    for (const auto &p : robot.skeleton) drawDot(svg, t.x(p.x()), t.y(p.y()), 2.5, colour);
+                    for (const auto &p : robot.skeleton)
+                        drawDot(svg, t.x(p.x()), t.y(p.y()), 2.5, colour);
                 drawDot(svg, t.x(robot.end.x()), t.y(robot.end.y()), 3.5, "white",
                         {{"stroke", colour}, {"stroke-width", "1.5"}});
                 svg.close();
@@ -900,14 +950,17 @@ namespace michi
                 {
                     const std::string &colour = paths[i].colour;
                     svg.open("g", {{"class", "path"}, {"data-label", paths[i].label}});
-                    for (const auto &pose : v.paths[i].poses) drawRobotOutline(svg, t, pose, colour);
+                    for (const auto &pose : v.paths[i].poses)
+                        drawRobotOutline(svg, t, pose, colour);
                     drawPolyline(
                         svg, t, v.paths[i].trace,
                         {{"class", "trace"}, {"stroke", colour}, {"stroke-width", "2"}, {"stroke-linejoin", "round"}});
                     svg.close();
                 }
-                if (v.start) drawRobotSolid(svg, t, *v.start, "start", START_COLOUR);
-                if (v.goal) drawRobotSolid(svg, t, *v.goal, "goal", GOAL_COLOUR);
+                if (v.start)
+                    drawRobotSolid(svg, t, *v.start, "start", START_COLOUR);
+                if (v.goal)
+                    drawRobotSolid(svg, t, *v.goal, "goal", GOAL_COLOUR);
                 closePanel(svg);
             }
 
@@ -916,7 +969,8 @@ namespace michi
             /** Value \e v moved into [lower, lower + 2 pi) when it wraps. */
             double normalised(double v, double lower, bool wraps)
             {
-                if (!wraps) return v;
+                if (!wraps)
+                    return v;
                 const double shifted = std::fmod(v - lower, 2. * M_PI);
                 return lower + (shifted < 0. ? shifted + 2. * M_PI : shifted);
             }
@@ -946,9 +1000,11 @@ namespace michi
                         // no usable limits: fit the data
                         Extent e;
                         for (const auto &path : paths)
-                            for (const auto &v : path.states) e.add(v[i], v[i]);
+                            for (const auto &v : path.states)
+                                e.add(v[i], v[i]);
                         if (query)
-                            for (const auto *v : {&query->start, &query->goal}) e.add((*v)[i], (*v)[i]);
+                            for (const auto *v : {&query->start, &query->goal})
+                                e.add((*v)[i], (*v)[i]);
                         lower[i] = e.empty() ? -1. : e.xMin - 0.5;
                         upper[i] = e.empty() ? 1. : e.xMax + 0.5;
                     }
@@ -978,7 +1034,8 @@ namespace michi
                     if (!pieces.back().empty())
                     {
                         const Vec2 jump = (p - pieces.back().back()).cwiseAbs();
-                        if ((c.wraps[0] && jump.x() > M_PI) || (c.wraps[1] && jump.y() > M_PI)) pieces.emplace_back();
+                        if ((c.wraps[0] && jump.x() > M_PI) || (c.wraps[1] && jump.y() > M_PI))
+                            pieces.emplace_back();
                     }
                     pieces.back().push_back(p);
                 }
@@ -1000,8 +1057,10 @@ namespace michi
                                 t.y(normalised(v[1], c.limits.yMin, c.wraps[1])), 2., path.colour);
                     svg.close();
                 }
-                if (c.start) drawDot(svg, t.x(c.start->x()), t.y(c.start->y()), 5., START_COLOUR, {{"class", "start"}});
-                if (c.goal) drawDot(svg, t.x(c.goal->x()), t.y(c.goal->y()), 5., GOAL_COLOUR, {{"class", "goal"}});
+                if (c.start)
+                    drawDot(svg, t.x(c.start->x()), t.y(c.start->y()), 5., START_COLOUR, {{"class", "start"}});
+                if (c.goal)
+                    drawDot(svg, t.x(c.goal->x()), t.y(c.goal->y()), 5., GOAL_COLOUR, {{"class", "goal"}});
                 closePanel(svg);
             }
 
@@ -1053,11 +1112,14 @@ namespace michi
                     entries.push_back({"start", START_COLOUR, false});
                     entries.push_back({"goal", GOAL_COLOUR, false});
                 }
-                if (!top.obstacles.empty()) entries.push_back({"obstacles", OBSTACLE_FILL, false});
+                if (!top.obstacles.empty())
+                    entries.push_back({"obstacles", OBSTACLE_FILL, false});
                 if (!top.keyFrames.empty())
                     entries.push_back({"moving obstacles at key frames", "#707070", true, true});
-                if (!top.fixedLinks.empty()) entries.push_back({"robot links not planned", FIXED_LINK_FILL, false});
-                if (problem.kind == Problem::Kind::SE2) entries.push_back({"x, y bounds", "#555", true, true});
+                if (!top.fixedLinks.empty())
+                    entries.push_back({"robot links not planned", FIXED_LINK_FILL, false});
+                if (problem.kind == Problem::Kind::SE2)
+                    entries.push_back({"x, y bounds", "#555", true, true});
                 for (const auto &path : paths)
                     entries.push_back({path.label + (path.states.empty() ? " (empty)" : ""), path.colour, true});
                 return entries;
@@ -1068,7 +1130,8 @@ namespace michi
                 const std::string temporary = file + ".tmp";
                 {
                     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-                    if (!out) throw std::runtime_error("cannot write SVG file '" + file + "': " + std::strerror(errno));
+                    if (!out)
+                        throw std::runtime_error("cannot write SVG file '" + file + "': " + std::strerror(errno));
                     out << text;
                     out.close();
                     if (!out)
@@ -1091,7 +1154,8 @@ namespace michi
                     throw std::invalid_argument(what + " has " + std::to_string(values.size()) +
                                                 " values, the problem's state has " + std::to_string(dimension));
                 for (double v : values)
-                    if (!std::isfinite(v)) throw std::invalid_argument(what + " has a value that is not finite");
+                    if (!std::isfinite(v))
+                        throw std::invalid_argument(what + " has a value that is not finite");
             }
 
             std::vector<SampledPath> samplePaths(const std::vector<PlotPath> &paths, const RobotGeometry &robot,
@@ -1121,7 +1185,8 @@ namespace michi
             /** The query to draw (checked), or none when the problem has no queries. */
             const Query *chosenQuery(const Problem &problem, std::size_t query)
             {
-                if (problem.queries.empty()) return nullptr;
+                if (problem.queries.empty())
+                    return nullptr;
                 if (query >= problem.queries.size())
                     throw std::out_of_range("query " + std::to_string(query) + ": problem '" + problem.name + "' has " +
                                             std::to_string(problem.queries.size()) + " queries");
@@ -1211,8 +1276,10 @@ namespace michi
                          {{"id", "title"}, {"font-size", "18"}, {"font-weight", "bold"}});
                 std::string subtitle =
                     problem.kind == Problem::Kind::SE2 ? "SE(2) footprint" : "arm " + problem.model->name();
-                if (!problem.group.empty()) subtitle += ", group " + problem.group;
-                if (q) subtitle += ", query " + std::to_string(query);
+                if (!problem.group.empty())
+                    subtitle += ", group " + problem.group;
+                if (q)
+                    subtitle += ", query " + std::to_string(query);
                 subtitle +=
                     ", " + std::to_string(pathCount) + " path(s), robot drawn at " + std::to_string(POSES_PER_PATH) +
                     " poses per path, trace: " + (problem.kind == Problem::Kind::SE2 ? "x, y" : "end link origin");
@@ -1235,8 +1302,10 @@ namespace michi
 
             SvgWriter svg(layout.width, layout.height);
             drawTitle(svg, problem, q, query, paths.size());
-            for (std::size_t i = 0; i < views.size(); ++i) drawWorldPanel(svg, views[i], layout.world[i], sampled);
-            if (config) drawConfigPanel(svg, *config, *layout.config, sampled);
+            for (std::size_t i = 0; i < views.size(); ++i)
+                drawWorldPanel(svg, views[i], layout.world[i], sampled);
+            if (config)
+                drawConfigPanel(svg, *config, *layout.config, sampled);
             drawLegend(svg, layout.legendLeft, PANEL_TOP, legend);
             writeAtomically(svg.finish(), file);
         }

@@ -18,11 +18,11 @@ namespace michi
                     d += 2. * M_PI;
                 return std::abs(d);
             }
-        }
+        }  // namespace
 
         RobotGroupBodies::RobotGroupBodies(RobotModelPtr model, std::vector<int> variables,
                                            std::vector<double> fixedValues)
-          : model_(std::move(model)), variables_(std::move(variables)), fixedValues_(std::move(fixedValues))
+            : model_(std::move(model)), variables_(std::move(variables)), fixedValues_(std::move(fixedValues))
         {
             if (fixedValues_.size() != model_->variableCount())
                 throw std::invalid_argument("fixed configuration has " + std::to_string(fixedValues_.size()) +
@@ -68,8 +68,8 @@ namespace michi
             for (std::size_t i = 0; i < variables_.size(); ++i)
             {
                 const auto &joint = model_->variableJoint(variables_[i]);
-                const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i]) :
-                                                                              std::abs(to[i] - from[i]);
+                const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i])
+                                                                             : std::abs(to[i] - from[i]);
                 bound += model_->displacementBound(variables_[i]) * dq;
             }
             return bound;
@@ -82,15 +82,15 @@ namespace michi
             for (std::size_t i = 0; i < variables_.size(); ++i)
             {
                 const auto &joint = model_->variableJoint(variables_[i]);
-                const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i]) :
-                                                                              std::abs(to[i] - from[i]);
+                const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i])
+                                                                             : std::abs(to[i] - from[i]);
                 for (std::size_t b = 0; b < bodies_.size(); ++b)
                     bounds[b] += model_->displacementBound(variables_[i], bodyLinks_[b]) * dq;
             }
         }
 
         PlanarRigidBody::PlanarRigidBody(std::vector<Eigen::Vector2d> footprint, double zMin, double zMax)
-          : footprint_(std::move(footprint))
+            : footprint_(std::move(footprint))
         {
             bodies_.push_back(Body{"footprint", {LinkCollision{Shape::prism(footprint_, zMin, zMax)}}});
             for (const auto &p : footprint_)
@@ -115,5 +115,5 @@ namespace michi
         {
             bounds.assign(1, displacementBound(from, to));
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

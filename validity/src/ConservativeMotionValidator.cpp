@@ -11,7 +11,7 @@ namespace michi
     {
         ConservativeMotionValidator::ConservativeMotionValidator(const ompl::base::SpaceInformationPtr &si,
                                                                  FclValidityCheckerPtr checker)
-          : ompl::base::MotionValidator(si), checker_(std::move(checker))
+            : ompl::base::MotionValidator(si), checker_(std::move(checker))
         {
         }
 
@@ -107,5 +107,5 @@ namespace michi
             ok ? ++valid_ : ++invalid_;
             return ok;
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

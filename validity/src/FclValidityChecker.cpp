@@ -79,18 +79,17 @@ namespace michi
                                 objects[b].push_back(std::make_unique<fcl::CollisionObjectd>(g, poses[b] * s.origin));
                 }
             };
-        }
+        }  // namespace
 
         FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr &si, CollisionBodiesPtr bodies,
                                                ScenePtr scene)
-          : ompl::base::StateValidityChecker(si), bodies_(std::move(bodies)), scene_(std::move(scene))
+            : ompl::base::StateValidityChecker(si), bodies_(std::move(bodies)), scene_(std::move(scene))
         {
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
             if (si->getStateSpace()->getDimension() != bodies_->dimension())
-                throw std::invalid_argument("state space has dimension " +
-                                            std::to_string(si->getStateSpace()->getDimension()) +
-                                            ", the robot's configuration has " +
-                                            std::to_string(bodies_->dimension()) + " values");
+                throw std::invalid_argument(
+                    "state space has dimension " + std::to_string(si->getStateSpace()->getDimension()) +
+                    ", the robot's configuration has " + std::to_string(bodies_->dimension()) + " values");
         }
 
         void FclValidityChecker::toReals(const ompl::base::State *state, std::vector<double> &values) const
@@ -258,5 +257,5 @@ namespace michi
                     }
             }
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

@@ -48,7 +48,7 @@ namespace michi
                 }
                 throw std::runtime_error(path + ": PGM " + what + " is '" + token + "', expected a positive integer");
             }
-        }
+        }  // namespace
 
         std::vector<Obstacle> occupancyObstacles(const std::string &pgmPath, double resolution,
                                                  const Eigen::Vector2d &origin, double height, double threshold)
@@ -107,5 +107,5 @@ namespace michi
             }
             return obstacles;
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

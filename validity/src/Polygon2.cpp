@@ -30,5 +30,5 @@ namespace michi
             }
             return makePolygon2(outline);
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

@@ -69,7 +69,7 @@ namespace michi
                 throw UrdfError(source + ": mesh '" + uri + "' not found (looked in " + candidates.front().string() +
                                 ")");
             }
-        }
+        }  // namespace
 
         std::shared_ptr<RobotModel> RobotModel::fromUrdfFile(const std::string &path)
         {
@@ -340,7 +340,8 @@ namespace michi
                     g = joints_[links_[g].parentJoint].parentLink;
                 group[l] = g;
             }
-            auto parentGroup = [&](int l) {
+            auto parentGroup = [&](int l)
+            {
                 const int root = group[l];
                 return links_[root].parentJoint >= 0 ? group[joints_[links_[root].parentJoint].parentLink] : -1;
             };
@@ -371,11 +372,11 @@ namespace michi
             {
                 const RobotJoint &joint = joints_[*it];
                 // a prismatic joint carries its child up to max(|lower|, |upper|) away from the joint origin
-                const double extension = joint.type == RobotJoint::Type::PRISMATIC ?
-                                             std::max(std::abs(joint.lower), std::abs(joint.upper)) :
-                                             0.;
-                reach[joint.parentLink] = std::max(reach[joint.parentLink], joint.origin.translation().norm() +
-                                                                                extension + reach[joint.childLink]);
+                const double extension = joint.type == RobotJoint::Type::PRISMATIC
+                                             ? std::max(std::abs(joint.lower), std::abs(joint.upper))
+                                             : 0.;
+                reach[joint.parentLink] = std::max(
+                    reach[joint.parentLink], joint.origin.translation().norm() + extension + reach[joint.childLink]);
             }
             displacementBounds_.assign(variableJoints_.size(), 0.);
             for (std::size_t v = 0; v < variableJoints_.size(); ++v)
@@ -400,12 +401,12 @@ namespace michi
                     if (joint.variable >= 0)
                         linkDisplacementBounds_[joint.variable][l] =
                             joint.type == RobotJoint::Type::PRISMATIC ? 1. : distance;
-                    const double extension = joint.type == RobotJoint::Type::PRISMATIC ?
-                                                 std::max(std::abs(joint.lower), std::abs(joint.upper)) :
-                                                 0.;
+                    const double extension = joint.type == RobotJoint::Type::PRISMATIC
+                                                 ? std::max(std::abs(joint.lower), std::abs(joint.upper))
+                                                 : 0.;
                     distance += joint.origin.translation().norm() + extension;
                 }
             }
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

@@ -38,7 +38,10 @@ namespace michi
             if (!obstacle.shape)
                 throw std::invalid_argument("obstacle '" + obstacle.name + "' has no shape");
             std::sort(obstacle.trajectory.begin(), obstacle.trajectory.end(),
-                      [](const TimedPose &a, const TimedPose &b) { return a.time < b.time; });
+                      [](const TimedPose &a, const TimedPose &b)
+                      {
+                          return a.time < b.time;
+                      });
             std::unique_lock<std::shared_mutex> lock(mutex_);
             for (const auto &e : entries_)
                 if (e->obstacle.name == obstacle.name)
@@ -50,9 +53,8 @@ namespace michi
                 entry->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
                 entry->objects.back()->setUserData(&entry->obstacle.name);
             }
-            const Eigen::Isometry3d pose = entry->obstacle.trajectory.empty() ?
-                                               entry->obstacle.pose :
-                                               poseAt(entry->obstacle.trajectory, time_);
+            const Eigen::Isometry3d pose =
+                entry->obstacle.trajectory.empty() ? entry->obstacle.pose : poseAt(entry->obstacle.trajectory, time_);
             place(*entry, pose);
             entries_.push_back(std::move(entry));
             rebuildManager();
@@ -63,7 +65,10 @@ namespace michi
         {
             std::unique_lock<std::shared_mutex> lock(mutex_);
             auto it = std::find_if(entries_.begin(), entries_.end(),
-                                   [&](const std::unique_ptr<Entry> &e) { return e->obstacle.name == name; });
+                                   [&](const std::unique_ptr<Entry> &e)
+                                   {
+                                       return e->obstacle.name == name;
+                                   });
             if (it == entries_.end())
                 return false;
             entries_.erase(it);
@@ -167,7 +172,10 @@ namespace michi
             if (t >= trajectory.back().time)
                 return trajectory.back().pose;
             auto next = std::upper_bound(trajectory.begin(), trajectory.end(), t,
-                                         [](double time, const TimedPose &p) { return time < p.time; });
+                                         [](double time, const TimedPose &p)
+                                         {
+                                             return time < p.time;
+                                         });
             auto prev = next - 1;
             const double s = (t - prev->time) / (next->time - prev->time);
             Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -181,5 +189,5 @@ namespace michi
         {
             return *static_cast<const std::string *>(object->getUserData());
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

@@ -80,7 +80,8 @@ namespace michi
                 const Eigen::Vector3d &s = shape.size();
                 // circles are sampled on a polygon that contains them
                 const double grow = 1. / std::cos(M_PI / circleSides);
-                auto circle = [&](double r, double z) {
+                auto circle = [&](double r, double z)
+                {
                     for (int i = 0; i < circleSides; ++i)
                     {
                         const double a = 2. * M_PI * i / circleSides;
@@ -114,7 +115,7 @@ namespace michi
                 }
                 return points;
             }
-        }
+        }  // namespace
 
         std::vector<std::array<int, 3>> triangulatePolygon(const std::vector<Eigen::Vector2d> &outline)
         {
@@ -221,8 +222,7 @@ namespace michi
             return s;
         }
 
-        std::shared_ptr<const Shape> Shape::prism(const std::vector<Eigen::Vector2d> &outline, double zMin,
-                                                  double zMax)
+        std::shared_ptr<const Shape> Shape::prism(const std::vector<Eigen::Vector2d> &outline, double zMin, double zMax)
         {
             if (!(zMax > zMin))
                 throw std::invalid_argument("prism needs z_max > z_min");
@@ -274,9 +274,8 @@ namespace michi
         std::shared_ptr<const Shape> Shape::meshFromFile(const std::string &path, const Eigen::Vector3d &scale)
         {
             Assimp::Importer importer;
-            const aiScene *scene = importer.ReadFile(
-                path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                          aiProcess_SortByPType);
+            const aiScene *scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                               aiProcess_PreTransformVertices | aiProcess_SortByPType);
             if (scene == nullptr)
                 throw std::runtime_error(path + ": cannot read mesh: " + importer.GetErrorString());
             std::vector<Eigen::Vector3d> vertices;
@@ -407,5 +406,5 @@ namespace michi
             }
             return out.str();
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

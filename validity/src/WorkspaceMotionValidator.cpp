@@ -13,7 +13,7 @@ namespace michi
     {
         WorkspaceMotionValidator::WorkspaceMotionValidator(const ompl::base::SpaceInformationPtr &si,
                                                            FclValidityCheckerPtr checker, double maxStep)
-          : ompl::base::MotionValidator(si), checker_(std::move(checker)), maxStep_(0.01)
+            : ompl::base::MotionValidator(si), checker_(std::move(checker)), maxStep_(0.01)
         {
             setMaxStep(maxStep);
         }
@@ -25,8 +25,7 @@ namespace michi
             maxStep_ = metres;
         }
 
-        unsigned int WorkspaceMotionValidator::stepCount(const ompl::base::State *s1,
-                                                         const ompl::base::State *s2) const
+        unsigned int WorkspaceMotionValidator::stepCount(const ompl::base::State *s1, const ompl::base::State *s2) const
         {
             std::vector<double> from, to, bounds;
             si_->getStateSpace()->copyToReals(from, s1);
@@ -88,5 +87,5 @@ namespace michi
             ok ? ++valid_ : ++invalid_;
             return ok;
         }
-    }
-}
+    }  // namespace validity
+}  // namespace michi

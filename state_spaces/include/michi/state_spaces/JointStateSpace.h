@@ -60,7 +60,7 @@ namespace michi
 
         /** \brief SE(2) space whose default projection (x, y) works on Debian's OMPL 1.5.2. */
         ompl::base::StateSpacePtr makeSe2StateSpace(double xMin, double xMax, double yMin, double yMax);
-    }
-}
+    }  // namespace state_spaces
+}  // namespace michi
 
 #endif

@@ -30,9 +30,9 @@ namespace michi
             std::string name;  ///< as OMPL's Benchmark names it (geometric_RRTConnect)
             unsigned int runs{0};
             unsigned int solved{0};
-            double medianTime{0.};        ///< over all runs, seconds
-            double medianLength{0.};      ///< over solved runs, NaN if none
-            double medianClearance{0.};   ///< over solved runs, NaN if none
+            double medianTime{0.};       ///< over all runs, seconds
+            double medianLength{0.};     ///< over solved runs, NaN if none
+            double medianClearance{0.};  ///< over solved runs, NaN if none
         };
 
         struct BenchResult
@@ -56,7 +56,7 @@ namespace michi
         /** \brief Markdown table of planner summaries. */
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
                                     double timeLimit, unsigned int runs);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

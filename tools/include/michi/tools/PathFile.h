@@ -15,7 +15,7 @@ namespace michi
 
         /** \brief Read a path file written by writePathFile; throws std::runtime_error naming the file and line. */
         std::vector<std::vector<double>> readPathFile(const std::string &file);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

@@ -22,7 +22,7 @@ namespace michi
 
         /** \brief The names, sorted. */
         std::vector<std::string> plannerNames();
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

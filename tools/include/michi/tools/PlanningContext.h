@@ -29,7 +29,7 @@ namespace michi
         /** \brief Set planner parameters by name; throws ProblemError naming the parameter and the planner's
             known parameters when one is unknown or rejects the value. */
         void applyPlannerParams(ompl::base::Planner &planner, const PlannerSpec &spec, const std::string &file);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

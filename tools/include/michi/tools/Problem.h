@@ -20,7 +20,7 @@ namespace michi
         {
         public:
             ProblemError(const std::string &file, const std::string &key, const std::string &message)
-              : std::runtime_error(file + (key.empty() ? "" : ": " + key) + ": " + message), file_(file), key_(key)
+                : std::runtime_error(file + (key.empty() ? "" : ": " + key) + ": " + message), file_(file), key_(key)
             {
             }
             const std::string &file() const
@@ -52,11 +52,11 @@ namespace michi
 
         struct BenchmarkSettings
         {
-            double timeLimit{5.};        ///< seconds per run
-            double memoryLimit{4096.};   ///< MB
+            double timeLimit{5.};       ///< seconds per run
+            double memoryLimit{4096.};  ///< MB
             unsigned int runs{10};
-            unsigned int seed{1};        ///< ompl::RNG::setSeed before the first run
-            bool simplify{true};         ///< simplify solutions as OMPL's Benchmark does by default
+            unsigned int seed{1};  ///< ompl::RNG::setSeed before the first run
+            bool simplify{true};   ///< simplify solutions as OMPL's Benchmark does by default
         };
 
         /** \brief Everything a problem file says: robot, scene, queries, planners and benchmark settings.
@@ -77,9 +77,9 @@ namespace michi
             // ARM
             validity::RobotModelPtr model;
             std::map<std::string, std::vector<std::string>> groups;  ///< named joint groups (arm, hand, ...)
-            std::string group;                                        ///< the planned group's name
-            std::vector<int> groupVariables;                          ///< planned joints, state order
-            std::vector<double> fixedValues;                          ///< full configuration for other joints
+            std::string group;                                       ///< the planned group's name
+            std::vector<int> groupVariables;                         ///< planned joints, state order
+            std::vector<double> fixedValues;                         ///< full configuration for other joints
 
             // SE2
             std::vector<Eigen::Vector2d> footprint;
@@ -109,7 +109,7 @@ namespace michi
             and key for anything malformed, validity::UrdfError (naming the URDF) for a bad robot. Start and goal
             are checked against joint limits here; against collisions by makePlanningContext(). */
         Problem loadProblem(const std::string &path);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

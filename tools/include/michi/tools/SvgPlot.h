@@ -26,7 +26,7 @@ namespace michi
             the file when it cannot be written. */
         void writeProblemSvg(const Problem &problem, const std::vector<PlotPath> &paths, const std::string &file,
                              std::size_t query = 0);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

@@ -134,7 +134,7 @@ namespace michi
             std::vector<std::pair<int, int>> pairs_;
             double circumradius_{0.};
         };
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

@@ -34,12 +34,13 @@ namespace michi
             {
                 return minClearanceStep_;
             }
+
         private:
             bool walk(const ompl::base::State *s1, const ompl::base::State *s2, double *lastValidTime) const;
             FclValidityCheckerPtr checker_;
             double minClearanceStep_{1e-3};
         };
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

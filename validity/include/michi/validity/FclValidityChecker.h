@@ -18,11 +18,11 @@ namespace michi
         struct Proximity
         {
             double distance{std::numeric_limits<double>::infinity()};  ///< < 0 or 0 when in collision
-            int body{-1};                                                ///< robot body index
-            int otherBody{-1};                                           ///< self pair: the other body, else -1
-            std::string obstacle;                                        ///< scene obstacle name, empty for self
-            Eigen::Vector3d robotPoint{Eigen::Vector3d::Zero()};         ///< P on the robot, world frame
-            Eigen::Vector3d otherPoint{Eigen::Vector3d::Zero()};         ///< Q on the obstacle, world frame
+            int body{-1};                                              ///< robot body index
+            int otherBody{-1};                                         ///< self pair: the other body, else -1
+            std::string obstacle;                                      ///< scene obstacle name, empty for self
+            Eigen::Vector3d robotPoint{Eigen::Vector3d::Zero()};       ///< P on the robot, world frame
+            Eigen::Vector3d otherPoint{Eigen::Vector3d::Zero()};       ///< Q on the obstacle, world frame
         };
 
         /** \brief Collision checking of a robot against a scene and itself with FCL. isValid() is a boolean
@@ -79,7 +79,7 @@ namespace michi
         };
 
         using FclValidityCheckerPtr = std::shared_ptr<FclValidityChecker>;
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

@@ -26,7 +26,7 @@ namespace michi
 
         /** \brief A circle approximated by a regular polygon that contains it (vertices outside the circle). */
         Polygon2 circlePolygon2(const Point2 &centre, double radius, int sides = 32);
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

@@ -170,7 +170,7 @@ namespace michi
         };
 
         using RobotModelPtr = std::shared_ptr<RobotModel>;
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

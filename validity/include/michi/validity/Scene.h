@@ -108,7 +108,7 @@ namespace michi
         std::vector<Obstacle> occupancyObstacles(const std::string &pgmPath, double resolution,
                                                  const Eigen::Vector2d &origin, double height = 1.,
                                                  double threshold = 0.5);
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

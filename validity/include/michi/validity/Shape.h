@@ -38,8 +38,7 @@ namespace michi
             static std::shared_ptr<const Shape> prism(const std::vector<Eigen::Vector2d> &outline, double zMin,
                                                       double zMax);
             static std::shared_ptr<const Shape> mesh(std::vector<Eigen::Vector3d> vertices,
-                                                     std::vector<Eigen::Vector3i> triangles,
-                                                     std::string source = "");
+                                                     std::vector<Eigen::Vector3i> triangles, std::string source = "");
             /** \brief Load a mesh file (STL, OBJ, DAE, ... through assimp), scaled. Throws std::runtime_error
                 naming the file when it cannot be read or holds no triangles. */
             static std::shared_ptr<const Shape> meshFromFile(const std::string &path,
@@ -104,7 +103,7 @@ namespace michi
         /** \brief Split a simple polygon into triangles (ear clipping); indices into \e outline. Throws
             std::invalid_argument for fewer than 3 vertices or a self-intersecting outline. */
         std::vector<std::array<int, 3>> triangulatePolygon(const std::vector<Eigen::Vector2d> &outline);
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif

@@ -38,7 +38,7 @@ namespace michi
             FclValidityCheckerPtr checker_;
             double maxStep_;
         };
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif
