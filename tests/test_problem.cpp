@@ -4,6 +4,8 @@
 #include <michi/tools/PlanningContext.h>
 #include <michi/tools/Problem.h>
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
 #include <boost/filesystem.hpp>
 #include <gtest/gtest.h>
 
@@ -220,6 +222,25 @@ TEST_F(ProblemFiles, UnknownPlannerParameterIsNamed)
     }
     EXPECT_THROW(michi::tools::allocatePlanner("geometric::NoSuchPlanner", ctx.setup->getSpaceInformation()),
                  std::invalid_argument);
+}
+
+TEST(PlannerRegistry, BitStarHasNoProgressPropertiesThatRaceTheBenchmarkThread)
+{
+    // OMPL 1.5.2's BIT* "current graph vertices" progress property copies the nearest-neighbour structure while
+    // the planner modifies it; Benchmark reads it from another thread, which crashed michi bench
+    auto space = std::make_shared<ompl::base::RealVectorStateSpace>(2);
+    space->setBounds(0., 1.);
+    auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+    for (const char *name : {"geometric::BITstar", "geometric::ABITstar"})
+    {
+        const auto planner = michi::tools::allocatePlanner(name, si);
+        const auto &progress = planner->getPlannerProgressProperties();
+        EXPECT_EQ(progress.count("current graph vertices INTEGER"), 0u) << name;
+        EXPECT_EQ(progress.count("current free states INTEGER"), 0u) << name;
+        EXPECT_EQ(progress.count("state collision checks INTEGER"), 1u) << name;  // the safe ones stay
+    }
+    for (const auto &name : michi::tools::plannerNames())
+        EXPECT_NE(michi::tools::allocatePlanner(name, si), nullptr) << name;
 }
 
 TEST(BundledProblems, LoadWithValidStartAndGoal)

@@ -50,6 +50,22 @@ namespace michi
                     return std::make_shared<P>(si);
                 };
             }
+
+            /** A stock planner without the progress properties that are not safe to read while it plans.
+                OMPL's Benchmark samples progress properties from a second thread; in OMPL 1.5.2 BIT*'s (and
+                ABIT*'s) "current graph vertices" and "current free states" copy the nearest-neighbour structure
+                the planner is modifying, which crashed `michi bench` (segfault in GNAT::list, seen on
+                planar_3dof_hand). Scalar counters and the best cost stay. */
+            template <typename P>
+            class WithSafeProgress : public P
+            {
+            public:
+                explicit WithSafeProgress(const ob::SpaceInformationPtr &si) : P(si)
+                {
+                    for (const char *name : {"current graph vertices INTEGER", "current free states INTEGER"})
+                        this->plannerProgressProperties_.erase(name);
+                }
+            };
         }  // namespace
 
         const std::map<std::string, ob::PlannerAllocator> &plannerAllocators()
@@ -59,12 +75,12 @@ namespace michi
             // joint spaces register one that works on OMPL 1.5.2. michi's own planners join this map as they
             // arrive, under "michi::<Name>".
             static const std::map<std::string, ob::PlannerAllocator> registry{
-                {"geometric::ABITstar", allocator<og::ABITstar>()},
+                {"geometric::ABITstar", allocator<WithSafeProgress<og::ABITstar>>()},
                 {"geometric::AITstar", allocator<og::AITstar>()},
                 {"geometric::BFMT", allocator<og::BFMT>()},
                 {"geometric::BiEST", allocator<og::BiEST>()},
                 {"geometric::BiTRRT", allocator<og::BiTRRT>()},
-                {"geometric::BITstar", allocator<og::BITstar>()},
+                {"geometric::BITstar", allocator<WithSafeProgress<og::BITstar>>()},
                 {"geometric::BKPIECE1", allocator<og::BKPIECE1>()},
                 {"geometric::EST", allocator<og::EST>()},
                 {"geometric::FMT", allocator<og::FMT>()},
