@@ -1,5 +1,6 @@
 // The `michi` command: benchmark and plan on michi problem files, list the planners.
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
 #include <michi/tools/PlanningContext.h>
@@ -31,7 +32,11 @@ namespace
         "      and DIR/<problem>.svg\n"
         "  michi plan PROBLEM.yaml --planner NAME [--out DIR] [--time SECONDS] [--query I] [--seed S]\n"
         "      solve once, print the path, write DIR/<problem>-<planner>.path and .svg\n"
+        "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
+        "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
+        "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
         "  michi list-planners\n"
+        "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
 
     struct UsageError : std::runtime_error
@@ -122,6 +127,19 @@ namespace
         return parts;
     }
 
+    /** The problem with --checker applied. */
+    Problem withChecker(Problem problem, const Args &args)
+    {
+        if (args.has("checker"))
+        {
+            const std::string c = args.get("checker");
+            if (c != "fcl" && c != "jmap")
+                throw UsageError("--checker expects fcl or jmap, got '" + c + "'");
+            problem.checker = c;
+        }
+        return problem;
+    }
+
     std::string fileSafe(std::string s)
     {
         for (char &c : s)
@@ -132,13 +150,13 @@ namespace
 
     int bench(int argc, char **argv)
     {
-        Args args(argc, argv, {"out", "planners", "runs", "time", "query"});
+        Args args(argc, argv, {"out", "planners", "runs", "time", "query", "checker"});
         if (args.positional.size() != 1)
             throw UsageError("bench takes one problem file");
         if (!args.has("out"))
             throw UsageError("bench needs --out DIR");
         ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-        const Problem problem = loadProblem(args.positional[0]);
+        const Problem problem = withChecker(loadProblem(args.positional[0]), args);
         BenchOptions options;
         options.outDir = args.get("out");
         options.planners = splitComma(args.get("planners"));
@@ -156,13 +174,13 @@ namespace
 
     int plan(int argc, char **argv)
     {
-        Args args(argc, argv, {"out", "planner", "time", "query", "seed"});
+        Args args(argc, argv, {"out", "planner", "time", "query", "seed", "checker"});
         if (args.positional.size() != 1)
             throw UsageError("plan takes one problem file");
         if (!args.has("planner"))
             throw UsageError("plan needs --planner NAME (see michi list-planners)");
         ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-        const Problem problem = loadProblem(args.positional[0]);
+        const Problem problem = withChecker(loadProblem(args.positional[0]), args);
         const double seed = args.number("seed", problem.benchmark.seed, true);
         ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(seed));
         const std::size_t query = args.index("query");
@@ -220,6 +238,26 @@ namespace
         return 0;
     }
 
+    int jmap(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "verify", "seed"});
+        if (args.positional.size() != 1)
+            throw UsageError("jmap takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("jmap needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        const Problem problem = loadProblem(args.positional[0]);
+        JMapReportOptions options;
+        options.outDir = args.get("out");
+        options.verify = static_cast<std::uint64_t>(args.number("verify", 0, true));
+        options.seed = static_cast<unsigned int>(args.number("seed", problem.benchmark.seed, true));
+        options.progress = &std::cerr;
+        std::cout << runJMapReport(problem, options);
+        std::cerr << "michi jmap: wrote " << (fs::path(options.outDir) / "jmap.json").string() << " and jmap.svg"
+                  << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -242,6 +280,8 @@ int main(int argc, char **argv)
             return bench(argc, argv);
         if (command == "plan")
             return plan(argc, argv);
+        if (command == "jmap")
+            return jmap(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

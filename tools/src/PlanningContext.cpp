@@ -1,6 +1,7 @@
 #include <michi/tools/PlanningContext.h>
 
 #include <michi/state_spaces/JointStateSpace.h>
+#include <michi/tools/JMapSetup.h>
 #include <michi/validity/ConservativeMotionValidator.h>
 #include <michi/validity/WorkspaceMotionValidator.h>
 
@@ -82,6 +83,11 @@ namespace michi
             ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
             setState(start, q.start);
             setState(goal, q.goal);
+            if (problem.checker == "jmap")
+            {
+                ctx.jmap = makeJMapChecker(problem, ctx, problem.jmap);
+                ctx.setup->setStateValidityChecker(ctx.jmap);
+            }
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);
             return ctx;

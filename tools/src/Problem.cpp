@@ -498,6 +498,36 @@ namespace michi
 
             /** \e request: the problem's first MoveIt request (empty when none); its group_name is the planned
                 group when robot.group is not given. */
+            void readJMapSettings(const Reader &r, const YAML::Node &n, const std::string &key,
+                                  validity::JMapCheckerSettings &settings)
+            {
+                if (!n.IsMap())
+                    r.fail(key, "expected a mapping (mode, slices, tiles, tolerance, fallback_band)");
+                r.keys(n, key, {"mode", "slices", "tiles", "tolerance", "fallback_band"});
+                if (n["mode"])
+                {
+                    const std::string mode = r.text(n["mode"], key + ".mode");
+                    if (mode == "conservative")
+                        settings.mode = validity::JMapCheckerSettings::Mode::CONSERVATIVE;
+                    else if (mode == "exact_fallback")
+                        settings.mode = validity::JMapCheckerSettings::Mode::EXACT_FALLBACK;
+                    else
+                        r.fail(key + ".mode", "expected conservative or exact_fallback, got '" + mode + "'");
+                }
+                if (n["slices"])
+                    settings.map.slices = static_cast<int>(r.count(n["slices"], key + ".slices"));
+                if (n["tiles"])
+                    settings.tiles = static_cast<int>(r.count(n["tiles"], key + ".tiles"));
+                if (settings.tiles > settings.map.slices)
+                    r.fail(key + ".tiles", "must not exceed slices");
+                settings.map.tolerance = r.number(n, "tolerance", key, settings.map.tolerance);
+                if (!(settings.map.tolerance > 0.))
+                    r.fail(key + ".tolerance", "expected a positive number of radians");
+                settings.fallbackBand = r.number(n, "fallback_band", key, settings.fallbackBand);
+                if (!(settings.fallbackBand >= 0.))
+                    r.fail(key + ".fallback_band", "expected a non-negative number of radians");
+            }
+
             void readArm(const Reader &r, const YAML::Node &robot, Problem &problem, const MoveItRequest &request)
             {
                 r.keys(robot, "robot",
@@ -965,8 +995,17 @@ namespace michi
                             r.fail(key, "expected workspace, conservative or discrete, got '" +
                                             problem.motionValidator + "'");
                     }
+                    else if (k == "checker")
+                    {
+                        problem.checker = r.text(kv.second, key);
+                        if (problem.checker != "fcl" && problem.checker != "jmap")
+                            r.fail(key, "expected fcl or jmap, got '" + problem.checker + "'");
+                    }
+                    else if (k == "jmap")
+                        readJMapSettings(r, kv.second, key, problem.jmap);
                     else
-                        r.fail(key, "unknown key (expected motion_validator, max_step, valid_segment_fraction)");
+                        r.fail(key, "unknown key (expected checker, jmap, motion_validator, max_step, "
+                                    "valid_segment_fraction)");
                 }
             }
             return problem;

@@ -3,6 +3,7 @@
 
 #include <michi/tools/Problem.h>
 #include <michi/validity/FclValidityChecker.h>
+#include <michi/validity/JMapValidityChecker.h>
 
 #include <ompl/geometric/SimpleSetup.h>
 
@@ -15,7 +16,10 @@ namespace michi
         struct PlanningContext
         {
             ompl::geometric::SimpleSetupPtr setup;
-            validity::FclValidityCheckerPtr checker;
+            validity::FclValidityCheckerPtr checker;  ///< the exact checker (also inside the J-map checker)
+            /** \brief The J-map checker when the problem's collision.checker is "jmap" (then it is the space's
+                state validity checker), else null. */
+            std::shared_ptr<validity::JMapValidityChecker> jmap;
             validity::CollisionBodiesPtr bodies;
         };
 

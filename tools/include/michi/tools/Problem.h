@@ -2,6 +2,7 @@
 #define MICHI_TOOLS_PROBLEM_
 
 #include <michi/validity/CollisionBodies.h>
+#include <michi/validity/JMapValidityChecker.h>
 #include <michi/validity/RobotModel.h>
 #include <michi/validity/Scene.h>
 
@@ -96,6 +97,10 @@ namespace michi
                 "discrete" (OMPL's DiscreteMotionValidator at validSegmentFraction). */
             std::string motionValidator{"workspace"};
             double maxStep{0.01};  ///< metres, for "workspace"
+            /** \brief The state validity checker: "fcl" (validity::FclValidityChecker, the default) or "jmap"
+                (validity::JMapValidityChecker over the first two planned joints, paper 000). */
+            std::string checker{"fcl"};
+            validity::JMapCheckerSettings jmap;  ///< for checker "jmap" (collision.jmap)
 
             /** \brief Collision bodies of the planned robot (RobotGroupBodies or PlanarRigidBody). */
             validity::CollisionBodiesPtr bodies() const;

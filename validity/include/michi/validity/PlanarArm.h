@@ -26,16 +26,15 @@ namespace michi
             exact J-map: every collision shape becomes a capsule in its link's frame that contains the shape's
             shadow on the x-y plane.
 
-            Shapes -> capsules (conservative: each capsule contains the shape's shadow):
-            - a cylinder or capsule lying in the plane (axis in x-y): the segment of its axis (length of the
-              cylinder), radius = its radius. The shadow of such a cylinder is a rectangle length x 2 radius;
-              the capsule of the same segment and radius contains it (it adds the two half-disks at the ends,
-              at most radius beyond the rectangle), so the capsule model never misses a collision FCL finds
-              and is at most radius too cautious at the link ends;
-            - a box whose z axis stays vertical: the segment through its centre along its longer in-plane side,
-              of that side's length, radius = half the shorter side (the rectangle lies within that capsule);
-            - an upright cylinder or capsule, a sphere: a disk (a == b) of its radius;
-            - anything else (meshes, tilted shapes): a disk of the shape's bounding radius about its origin.
+            Shapes -> capsules (conservative: each capsule contains the shape's shadow, for any orientation):
+            - a cylinder (or capsule) of radius r: the segment of its axis projected on the plane, radius r. For a
+              cylinder lying in the plane (a link) the shadow is a rectangle length x 2r and the capsule adds the
+              two half-disks at its ends (at most r beyond the rectangle): the capsule model never misses a
+              collision FCL finds and is at most r too cautious at the link ends. Tilted axes: the end disks'
+              shadows are ellipses within r of the projected axis. Upright: a disk of radius r;
+            - a box: the segment of its longest projected edge through the centre, radius = the sum of the other
+              two projected half edges (exact for a box whose z axis stays vertical: its rectangle);
+            - a sphere: a disk; meshes and prisms: a disk of the shape's bounding radius about its origin.
 
             Joint origins may carry a rotation about z (their x-y translation is used; z is ignored because the
             obstacles are prisms straddling the plane, see Scene::polygons2d()). Prismatic joints and joints about
@@ -47,8 +46,8 @@ namespace michi
             struct Link
             {
                 std::string name;
-                int modelLink{-1};  ///< index in RobotModel::links()
-                int joint{-1};      ///< index into joints() of the joint that moves it; -1 for the root
+                int modelLink{-1};               ///< index in RobotModel::links()
+                int joint{-1};                   ///< index into joints() of the joint that moves it; -1 for the root
                 std::vector<Capsule2> capsules;  ///< in the link frame
             };
             /** \brief One joint (movable or fixed): the child frame relative to the parent link at q = 0. */
@@ -109,8 +108,8 @@ namespace michi
             double reachFrom(int variable, int link) const;
 
             /** \brief The paper's link lengths along the chain, one per movable joint: distance from the joint
-                to the next movable joint's origin; for the last joint, the farthest extent of the collision
-                geometry of the links it moves (capsule end point plus radius) from its axis. */
+                to the next movable joint's origin; for the last joint, the farthest extent along the links
+                it moves of their collision geometry (the farthest capsule segment end) from its axis. */
             std::vector<double> linkLengths() const;
 
         private:
@@ -130,7 +129,7 @@ namespace michi
         /** \brief Distance between a capsule's centre segment and obstacle polygons (0 when they intersect or
             the segment lies inside); the capsule collides when this is <= its radius. */
         double segmentDistance(const Eigen::Vector2d &a, const Eigen::Vector2d &b, const MultiPolygon2 &obstacles);
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif
