@@ -2,6 +2,8 @@
 
 #include <michi/state_spaces/JointStateSpace.h>
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/JMapValidityChecker.h>
+#include <michi/validity/PlanarArm.h>
 #include <michi/validity/Polygon2.h>
 
 #include <ompl/base/ScopedState.h>
@@ -46,7 +48,7 @@ namespace michi
             }
         }  // namespace
 
-        ConformanceProblem makeConformanceProblem()
+        ConformanceProblem makeConformanceProblem(const std::string &checker)
         {
             auto model = validity::RobotModel::fromUrdfString(ARM_URDF, "conformance_arm.urdf", ".");
             auto bodies = std::make_shared<validity::RobotGroupBodies>(model, std::vector<int>{0, 1},
@@ -64,7 +66,23 @@ namespace michi
             problem.setup = std::make_shared<ompl::geometric::SimpleSetup>(space);
             auto si = problem.setup->getSpaceInformation();
             problem.checker = std::make_shared<validity::FclValidityChecker>(si, bodies, scene);
-            problem.setup->setStateValidityChecker(problem.checker);
+            problem.used = problem.checker;
+            if (checker == "jmap")
+            {
+                // the J-map of the arm's two joints (exact planar intervals), answering alone
+                auto arm = validity::PlanarArm::fromModel(*model);
+                auto polygons = scene->polygons2d();
+                problem.used = std::make_shared<validity::JMapValidityChecker>(
+                    problem.setup->getSpaceInformation(), problem.checker,
+                    [arm, polygons](const validity::JMapAxes &axes)
+                    {
+                        return std::make_shared<validity::PlanarIntervalSource>(arm, polygons, axes);
+                    },
+                    validity::planarAxes(*arm, 0, 1), true);
+            }
+            else if (checker != "fcl")
+                throw std::invalid_argument("conformance checker must be fcl or jmap");
+            problem.setup->setStateValidityChecker(problem.used);
             si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, problem.checker));
             ompl::base::ScopedState<> start(space), goal(space);
             start = std::vector<double>{0.2, 0.3};  // arm pointing right, below the upper-right box

@@ -20,11 +20,12 @@ namespace michi
             std::string planner;                        ///< registry name
             std::map<std::string, std::string> params;  ///< set by name before solving
             double timeLimit{10.};                      ///< generous cap; the problem is easy
+            std::string checker{"fcl"};                 ///< "fcl" or "jmap": the state validity checker used
         };
 
         inline std::ostream &operator<<(std::ostream &out, const ConformanceCase &c)
         {
-            return out << c.planner;
+            return out << c.planner << (c.checker == "fcl" ? "" : " with " + c.checker);
         }
 
         /** \brief The conformance problem: a planar 2-link arm (thin capsule links of 0.5 m and 0.4 m) among
@@ -32,9 +33,10 @@ namespace michi
         struct ConformanceProblem
         {
             ompl::geometric::SimpleSetupPtr setup;
-            std::shared_ptr<validity::FclValidityChecker> checker;
+            std::shared_ptr<validity::FclValidityChecker> checker;  ///< FCL (inside the J-map checker too)
+            std::shared_ptr<ompl::base::StateValidityChecker> used;     ///< the space's checker
         };
-        ConformanceProblem makeConformanceProblem();
+        ConformanceProblem makeConformanceProblem(const std::string &checker = "fcl");
 
         /** \brief Independent re-check of a path: interpolated at 1/10 of the space's resolution, each state's
             link rectangles (Boost.Geometry: the links are cylinders lying in the plane) must keep off every obstacle

@@ -219,7 +219,8 @@ namespace michi
                 s.lo = axes.lo1 + i * step;
                 s.hi = i + 1 == settings.slices ? axes.hi1 : axes.lo1 + (i + 1) * step;
                 s.theta1 = 0.5 * (s.lo + s.hi);
-                s.trueIntervals = source.intervals(s.theta1);
+                if (settings.trueIntervals)
+                    s.trueIntervals = source.intervals(s.theta1);
                 const int columns = std::max(1, settings.columns);
                 std::vector<JointInterval> all;
                 for (int k = 0; k < columns; ++k)
