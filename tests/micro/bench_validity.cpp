@@ -1,9 +1,10 @@
 // Micro-benchmarks of the collision stack on the bundled problems (Google Benchmark; not part of ctest).
 //   build/tests/micro/bench_validity --benchmark_min_time=0.5
 // Figures compare against a baseline measured in the same process: the FCL boolean check is the baseline of the
-// clearance query, OMPL's DiscreteMotionValidator the baseline of the conservative motion validator.
+// clearance query, OMPL's DiscreteMotionValidator the baseline of michi's workspace and conservative validators.
 #include <michi/tools/PlanningContext.h>
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/WorkspaceMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/util/RandomNumbers.h>
@@ -59,13 +60,15 @@ namespace
             benchmark::DoNotOptimize(f.ctx.checker->clearance(f.states[i++ % f.states.size()]));
     }
 
-    void motion(benchmark::State &bm, const std::string &name, bool conservative)
+    void motion(benchmark::State &bm, const std::string &name, int kind)
     {
         auto &f = fixture(name);
         auto si = f.ctx.setup->getSpaceInformation();
         std::shared_ptr<ompl::base::MotionValidator> validator;
-        if (conservative)
+        if (kind == 1)
             validator = std::make_shared<michi::validity::ConservativeMotionValidator>(si, f.ctx.checker);
+        else if (kind == 2)
+            validator = std::make_shared<michi::validity::WorkspaceMotionValidator>(si, f.ctx.checker, 0.01);
         else
             validator = std::make_shared<ompl::base::DiscreteMotionValidator>(si);
         // motions between valid samples, short ones (a tenth of the way) as planners mostly make
@@ -95,11 +98,13 @@ namespace
 
 BENCHMARK_CAPTURE(isValid, planar_2link, std::string("planar_2link"));
 BENCHMARK_CAPTURE(clearance, planar_2link, std::string("planar_2link"));
-BENCHMARK_CAPTURE(motion, discrete_planar_2link, std::string("planar_2link"), false);
-BENCHMARK_CAPTURE(motion, conservative_planar_2link, std::string("planar_2link"), true);
+BENCHMARK_CAPTURE(motion, discrete_planar_2link, std::string("planar_2link"), 0);
+BENCHMARK_CAPTURE(motion, workspace_planar_2link, std::string("planar_2link"), 2);
+BENCHMARK_CAPTURE(motion, conservative_planar_2link, std::string("planar_2link"), 1);
 BENCHMARK_CAPTURE(isValid, xarm6_ring, std::string("xarm6_ring"));
 BENCHMARK_CAPTURE(clearance, xarm6_ring, std::string("xarm6_ring"));
-BENCHMARK_CAPTURE(motion, discrete_xarm6_ring, std::string("xarm6_ring"), false);
-BENCHMARK_CAPTURE(motion, conservative_xarm6_ring, std::string("xarm6_ring"), true);
+BENCHMARK_CAPTURE(motion, discrete_xarm6_ring, std::string("xarm6_ring"), 0);
+BENCHMARK_CAPTURE(motion, workspace_xarm6_ring, std::string("xarm6_ring"), 2);
+BENCHMARK_CAPTURE(motion, conservative_xarm6_ring, std::string("xarm6_ring"), 1);
 
 BENCHMARK_MAIN();
