@@ -123,7 +123,9 @@ namespace michi
             axes.lo1 = axes_.lo1 + static_cast<double>(k) * w;
             axes.hi1 = axes.lo1 + w;
             JMapSettings settings = settings_.map;
-            settings.slices = std::max(1, settings_.map.slices / static_cast<int>(tileCount_));
+            // at least the requested resolution: slices per tile rounded up
+            const int tiles = static_cast<int>(tileCount_);
+            settings.slices = (settings_.map.slices + tiles - 1) / tiles;
             owned_.push_back(JMap::build(*makeSource_(axes), settings));
             tiles_[k].store(owned_.back().get(), std::memory_order_release);
             return *owned_.back();

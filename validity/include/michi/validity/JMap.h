@@ -216,7 +216,7 @@ namespace michi
         /** \brief Settings of JMap::build(). */
         struct JMapSettings
         {
-            int slices{72};  ///< cells of axis 1 (72 over [-pi, pi]: 5 degree steps as in the paper)
+            int slices{72};  ///< cells of axis 1 (72 over [-pi, pi]: 5 degree steps; the paper gives no step)
             /** \brief Columns per slice: each slice's cell is cut into this many equal columns, each with its
                 own conservative intervals (cellIntervals of the column); the polygons enclose the columns. More
                 columns: tighter polygons for proportionally more interval work. */

@@ -25,7 +25,7 @@ namespace michi
             };
             Mode mode{Mode::CONSERVATIVE};
             JMapSettings map;          ///< map.slices is the number of theta1 cells over the whole range
-            int tiles{8};              ///< the theta1 range is built lazily in this many tiles
+            int tiles{8};  ///< the theta1 range is built lazily in this many tiles (slices per tile rounded up)
             double fallbackBand{0.05};  ///< radians of the map, for EXACT_FALLBACK
         };
 
