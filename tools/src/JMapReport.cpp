@@ -55,6 +55,31 @@ namespace michi
                 neck = validity::bottleneck(*grown, *map);
             }
 
+            // a 3-joint arm: the paper's stack, one map over joints 2 and 3 per theta1 cell (the whole arm)
+            std::size_t stackSlices = 0;
+            double stackSeconds = 0.;
+            if (jp.planar && problem.groupVariables.size() >= 3)
+            {
+                const int outer = problem.groupVariables[0];
+                const auto base = validity::planarAxes(*jp.arm, problem.groupVariables[1], problem.groupVariables[2],
+                                                       jp.axes.configuration);
+                const auto arm = jp.arm;
+                const auto polygons = problem.scene->polygons2d();
+                validity::JMapStack stack(
+                    [arm, polygons](const validity::JMapAxes &axes)
+                    {
+                        return std::make_shared<validity::PlanarIntervalSource>(arm, polygons, axes);
+                    },
+                    base, outer, problem.model->variableJoint(outer).lower, problem.model->variableJoint(outer).upper,
+                    settings.map.slices, settings.map);
+                if (log)
+                    *log << "michi jmap: building a stack of " << stack.size() << " maps" << std::endl;
+                const auto stackStart = std::chrono::steady_clock::now();
+                stack.buildAll();
+                stackSeconds = seconds(stackStart);
+                stackSlices = stack.size();
+            }
+
             // verification: the checker (conservative mode, all tiles built) against FCL on the same states
             validity::JMapCheckerSettings conservative = settings;
             conservative.mode = validity::JMapCheckerSettings::Mode::CONSERVATIVE;
@@ -114,6 +139,8 @@ namespace michi
                  << "  \"checker_answers_alone\": " << (checker.answersAlone() ? "true" : "false") << ",\n"
                  << "  \"grown_polygons\": " << (grown ? grown->polygons().size() : 0) << ",\n"
                  << "  \"hand_length\": " << jp.handLength << ",\n"
+                 << "  \"stack_slices\": " << stackSlices << ",\n"
+                 << "  \"stack_build_seconds\": " << stackSeconds << ",\n"
                  << "  \"bottleneck_area\": " << boost::geometry::area(neck) << ",\n"
                  << "  \"checked_states\": " << options.verify << ",\n"
                  << "  \"unsafe_states\": " << unsafe << ",\n"
