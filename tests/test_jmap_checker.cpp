@@ -21,16 +21,16 @@ namespace
         std::vector<std::vector<double>> states;
 
         Fixture(const std::string &name, std::size_t count, unsigned int seed = 3)
-          : problem(tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
-          , ctx(tools::makePlanningContext(problem))
+            : problem(tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
+            , ctx(tools::makePlanningContext(problem))
         {
             ompl::RNG rng(seed);
             for (std::size_t n = 0; n < count; ++n)
             {
                 std::vector<double> q;
                 for (int v : problem.groupVariables)
-                    q.push_back(rng.uniformReal(problem.model->variableJoint(v).lower,
-                                                problem.model->variableJoint(v).upper));
+                    q.push_back(
+                        rng.uniformReal(problem.model->variableJoint(v).lower, problem.model->variableJoint(v).upper));
                 states.push_back(q);
             }
         }
@@ -52,13 +52,14 @@ namespace
         Counts c;
         for (const auto &q : f.states)
         {
-            const bool mine = jmap.isValidConfiguration(q.data()), exact = f.ctx.checker->isValidConfiguration(q.data());
+            const bool mine = jmap.isValidConfiguration(q.data()),
+                       exact = f.ctx.checker->isValidConfiguration(q.data());
             c.unsafe += mine && !exact;
             c.falseInvalid += !mine && exact;
         }
         return c;
     }
-}
+}  // namespace
 
 TEST(JMapValidityChecker, ConservativeAndLazyOnPlanar2Link)
 {

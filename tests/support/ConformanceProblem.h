@@ -33,8 +33,8 @@ namespace michi
         struct ConformanceProblem
         {
             ompl::geometric::SimpleSetupPtr setup;
-            std::shared_ptr<validity::FclValidityChecker> checker;  ///< FCL (inside the J-map checker too)
-            std::shared_ptr<ompl::base::StateValidityChecker> used;     ///< the space's checker
+            std::shared_ptr<validity::FclValidityChecker> checker;   ///< FCL (inside the J-map checker too)
+            std::shared_ptr<ompl::base::StateValidityChecker> used;  ///< the space's checker
         };
         ConformanceProblem makeConformanceProblem(const std::string &checker = "fcl");
 

@@ -26,7 +26,7 @@ namespace michi
             {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
             }
-        }
+        }  // namespace
 
         std::string runJMapReport(const Problem &problem, const JMapReportOptions &options)
         {
@@ -39,9 +39,8 @@ namespace michi
 
             // the whole map at once (for the picture and the counts); the checker builds its own tiles lazily
             if (log)
-                *log << "michi jmap: building " << settings.map.slices << " slices (" << (jp.planar ? "planar exact"
-                                                                                                : "fcl sweep")
-                     << ")" << std::endl;
+                *log << "michi jmap: building " << settings.map.slices << " slices ("
+                     << (jp.planar ? "planar exact" : "fcl sweep") << ")" << std::endl;
             const auto source = jp.makeSource(jp.axes);
             const validity::JMapPtr map = validity::JMap::build(*source, settings.map);
             validity::JMapPtr grown;
@@ -49,8 +48,7 @@ namespace michi
             if (jp.planar && jp.handLength > 0.)
             {
                 const auto grownSource = std::make_shared<validity::PlanarIntervalSource>(
-                    jp.arm, validity::growObstacles(problem.scene->polygons2d(), jp.handLength), jp.axes,
-                    jp.armLinks);
+                    jp.arm, validity::growObstacles(problem.scene->polygons2d(), jp.handLength), jp.axes, jp.armLinks);
                 grown = validity::JMap::build(*grownSource, settings.map);
                 neck = validity::bottleneck(*grown, *map);
             }
@@ -83,8 +81,8 @@ namespace michi
             // verification: the checker (conservative mode, all tiles built) against FCL on the same states
             validity::JMapCheckerSettings conservative = settings;
             conservative.mode = validity::JMapCheckerSettings::Mode::CONSERVATIVE;
-            validity::JMapValidityChecker checker(ctx.setup->getSpaceInformation(), ctx.checker, jp.makeSource,
-                                                  jp.axes, jp.coversRobot, conservative);
+            validity::JMapValidityChecker checker(ctx.setup->getSpaceInformation(), ctx.checker, jp.makeSource, jp.axes,
+                                                  jp.coversRobot, conservative);
             const auto tilesStart = std::chrono::steady_clock::now();
             checker.buildAll();
             const double tileSeconds = seconds(tilesStart);
@@ -174,7 +172,7 @@ namespace michi
                 picture.start = {problem.queries[0].start[0], problem.queries[0].start[1]};
                 picture.goal = {problem.queries[0].goal[0], problem.queries[0].goal[1]};
                 writeJMapSvg(*map, (stage / "jmap.svg").string(), picture);
-                std::ofstream(( stage / "jmap.json").string()) << json.str();
+                std::ofstream((stage / "jmap.json").string()) << json.str();
                 fs::create_directories(out);
                 for (const auto &entry : fs::directory_iterator(stage))
                     fs::rename(entry.path(), out / entry.path().filename());
@@ -188,5 +186,5 @@ namespace michi
             }
             return json.str();
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

@@ -42,8 +42,8 @@ namespace michi
                     if (!hand)
                         jp.armLinks.push_back(static_cast<int>(l));
                     else
-                        jp.handLength = std::max(jp.handLength, jp.arm->reachFrom(problem.groupVariables[2],
-                                                                                   static_cast<int>(l)));
+                        jp.handLength =
+                            std::max(jp.handLength, jp.arm->reachFrom(problem.groupVariables[2], static_cast<int>(l)));
                 }
                 const auto arm = jp.arm;
                 const auto links = jp.armLinks;
@@ -63,8 +63,8 @@ namespace michi
                 jp.axes.lo2 = model.variableJoint(axis2).lower;
                 jp.axes.hi2 = model.variableJoint(axis2).upper;
                 // the sweep needs the other planned joints fixed: a checker over exactly the two axes
-                auto bodies = std::make_shared<validity::RobotGroupBodies>(problem.model, std::vector<int>{axis1, axis2},
-                                                                           configuration);
+                auto bodies = std::make_shared<validity::RobotGroupBodies>(
+                    problem.model, std::vector<int>{axis1, axis2}, configuration);
                 auto checker = ctx.checker;
                 auto si = ctx.setup->getSpaceInformation();
                 jp.makeSource = [bodies, checker](const validity::JMapAxes &axes)
@@ -91,5 +91,5 @@ namespace michi
             return std::make_shared<validity::JMapValidityChecker>(ctx.setup->getSpaceInformation(), ctx.checker,
                                                                    jp.makeSource, jp.axes, jp.coversRobot, settings);
         }
-    }
-}
+    }  // namespace tools
+}  // namespace michi

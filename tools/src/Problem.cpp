@@ -1004,8 +1004,9 @@ namespace michi
                     else if (k == "jmap")
                         readJMapSettings(r, kv.second, key, problem.jmap);
                     else
-                        r.fail(key, "unknown key (expected checker, jmap, motion_validator, max_step, "
-                                    "valid_segment_fraction)");
+                        r.fail(key,
+                               "unknown key (expected checker, jmap, motion_validator, max_step, "
+                               "valid_segment_fraction)");
                 }
             }
             return problem;

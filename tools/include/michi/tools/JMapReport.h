@@ -26,7 +26,7 @@ namespace michi
             first) and by FCL, and both are timed over the same states in the same run. Files are staged and moved
             into DIR only when complete. Returns the JSON text. */
         std::string runJMapReport(const Problem &problem, const JMapReportOptions &options);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

@@ -18,7 +18,7 @@ namespace michi
             validity::JMapAxes axes;
             validity::JMapValidityChecker::SourceFactory makeSource;
             bool planar{false};
-            bool coversRobot{false};  ///< the map sees every link the planned group moves
+            bool coversRobot{false};     ///< the map sees every link the planned group moves
             validity::PlanarArmPtr arm;  ///< planar arms only
             std::vector<int> armLinks;   ///< planar: PlanarArm links in the map
             double handLength{0.};       ///< planar: reach of the left-out links beyond the arm (0: no hand)
@@ -31,7 +31,7 @@ namespace michi
         /** \brief A J-map validity checker for the context's space (FCL checker of the context as the exact one). */
         validity::JMapValidityCheckerPtr makeJMapChecker(const Problem &problem, const PlanningContext &ctx,
                                                          const validity::JMapCheckerSettings &settings);
-    }
-}
+    }  // namespace tools
+}  // namespace michi
 
 #endif

@@ -24,8 +24,8 @@ namespace michi
                 EXACT_FALLBACK  ///< states the J-map calls invalid within fallbackBand of a polygon edge go to FCL
             };
             Mode mode{Mode::CONSERVATIVE};
-            JMapSettings map;          ///< map.slices is the number of theta1 cells over the whole range
-            int tiles{8};  ///< the theta1 range is built lazily in this many tiles (slices per tile rounded up)
+            JMapSettings map;  ///< map.slices is the number of theta1 cells over the whole range
+            int tiles{8};      ///< the theta1 range is built lazily in this many tiles (slices per tile rounded up)
             double fallbackBand{0.05};  ///< radians of the map, for EXACT_FALLBACK
         };
 
@@ -99,7 +99,7 @@ namespace michi
                 (a scene change only swaps the pointers), so a reader never sees a freed map. */
             mutable std::unique_ptr<std::atomic<const JMap *>[]> tiles_;
             std::size_t tileCount_{0};
-            double tileScale_{1.};          ///< tiles per radian of axis 1
+            double tileScale_{1.};         ///< tiles per radian of axis 1
             const Scene *scene_{nullptr};  ///< fcl_'s scene (kept alive by fcl_)
             mutable std::vector<JMapPtr> owned_;
             mutable std::mutex buildMutex_;
@@ -113,7 +113,7 @@ namespace michi
             ranges (other joints at the axes' configuration): a grid of FCL self distances, each certifying its
             cell with the pair's displacement bounds; false as soon as a cell cannot be certified. */
         bool selfCollisionImpossible(const FclValidityChecker &fcl, const JMapAxes &axes, double cell = 0.05);
-    }
-}
+    }  // namespace validity
+}  // namespace michi
 
 #endif
