@@ -14,6 +14,7 @@ PACKAGES=(
     libgtest-dev libgmock-dev
     libbenchmark-dev
     python3 sqlite3
+    librsvg2-bin
     libtinyxml2-dev
 )
 missing=()

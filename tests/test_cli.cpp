@@ -87,6 +87,8 @@ TEST_F(Cli, BenchWritesLogDatabaseSummaryAndPicture)
     const std::string svg = slurp(out / "planar_2link.svg");
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find("RRTConnect"), std::string::npos);
+    // the PNG rendering (rsvg-convert, installed by scripts/setup.sh)
+    EXPECT_EQ(slurp(out / "planar_2link.png").substr(1, 3), "PNG");
     // no staging folder left behind
     for (const auto &entry : fs::directory_iterator(dir_))
         EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();

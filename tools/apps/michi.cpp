@@ -168,7 +168,7 @@ namespace
         std::ifstream summary(result.summary);
         std::cout << summary.rdbuf();
         std::cout << "\nwrote " << result.log << "\n      " << result.database << "\n      " << result.summary
-                  << "\n      " << result.picture << std::endl;
+                  << "\n      " << result.picture << " (and .png)" << std::endl;
         return 0;
     }
 

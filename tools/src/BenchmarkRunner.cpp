@@ -268,6 +268,9 @@ namespace michi
                     result.paths.push_back(firstPaths[planner->getName()]);
             const fs::path picture = staging.path(problem.name + ".svg");
             writeProblemSvg(problem, result.paths, picture.string(), options.query);
+            if (!svgToPng(picture.string(), staging.path(problem.name + ".png").string()) && progress)
+                *progress << "michi bench: no PNG copy of the picture (rsvg-convert from librsvg2-bin is missing)"
+                          << std::endl;
 
             staging.commit();
             const fs::path out = staging.out();

@@ -1,5 +1,8 @@
 #include <michi/tools/SvgPlot.h>
 
+#include <cstdio>
+#include <cstdlib>
+
 #include <michi/validity/Polygon2.h>
 
 #include <algorithm>
@@ -1308,6 +1311,26 @@ namespace michi
                 drawConfigPanel(svg, *config, *layout.config, sampled);
             drawLegend(svg, layout.legendLeft, PANEL_TOP, legend);
             writeAtomically(svg.finish(), file);
+        }
+
+        bool svgToPng(const std::string &svg, const std::string &png, int width)
+        {
+            auto quote = [](const std::string &text)
+            {
+                std::string q = "'";
+                for (char c : text)
+                    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+                return q + "'";
+            };
+            const std::string tmp = png + ".tmp";
+            const std::string command = "rsvg-convert -w " + std::to_string(width) + " -f png -o " + quote(tmp) + " " +
+                                        quote(svg) + " > /dev/null 2>&1";
+            if (std::system(command.c_str()) != 0 || std::rename(tmp.c_str(), png.c_str()) != 0)
+            {
+                std::remove(tmp.c_str());
+                return false;
+            }
+            return true;
         }
     }  // namespace tools
 }  // namespace michi

@@ -47,10 +47,10 @@ namespace michi
 
         /** \brief Run OMPL's Benchmark over the planners on query \e options.query of \e problem and write, in
             options.outDir: `<name>.log` (OMPL's log format), `<name>.db` (Debian's ompl_benchmark_statistics,
-            for Planner Arena), `summary.md`, `<name>.svg` (one solution of each planner). Everything is checked
-            (planner names, parameters, start and goal) before the first run, and the files are written to a
-            staging folder and moved into outDir only when all of them exist: on failure nothing is left behind.
-            Throws ProblemError / std::runtime_error. */
+            for Planner Arena), `summary.md`, `<name>.svg` (one solution of each planner) and its PNG rendering
+           `<name>.png`. Everything is checked (planner names, parameters, start and goal) before the first run, and the
+           files are written to a staging folder and moved into outDir only when all of them exist: on failure nothing
+           is left behind. Throws ProblemError / std::runtime_error. */
         BenchResult runBenchmark(const Problem &problem, const BenchOptions &options);
 
         /** \brief Markdown table of planner summaries. */

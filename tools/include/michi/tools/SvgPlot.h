@@ -26,6 +26,10 @@ namespace michi
             the file when it cannot be written. */
         void writeProblemSvg(const Problem &problem, const std::vector<PlotPath> &paths, const std::string &file,
                              std::size_t query = 0);
+
+        /** \brief Render an SVG file to PNG with rsvg-convert (Debian librsvg2-bin, installed by scripts/setup.sh),
+            \e width pixels wide. Returns false, writing nothing, when the converter is missing or fails. */
+        bool svgToPng(const std::string &svg, const std::string &png, int width = 1600);
     }  // namespace tools
 }  // namespace michi
 
