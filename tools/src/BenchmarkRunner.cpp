@@ -1,4 +1,5 @@
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/FileOutput.h>
 
 #include <michi/tools/PlannerRegistry.h>
 #include <michi/tools/PlanningContext.h>
@@ -51,14 +52,6 @@ namespace michi
                 {
                     return std::nan("");
                 }
-            }
-
-            std::string shellQuote(const std::string &s)
-            {
-                std::string q = "'";
-                for (char c : s)
-                    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-                return q + "'";
             }
 
             /** A staging folder beside the output folder, removed unless committed. */

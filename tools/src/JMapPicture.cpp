@@ -1,6 +1,7 @@
 /* SVG picture of a J-map (paper 000, Fig. 1(c) / 7(a)). */
 
 #include <michi/tools/JMapPicture.h>
+#include <michi/tools/FileOutput.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -115,28 +116,6 @@ namespace michi
                 return d.str();
             }
 
-            void writeAtomically(const std::string &text, const std::string &file)
-            {
-                const std::string temporary = file + ".tmp";
-                {
-                    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-                    if (!out)
-                        throw std::runtime_error("cannot write SVG file '" + file + "': " + std::strerror(errno));
-                    out << text;
-                    out.close();
-                    if (!out)
-                    {
-                        std::remove(temporary.c_str());
-                        throw std::runtime_error("cannot write SVG file '" + file + "': write failed");
-                    }
-                }
-                if (std::rename(temporary.c_str(), file.c_str()) != 0)
-                {
-                    const std::string reason = std::strerror(errno);
-                    std::remove(temporary.c_str());
-                    throw std::runtime_error("cannot write SVG file '" + file + "': " + reason);
-                }
-            }
         }  // namespace
 
         void writeJMapSvg(const JMap &map, const std::string &file, const JMapPictureOptions &options)

@@ -1,4 +1,5 @@
 #include <michi/tools/SvgPlot.h>
+#include <michi/tools/FileOutput.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -1128,29 +1129,6 @@ namespace michi
                 return entries;
             }
 
-            void writeAtomically(const std::string &text, const std::string &file)
-            {
-                const std::string temporary = file + ".tmp";
-                {
-                    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-                    if (!out)
-                        throw std::runtime_error("cannot write SVG file '" + file + "': " + std::strerror(errno));
-                    out << text;
-                    out.close();
-                    if (!out)
-                    {
-                        std::remove(temporary.c_str());
-                        throw std::runtime_error("cannot write SVG file '" + file + "': write failed");
-                    }
-                }
-                if (std::rename(temporary.c_str(), file.c_str()) != 0)
-                {
-                    const std::string reason = std::strerror(errno);
-                    std::remove(temporary.c_str());
-                    throw std::runtime_error("cannot write SVG file '" + file + "': " + reason);
-                }
-            }
-
             void checkValues(const Values &values, std::size_t dimension, const std::string &what)
             {
                 if (values.size() != dimension)
@@ -1315,16 +1293,9 @@ namespace michi
 
         bool svgToPng(const std::string &svg, const std::string &png, int width)
         {
-            auto quote = [](const std::string &text)
-            {
-                std::string q = "'";
-                for (char c : text)
-                    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-                return q + "'";
-            };
             const std::string tmp = png + ".tmp";
-            const std::string command = "rsvg-convert -w " + std::to_string(width) + " -f png -o " + quote(tmp) + " " +
-                                        quote(svg) + " > /dev/null 2>&1";
+            const std::string command = "rsvg-convert -w " + std::to_string(width) + " -f png -o " + shellQuote(tmp) +
+                                        " " + shellQuote(svg) + " > /dev/null 2>&1";
             if (std::system(command.c_str()) != 0 || std::rename(tmp.c_str(), png.c_str()) != 0)
             {
                 std::remove(tmp.c_str());
