@@ -1,0 +1,177 @@
+#include <michi/state_spaces/TurnMoveTurnStateSpace.h>
+
+#include <boost/math/constants/constants.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ob = ompl::base;
+
+namespace michi
+{
+    namespace state_spaces
+    {
+        namespace
+        {
+            const double PI = boost::math::constants::pi<double>();
+
+            /** Signed shortest rotation from \e from to \e to, in [-pi, pi). */
+            double turnBetween(double from, double to)
+            {
+                double d = std::remainder(to - from, 2. * PI);
+                if (d >= PI)
+                    d -= 2. * PI;
+                return d;
+            }
+
+            /** Wrap into [-pi, pi) as SO2StateSpace::enforceBounds does. */
+            double wrap(double a)
+            {
+                double v = std::fmod(a, 2. * PI);
+                if (v < -PI)
+                    v += 2. * PI;
+                else if (v >= PI)
+                    v -= 2. * PI;
+                return v;
+            }
+        }  // namespace
+
+        TurnMoveTurnStateSpace::TurnMoveTurnStateSpace(double turnWeight, bool allowBackward)
+          : turnWeight_(1.), allowBackward_(allowBackward)
+        {
+            setName("TurnMoveTurn" + getName());
+            setTurnWeight(turnWeight);
+        }
+
+        void TurnMoveTurnStateSpace::setTurnWeight(double weight)
+        {
+            if (!(weight > 0.) || !std::isfinite(weight))
+                throw std::invalid_argument("TurnMoveTurnStateSpace: turn weight must be positive and finite");
+            turnWeight_ = weight;
+        }
+
+        void TurnMoveTurnStateSpace::setAllowBackward(bool allow)
+        {
+            allowBackward_ = allow;
+        }
+
+        TurnMoveTurn TurnMoveTurnStateSpace::motion(double x1, double y1, double yaw1, double x2, double y2,
+                                                    double yaw2) const
+        {
+            TurnMoveTurn m;
+            const double dx = x2 - x1, dy = y2 - y1;
+            m.move = std::hypot(dx, dy);
+            if (m.move <= SAME_POSITION)
+            {
+                m.move = 0.;
+                m.turn1 = turnBetween(yaw1, yaw2);
+                m.heading = yaw2;
+                return m;
+            }
+            const double ahead = std::atan2(dy, dx);
+            m.heading = ahead;
+            m.turn1 = turnBetween(yaw1, ahead);
+            m.turn2 = turnBetween(ahead, yaw2);
+            if (allowBackward_)
+            {
+                const double behind = wrap(ahead + PI);
+                TurnMoveTurn b;
+                b.move = m.move;
+                b.backward = true;
+                b.heading = behind;
+                b.turn1 = turnBetween(yaw1, behind);
+                b.turn2 = turnBetween(behind, yaw2);
+                if (cost(b) < cost(m))
+                    return b;
+            }
+            return m;
+        }
+
+        TurnMoveTurn TurnMoveTurnStateSpace::motion(const ob::State *from, const ob::State *to) const
+        {
+            const auto *a = from->as<StateType>();
+            const auto *b = to->as<StateType>();
+            return motion(a->getX(), a->getY(), a->getYaw(), b->getX(), b->getY(), b->getYaw());
+        }
+
+        double TurnMoveTurnStateSpace::realsDistance(const double *from, const double *to) const
+        {
+            return cost(motion(from[0], from[1], from[2], to[0], to[1], to[2]));
+        }
+
+        double TurnMoveTurnStateSpace::distance(const ob::State *state1, const ob::State *state2) const
+        {
+            return cost(motion(state1, state2));
+        }
+
+        void TurnMoveTurnStateSpace::interpolate(const ob::State *from, const ob::State *to, double t,
+                                                 ob::State *state) const
+        {
+            const auto *a = from->as<StateType>();
+            const auto *b = to->as<StateType>();
+            const TurnMoveTurn m = motion(from, to);
+            const double total = cost(m);
+            // read everything from \e from and \e to before writing: \e state may be one of them
+            const double x1 = a->getX(), y1 = a->getY(), yaw1 = a->getYaw();
+            const double x2 = b->getX(), y2 = b->getY(), yaw2 = b->getYaw();
+            auto *s = state->as<StateType>();
+            if (total <= 0. || t <= 0.)
+            {
+                s->setXY(x1, y1);
+                s->setYaw(yaw1);
+                return;
+            }
+            if (t >= 1.)
+            {
+                s->setXY(x2, y2);
+                s->setYaw(yaw2);
+                return;
+            }
+            double along = t * total;
+            const double c1 = turnWeight_ * std::abs(m.turn1);
+            if (along < c1 || m.move == 0.)
+            {
+                // first turn (or the only one), in place
+                s->setXY(x1, y1);
+                s->setYaw(wrap(yaw1 + m.turn1 * (along / c1)));
+                return;
+            }
+            along -= c1;
+            if (along < m.move)
+            {
+                const double f = along / m.move;
+                s->setXY(x1 + (x2 - x1) * f, y1 + (y2 - y1) * f);
+                s->setYaw(m.heading);
+                return;
+            }
+            along -= m.move;
+            const double c2 = turnWeight_ * std::abs(m.turn2);
+            // second turn, at the target position (copied exactly, so the rest of the motion is one turn)
+            s->setXY(x2, y2);
+            s->setYaw(c2 > 0. ? wrap(m.heading + m.turn2 * std::min(1., along / c2)) : yaw2);
+        }
+
+        double TurnMoveTurnStateSpace::getMaximumExtent() const
+        {
+            // the position part's diagonal plus the largest turns: 2 pi forwards only; with reversing the cheaper of
+            // forwards and backwards turns by pi at most in all (their turns add up to 2 pi)
+            const double diagonal = getSubspace(0)->getMaximumExtent();
+            return diagonal + turnWeight_ * PI * (allowBackward_ ? 1. : 2.);
+        }
+
+        TurnMoveTurnStateSpacePtr makeTurnMoveTurnStateSpace(double xMin, double xMax, double yMin, double yMax,
+                                                             double turnWeight, bool allowBackward)
+        {
+            if (!(xMin < xMax) || !(yMin < yMax))
+                throw std::invalid_argument("SE(2) bounds must have min < max");
+            auto space = std::make_shared<TurnMoveTurnStateSpace>(turnWeight, allowBackward);
+            ob::RealVectorBounds bounds(2);
+            bounds.setLow(0, xMin);
+            bounds.setHigh(0, xMax);
+            bounds.setLow(1, yMin);
+            bounds.setHigh(1, yMax);
+            space->setBounds(bounds);
+            return space;
+        }
+    }  // namespace state_spaces
+}  // namespace michi
