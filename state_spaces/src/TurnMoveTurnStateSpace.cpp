@@ -37,7 +37,7 @@ namespace michi
         }  // namespace
 
         TurnMoveTurnStateSpace::TurnMoveTurnStateSpace(double turnWeight, bool allowBackward)
-          : turnWeight_(1.), allowBackward_(allowBackward)
+            : turnWeight_(1.), allowBackward_(allowBackward)
         {
             setName("TurnMoveTurn" + getName());
             setTurnWeight(turnWeight);

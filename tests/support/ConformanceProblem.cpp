@@ -7,6 +7,7 @@
 #include <michi/validity/Polygon2.h>
 
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 
 #include <cmath>
 #include <sstream>
@@ -48,8 +49,12 @@ namespace michi
             }
         }  // namespace
 
-        ConformanceProblem makeConformanceProblem(const std::string &checker)
+        ConformanceProblem makeConformanceProblem(const std::string &checker, const std::string &kind)
         {
+            if (kind == "se2" && checker == "fcl")
+                return makeSe2ConformanceProblem();
+            if (kind != "arm")
+                throw std::invalid_argument("conformance problem must be arm, or se2 with the fcl checker");
             auto model = validity::RobotModel::fromUrdfString(ARM_URDF, "conformance_arm.urdf", ".");
             auto bodies = std::make_shared<validity::RobotGroupBodies>(model, std::vector<int>{0, 1},
                                                                        std::vector<double>{0., 0.});
@@ -94,6 +99,8 @@ namespace michi
         std::string independentPathCheck(const ompl::geometric::PathGeometric &path)
         {
             const auto si = path.getSpaceInformation();
+            if (dynamic_cast<const ompl::base::SE2StateSpace *>(si->getStateSpace().get()) != nullptr)
+                return independentSe2PathCheck(path);
             validity::MultiPolygon2 obstacles;
             for (const auto &outline : obstacleOutlines())
             {

@@ -34,7 +34,7 @@ protected:
     void SetUp() override
     {
         ompl::RNG::setSeed(42);
-        problem_ = michi::test::makeConformanceProblem(GetParam().checker);
+        problem_ = michi::test::makeConformanceProblem(GetParam().checker, GetParam().problem);
         planner_ = michi::tools::allocatePlanner(GetParam().planner, problem_.setup->getSpaceInformation());
         ASSERT_TRUE(planner_ != nullptr);
         for (const auto &kv : GetParam().params)

@@ -1,6 +1,8 @@
 #include <michi/tools/PlanningContext.h>
 
 #include <michi/state_spaces/JointStateSpace.h>
+#include <michi/state_spaces/TurnMoveTurnStateSpace.h>
+#include <michi/tools/TurnMoveTurnBodies.h>
 #include <michi/tools/JMapSetup.h>
 #include <michi/validity/ConservativeMotionValidator.h>
 #include <michi/validity/WorkspaceMotionValidator.h>
@@ -15,11 +17,27 @@ namespace michi
 {
     namespace tools
     {
+        namespace
+        {
+            /** robot.motion turn_move_turn: turn weight defaults to the footprint's circumradius. */
+            state_spaces::TurnMoveTurnStateSpacePtr makeTurnMoveTurnSpace(const Problem &problem)
+            {
+                const auto &b = problem.se2Bounds;
+                double weight = problem.se2Motion.turnWeight;
+                if (!(weight > 0.))
+                    weight = validity::PlanarRigidBody(problem.footprint).circumradius();
+                return state_spaces::makeTurnMoveTurnStateSpace(b[0], b[1], b[2], b[3], weight,
+                                                                problem.se2Motion.backward);
+            }
+        }  // namespace
+
         ob::StateSpacePtr makeStateSpace(const Problem &problem)
         {
             if (problem.kind == Problem::Kind::SE2)
             {
                 const auto &b = problem.se2Bounds;
+                if (problem.se2Motion.model == "turn_move_turn")
+                    return makeTurnMoveTurnSpace(problem);
                 return state_spaces::makeSe2StateSpace(b[0], b[1], b[2], b[3]);
             }
             std::vector<state_spaces::JointSpec> joints;
@@ -62,6 +80,10 @@ namespace michi
             PlanningContext ctx;
             ctx.bodies = problem.bodies();
             ctx.setup = std::make_shared<ompl::geometric::SimpleSetup>(makeStateSpace(problem));
+            if (auto tmt =
+                    std::dynamic_pointer_cast<state_spaces::TurnMoveTurnStateSpace>(ctx.setup->getStateSpace()))
+                if (auto body = std::dynamic_pointer_cast<const validity::PlanarRigidBody>(ctx.bodies))
+                    ctx.bodies = std::make_shared<TurnMoveTurnBodies>(body, tmt);  // bounds of turn-move-turn motions
             auto si = ctx.setup->getSpaceInformation();
             ctx.checker = std::make_shared<validity::FclValidityChecker>(si, ctx.bodies, problem.scene);
             ctx.setup->setStateValidityChecker(ctx.checker);

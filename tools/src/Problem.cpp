@@ -649,11 +649,34 @@ namespace michi
                 }
             }
 
+            /** robot.motion of an SE2 robot: a model name, or {model, turn_weight, backward}. */
+            void readSe2Motion(const Reader &r, const YAML::Node &n, Se2Motion &motion)
+            {
+                if (!n)
+                    return;
+                YAML::Node model = n;
+                if (n.IsMap())
+                {
+                    r.keys(n, "robot.motion", {"model", "turn_weight", "backward"});
+                    model = r.require(n, "model", "robot.motion");
+                    motion.turnWeight = r.number(n, "turn_weight", "robot.motion", 0.);
+                    if (!(motion.turnWeight > 0.) && n["turn_weight"])
+                        r.fail("robot.motion.turn_weight", "expected a positive number (metres per radian)");
+                    if (n["backward"])
+                        motion.backward = r.flag(n["backward"], "robot.motion.backward");
+                }
+                const std::string key = n.IsMap() ? "robot.motion.model" : "robot.motion";
+                motion.model = r.text(model, key);
+                if (motion.model != "free" && motion.model != "turn_move_turn")
+                    r.fail(key, "expected 'free' or 'turn_move_turn', got '" + motion.model + "'");
+            }
+
             /** \e mapBounds: robot.bounds may be left out (the bounds of the scene's grid map are used then). */
             void readSe2(const Reader &r, const YAML::Node &robot, Problem &problem, bool mapBounds)
             {
                 problem.kind = Problem::Kind::SE2;
-                r.keys(robot, "robot", {"type", "footprint", "height", "bounds"});
+                r.keys(robot, "robot", {"type", "footprint", "height", "bounds", "motion"});
+                readSe2Motion(r, robot["motion"], problem.se2Motion);
                 r.keys(robot["bounds"], "robot.bounds", {"x", "y"});
                 problem.footprint = r.polygon(r.require(robot, "footprint", "robot"), "robot.footprint");
                 try

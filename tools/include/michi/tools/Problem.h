@@ -60,6 +60,16 @@ namespace michi
             bool simplify{true};   ///< simplify solutions as OMPL's Benchmark does by default
         };
 
+        /** \brief How an SE2 robot moves between two states (robot.motion, docs/problem-format.md). */
+        struct Se2Motion
+        {
+            /** \brief "free": OMPL's SE2StateSpace (straight lines in x, y, yaw); "turn_move_turn":
+                state_spaces::TurnMoveTurnStateSpace (turn in place, drive straight, turn in place; paper 003). */
+            std::string model{"free"};
+            double turnWeight{0.};  ///< metres per radian of turning; 0: the footprint's circumradius
+            bool backward{true};    ///< turn_move_turn: the robot may drive backwards
+        };
+
         /** \brief Everything a problem file says: robot, scene, queries, planners and benchmark settings.
             Robots are either a URDF arm (kind ARM, joints of one group planned, the others fixed) or a planar
             rigid body (kind SE2, a footprint polygon on a map). See docs/problem-format.md. */
@@ -86,6 +96,7 @@ namespace michi
             std::vector<Eigen::Vector2d> footprint;
             double footprintHeight{1.};
             std::array<double, 4> se2Bounds{{0., 1., 0., 1.}};  ///< x min, x max, y min, y max
+            Se2Motion se2Motion;  ///< robot.motion
 
             validity::ScenePtr scene;
             std::vector<Query> queries;  ///< at least one
