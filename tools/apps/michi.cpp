@@ -1,5 +1,6 @@
 // The `michi` command: benchmark and plan on michi problem files, list the planners.
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/HeadingLatticeReport.h>
 #include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
@@ -35,6 +36,9 @@ namespace
         "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
         "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
         "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
+        "  michi lattice PROBLEM.yaml --out DIR [--cell-sizes A,B,...] [--angle-steps A,B,...] [--time SECONDS]\n"
+        "      build the heading-constrained lattice (paper 003) per setting: nodes, build and query times\n"
+        "      (DIR/lattice.md) and pictures of the lattice, groups, path correction and path (DIR/*.svg)\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -258,6 +262,47 @@ namespace
         return 0;
     }
 
+    int lattice(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "cell-sizes", "angle-steps", "time"});
+        if (args.positional.size() != 1)
+            throw UsageError("lattice takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("lattice needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        HeadingLatticeReportOptions options;
+        options.outDir = args.get("out");
+        options.timeLimit = args.number("time", options.timeLimit);
+        auto list = [&](const std::string &key, std::vector<double> &values)
+        {
+            if (!args.has(key))
+                return;
+            values.clear();
+            std::stringstream in(args.get(key));
+            for (std::string item; std::getline(in, item, ',');)
+            {
+                std::size_t used = 0;
+                double v = 0.;
+                try
+                {
+                    v = std::stod(item, &used);
+                }
+                catch (const std::exception &)
+                {
+                }
+                if (used != item.size() || !(v > 0.))
+                    throw UsageError("--" + key + " expects positive numbers separated by commas, got '" +
+                                     args.get(key) + "'");
+                values.push_back(v);
+            }
+        };
+        list("cell-sizes", options.cellSizes);
+        list("angle-steps", options.angleSteps);
+        options.progress = &std::cerr;
+        std::cout << runHeadingLatticeReport(loadProblem(args.positional[0]), options);
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -282,6 +327,8 @@ int main(int argc, char **argv)
             return plan(argc, argv);
         if (command == "jmap")
             return jmap(argc, argv);
+        if (command == "lattice")
+            return lattice(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");
