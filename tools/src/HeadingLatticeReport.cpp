@@ -64,7 +64,7 @@ namespace michi
                     out_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(w + 20) << "\" height=\""
                          << num(h + 50) << "\" font-family=\"sans-serif\">\n"
                          << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-                         << "<text x=\"10\" y=\"22\" font-size=\"14\">" << title << "</text>\n"
+                         << "<text x=\"10\" y=\"22\" font-size=\"12\">" << title << "</text>\n"
                          << "<svg x=\"10\" y=\"36\" width=\"" << num(w) << "\" height=\"" << num(h) << "\">\n"
                          << "<rect width=\"100%\" height=\"100%\" fill=\"#fafafa\" stroke=\"#999\"/>\n";
                     for (const auto &polygon : problem.scene->polygons2d())
@@ -187,14 +187,13 @@ namespace michi
                     return x >= x0 && x <= x1 && y >= y0 && y <= y1;
                 };
                 std::vector<std::pair<std::string, std::string>> legend;
-                for (unsigned int k = 0; k < K; k += std::max(1u, K / 8))
+                for (unsigned int k = 0; k < K; k += std::max(1u, K / 4))
                     legend.emplace_back("heading " + num(k * step * 180. / M_PI, "%.1f") + " deg", headingColour(k, K));
                 const std::string where = " around (" + num(turn[0], "%.2f") + ", " + num(turn[1], "%.2f") +
                                           "), cell_size " + num(cell) + " m";
 
                 {  // Fig. 1: the nodes of every heading, and the drives between them
-                    WindowSvg svg(problem, x0, y0, x1, y1,
-                                  "HeadingLattice nodes (free poses) and drives along each heading" + where);
+                    WindowSvg svg(problem, x0, y0, x1, y1, "Lattice nodes and drives per heading" + where);
                     for (const auto &e : lattice.latticeEdges())
                     {
                         const auto &a = nodes[e.first], &b = nodes[e.second];
@@ -209,8 +208,7 @@ namespace michi
                     writeAtomically(svg.finish(), (boost::filesystem::path(dir) / "lattice.svg").string());
                 }
                 {  // the groups: every node joined to the heading-0 grid point of its group
-                    WindowSvg svg(problem, x0, y0, x1, y1,
-                                  "HeadingLattice groups: nodes within cell_size of each heading-0 grid point" + where);
+                    WindowSvg svg(problem, x0, y0, x1, y1, "Groups: each node to its heading-0 grid point" + where);
                     const auto &b = problem.se2Bounds;
                     for (const auto &n : nodes)
                     {
@@ -230,10 +228,7 @@ namespace michi
                     writeAtomically(svg.finish(), (boost::filesystem::path(dir) / "groups.svg").string());
                 }
                 {  // Figs. 2-3: the path on the nodes, and corrected
-                    WindowSvg svg(
-                        problem, x0, y0, x1, y1,
-                        "HeadingLattice path on the nodes (Fig. 2) and corrected: turns at the centre (Fig. 3)" +
-                            where);
+                    WindowSvg svg(problem, x0, y0, x1, y1, "Path on the nodes (Fig. 2) and corrected (Fig. 3)" + where);
                     const auto &raw = lattice.rawPath();
                     for (std::size_t i = 0; i < path.size(); ++i)
                         if (i + 1 == path.size() ||
