@@ -8,6 +8,8 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/SimpleSetup.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
@@ -156,4 +158,22 @@ TEST(HeadingLattice, ForwardOnlyPathsDriveForwards)
     for (std::size_t i = 0; i + 1 < path.size(); ++i)
         EXPECT_FALSE(
             space->motion(path[i][0], path[i][1], path[i][2], path[i + 1][0], path[i + 1][1], path[i + 1][2]).backward);
+}
+
+TEST(HeadingLattice, RefusesSpacesThatAreNotSe2)
+{
+    auto space = std::make_shared<ob::RealVectorStateSpace>(2);
+    space->setBounds(0., 1.);
+    ompl::geometric::SimpleSetup ss(space);
+    ss.setStateValidityChecker(
+        [](const ob::State *)
+        {
+            return true;
+        });
+    ob::ScopedState<> start(space), goal(space);
+    start = std::vector<double>{0.1, 0.1};
+    goal = std::vector<double>{0.9, 0.9};
+    ss.setStartAndGoalStates(start, goal);
+    ss.setPlanner(std::make_shared<HeadingLattice>(ss.getSpaceInformation()));
+    EXPECT_EQ(ss.solve(1.), ob::PlannerStatus::ABORT);
 }

@@ -670,7 +670,7 @@ namespace michi
         {
             checkValidity();
             if (!setup_)
-                return ob::PlannerStatus::CRASH;
+                return ob::PlannerStatus::ABORT;  // not an SE(2) space (setup() said so)
             auto *goal = dynamic_cast<ob::GoalSampleableRegion *>(pdef_->getGoal().get());
             if (goal == nullptr)
             {
