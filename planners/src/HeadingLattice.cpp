@@ -9,6 +9,7 @@
 #include <ompl/util/Time.h>
 
 #include <boost/graph/astar_search.hpp>
+#include <boost/range/iterator_range.hpp>
 #include <boost/math/constants/constants.hpp>
 
 #include <algorithm>
@@ -296,7 +297,9 @@ namespace michi
 
             // edges: along each heading to the next lattice point (driving), between adjacent headings of a group
             // (turning in place); validity is checked lazily, when A* uses an edge
-            graph_ = Graph(nodes_.size());
+            graph_.clear();  // (no Graph(n) assignment: Boost copies graphs there, which trips -Wmaybe-uninitialized)
+            for (std::size_t v = 0; v < nodes_.size(); ++v)
+                boost::add_vertex(graph_);
             for (std::size_t v = 0; v < nodes_.size(); ++v)
             {
                 const Node &n = nodes_[v];
@@ -757,12 +760,14 @@ namespace michi
             std::vector<std::pair<unsigned int, unsigned int>> edges;
             if (!built_)
                 return edges;
-            for (auto [e, end] = boost::edges(graph_); e != end; ++e)
-            {
-                const auto u = boost::source(*e, graph_), v = boost::target(*e, graph_);
-                if (u < nodes_.size() && v < nodes_.size())
-                    edges.emplace_back(static_cast<unsigned int>(u), static_cast<unsigned int>(v));
-            }
+            // per vertex (boost::edges() trips GCC's -Wmaybe-uninitialized inside Boost)
+            for (std::size_t u = 0; u < nodes_.size(); ++u)
+                for (const auto &e : boost::make_iterator_range(boost::out_edges(u, graph_)))
+                {
+                    const auto v = boost::target(e, graph_);
+                    if (v < nodes_.size())
+                        edges.emplace_back(static_cast<unsigned int>(u), static_cast<unsigned int>(v));
+                }
             return edges;
         }
 
@@ -790,9 +795,10 @@ namespace michi
                 else
                     index[v] = data.addVertex(vertex);
             }
-            for (auto [e, end] = boost::edges(graph_); e != end; ++e)
-                data.addEdge(index[boost::source(*e, graph_)], index[boost::target(*e, graph_)], ob::PlannerDataEdge(),
-                             ob::Cost(graph_[*e].weight));
+            for (std::size_t u = 0; u < n; ++u)
+                for (const auto &e : boost::make_iterator_range(boost::out_edges(u, graph_)))
+                    data.addEdge(index[u], index[boost::target(e, graph_)], ob::PlannerDataEdge(),
+                                 ob::Cost(graph_[e].weight));
         }
     }  // namespace planners
 }  // namespace michi
