@@ -654,11 +654,12 @@ namespace michi
             {
                 if (!n)
                     return;
-                YAML::Node model = n;
+                if (n.IsMap())
+                    r.keys(n, "robot.motion", {"model", "turn_weight", "backward"});
+                // (a YAML::Node is a reference into the tree: initialise it, never assign to it)
+                const YAML::Node model = n.IsMap() ? r.require(n, "model", "robot.motion") : n;
                 if (n.IsMap())
                 {
-                    r.keys(n, "robot.motion", {"model", "turn_weight", "backward"});
-                    model = r.require(n, "model", "robot.motion");
                     motion.turnWeight = r.number(n, "turn_weight", "robot.motion", 0.);
                     if (!(motion.turnWeight > 0.) && n["turn_weight"])
                         r.fail("robot.motion.turn_weight", "expected a positive number (metres per radian)");
