@@ -410,7 +410,7 @@ namespace michi
                 const ob::State *from = start ? query : queryStates_[o];
                 const ob::State *to = start ? queryStates_[o] : query;
                 const double d = si_->distance(from, to);
-                if (d <= radius && si_->checkMotion(from, to))
+                if (d <= connectionCells_ * cellSize_ && si_->checkMotion(from, to))
                 {
                     const Vertex ov = nodes_.size() + o;
                     boost::add_edge(start ? q : ov, start ? ov : q, EdgeProperty{d, 2, 1}, graph_);
