@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 namespace ob = ompl::base;
 
@@ -256,6 +257,12 @@ namespace michi
         {
             if (problem.kind != Problem::Kind::SE2)
                 throw ProblemError(problem.file, "robot", "michi lattice needs an SE2 robot (robot.type: se2)");
+            for (double a : options.angleSteps)
+                if (!(a > 0.) || a > M_PI / 2. + 1e-9)
+                    throw std::invalid_argument("--angle-steps: " + num(a) + " is outside (0, pi/2]");
+            for (double c : options.cellSizes)
+                if (!(c > 0.))
+                    throw std::invalid_argument("--cell-sizes: " + num(c) + " is not positive");
             boost::filesystem::create_directories(options.outDir);
             std::vector<Row> rows;
             bool drawn = !options.pictures;
