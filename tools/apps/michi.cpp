@@ -273,31 +273,10 @@ namespace
         HeadingLatticeReportOptions options;
         options.outDir = args.get("out");
         options.timeLimit = args.number("time", options.timeLimit);
-        auto list = [&](const std::string &key, std::vector<double> &values)
-        {
-            if (!args.has(key))
-                return;
-            values.clear();
-            std::stringstream in(args.get(key));
-            for (std::string item; std::getline(in, item, ',');)
-            {
-                std::size_t used = 0;
-                double v = 0.;
-                try
-                {
-                    v = std::stod(item, &used);
-                }
-                catch (const std::exception &)
-                {
-                }
-                if (used != item.size() || !(v > 0.))
-                    throw UsageError("--" + key + " expects positive numbers separated by commas, got '" +
-                                     args.get(key) + "'");
-                values.push_back(v);
-            }
-        };
-        list("cell-sizes", options.cellSizes);
-        list("angle-steps", options.angleSteps);
+        if (args.has("cell-sizes"))
+            options.cellSizes = parseNumberList(args.get("cell-sizes"), "--cell-sizes");
+        if (args.has("angle-steps"))
+            options.angleSteps = parseNumberList(args.get("angle-steps"), "--angle-steps");
         options.progress = &std::cerr;
         std::cout << runHeadingLatticeReport(loadProblem(args.positional[0]), options);
         return 0;

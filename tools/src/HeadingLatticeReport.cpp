@@ -253,6 +253,32 @@ namespace michi
             }
         }  // namespace
 
+        std::vector<double> parseNumberList(const std::string &text, const std::string &option)
+        {
+            std::vector<double> values;
+            std::stringstream in(text);
+            for (std::string item; std::getline(in, item, ',');)
+            {
+                std::size_t used = 0;
+                double v = 0.;
+                try
+                {
+                    v = std::stod(item, &used);
+                }
+                catch (const std::exception &)
+                {
+                }
+                if (used == 0 || used != item.size() || !(v > 0.))
+                    throw std::invalid_argument(option + " expects positive numbers separated by commas, got '" + text +
+                                                "'");
+                values.push_back(v);
+            }
+            if (values.empty())
+                throw std::invalid_argument(option + " expects positive numbers separated by commas, got '" + text +
+                                            "'");
+            return values;
+        }
+
         std::string runHeadingLatticeReport(const Problem &problem, const HeadingLatticeReportOptions &options)
         {
             if (problem.kind != Problem::Kind::SE2)

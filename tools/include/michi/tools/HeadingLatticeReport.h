@@ -30,6 +30,10 @@ namespace michi
             (the path before and after the correction, Figs. 2-3) and path.svg (the robot along the path, Fig. 4).
             Throws ProblemError for a problem that is not SE2; every file is written atomically. */
         std::string runHeadingLatticeReport(const Problem &problem, const HeadingLatticeReportOptions &options);
+
+        /** \brief "0.5,0.25,0.1" as numbers; throws std::invalid_argument naming \e option for anything that is not a
+            positive number. */
+        std::vector<double> parseNumberList(const std::string &text, const std::string &option);
     }  // namespace tools
 }  // namespace michi
 
