@@ -1,5 +1,6 @@
 // The `michi` command: benchmark and plan on michi problem files, list the planners.
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/DualArmCommand.h>
 #include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
@@ -35,6 +36,8 @@ namespace
         "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
         "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
         "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
+        "  michi dualarm PROBLEM.yaml --out DIR [--time SECONDS] [--seed S]\n"
+        "      dual-arm work positions by manipulability (paper 004); writes DIR/dualarm.json and pictures\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -258,6 +261,26 @@ namespace
         return 0;
     }
 
+    int dualarm(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "time", "seed"});
+        if (args.positional.size() != 1)
+            throw UsageError("dualarm takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("dualarm needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        const Problem problem = loadProblem(args.positional[0]);
+        ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(args.number("seed", problem.benchmark.seed, true)));
+        DualArmOptions options;
+        options.outDir = args.get("out");
+        options.planningTime = args.number("time", 0.);
+        options.progress = &std::cerr;
+        std::cout << runDualArm(problem, options);
+        std::cerr << "michi dualarm: wrote " << (fs::path(options.outDir) / "dualarm.json").string()
+                  << " and dualarm-*.svg/.png" << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -282,6 +305,8 @@ int main(int argc, char **argv)
             return plan(argc, argv);
         if (command == "jmap")
             return jmap(argc, argv);
+        if (command == "dualarm")
+            return dualarm(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");
