@@ -116,7 +116,7 @@ TEST(Manipulability, HandIkMeetsPositionAndOrientation)
     HandTarget down;                                    // small hand pointing down
     down.position = Eigen::Vector3d(0.41, 0.47, 0.59);  // the small arm is side-mounted (first joint along +y)
     std::vector<double> q(model->variableCount(), 0.);
-    const std::vector<double> seed{-0.15, -0.25, 1.16, -1.09, -1.58, -2.2};  // 0.3 rad from a solution
+    const std::vector<double> seed{-0.15, -0.25, 1.16, -1.09, -1.58, -2.2};  // near the hand-over posture
     for (int i = 0; i < 6; ++i)
         q[small.variables()[i]] = seed[i];
     ASSERT_TRUE(planners::solveHandIk(small, down, q));
