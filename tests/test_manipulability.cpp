@@ -165,8 +165,8 @@ TEST(Manipulability, ObjectiveCostsFollowManipulability)
         });
     si->setup();
     const std::vector<double> fixed(model->variableCount(), 0.);
-    const planners::ManipulabilityObjective objective(si, small, small.variables(), fixed, ManipulabilityRows::POSITION,
-                                                      0.004);
+    planners::ManipulabilityObjective objective(si, small, small.variables(), fixed, ManipulabilityRows::POSITION,
+                                                0.004);
     auto *a = si->allocState();
     auto *b = si->allocState();
     const std::vector<double> qa{0.2, 0.5, 0.9, 0.1, 1.0, 0.}, qb{0.25, 0.6, 0.8, 0.1, 1.1, 0.};
@@ -193,6 +193,11 @@ TEST(Manipulability, ObjectiveCostsFollowManipulability)
     const double wc = small.manipulability(full, ManipulabilityRows::POSITION);
     ASSERT_LT(wc, 0.004);
     EXPECT_NEAR(objective.stateCost(b).value(), 0.004 / wc, 1e-9);
+    objective.setWeight(3.);  // only the part below the reference is weighted
+    EXPECT_NEAR(objective.stateCost(b).value(), 1. + 3. * (0.004 / wc - 1.), 1e-9);
+    EXPECT_NEAR(objective.stateCost(a).value(), std::max(1., 1. + 3. * (0.004 / wa - 1.)), 1e-9);
+    EXPECT_THROW(objective.setWeight(0.), std::invalid_argument);
+    objective.setWeight(1.);
     // the straight-up pose is singular (w = 0): clamped to the floor, so it costs reference / floor
     space->copyFromReals(a, std::vector<double>(6, 0.));
     EXPECT_NEAR(objective.stateCost(a).value(), 0.004 / 1e-6, 1e-6);

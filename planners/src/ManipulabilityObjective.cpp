@@ -53,7 +53,14 @@ namespace michi
 
         ompl::base::Cost ManipulabilityObjective::stateCost(const ompl::base::State *s) const
         {
-            return ompl::base::Cost(std::max(1., reference_ / std::max(evaluator_(s), floor_)));
+            return ompl::base::Cost(1. + weight_ * std::max(0., reference_ / std::max(evaluator_(s), floor_) - 1.));
+        }
+
+        void ManipulabilityObjective::setWeight(double weight)
+        {
+            if (!(weight > 0.))
+                throw std::invalid_argument("ManipulabilityObjective: the weight must be positive");
+            weight_ = weight;
         }
 
         ompl::base::Cost ManipulabilityObjective::motionCostHeuristic(const ompl::base::State *s1,

@@ -102,6 +102,7 @@ namespace michi
                 double minW{0.}, meanW{0.}, length{0.}, manipulabilityCost{0.}, lengthCost{0.};
                 std::vector<double> jointMotion;
                 unsigned int invalidMotions{0};
+                std::shared_ptr<PathReport> raw;  ///< the planner's path before simplification
             };
 
             /** Evaluate a path of group values: w at each state, joint motion, both objectives' costs, OMPL's
@@ -151,6 +152,7 @@ namespace michi
                 const auto si = ctx.setup->getSpaceInformation();
                 auto manip = std::make_shared<planners::ManipulabilityObjective>(
                     si, small, problem.groupVariables, fixed, spec.settings.rows, spec.settings.threshold);
+                manip->setWeight(spec.weight);
                 ompl::base::OptimizationObjectivePtr objective = manip;
                 if (!manipulability)
                     objective = std::make_shared<ompl::base::PathLengthOptimizationObjective>(si);
@@ -161,18 +163,28 @@ namespace michi
                 r.solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
                 if (!r.solved)
                     return r;
+                const auto statesOf = [&si](ompl::geometric::PathGeometric path)
+                {
+                    path.interpolate(
+                        std::max<unsigned int>(2, static_cast<unsigned int>(std::ceil(path.length() / 0.02))));
+                    std::vector<std::vector<double>> states;
+                    for (const auto *s : path.getStates())
+                    {
+                        std::vector<double> v;
+                        si->getStateSpace()->copyToReals(v, s);
+                        states.push_back(v);
+                    }
+                    return states;
+                };
                 ompl::geometric::PathGeometric path = ctx.setup->getSolutionPath();
+                r.raw = std::make_shared<PathReport>();
+                r.raw->solved = true;
+                r.raw->status = "as planned";
+                evaluate(si, *manip, statesOf(path), *r.raw);
                 // shortcut and smooth with the same objective (a change is kept only when it lowers that cost)
                 ompl::geometric::PathSimplifier simplifier(si, ctx.setup->getProblemDefinition()->getGoal(), objective);
                 simplifier.simplify(path, 0.5 * time);
-                path.interpolate(std::max<unsigned int>(2, static_cast<unsigned int>(std::ceil(path.length() / 0.02))));
-                std::vector<std::vector<double>> states;
-                for (const auto *s : path.getStates())
-                {
-                    std::vector<double> v;
-                    si->getStateSpace()->copyToReals(v, s);
-                    states.push_back(v);
-                }
+                const std::vector<std::vector<double>> states = statesOf(path);
                 evaluate(si, *manip, states, r);
                 return r;
             }
@@ -217,6 +229,8 @@ namespace michi
                       << indent << "  \"joint_motion\": " << list(r.jointMotion) << ",\n"
                       << indent << "  \"joint_motion_share\": " << list(shares(r.jointMotion)) << ",\n"
                       << indent << "  \"invalid_motions\": " << r.invalidMotions;
+                if (r.raw)
+                    s << ",\n" << indent << "  \"before_simplification\": " << pathJson(*r.raw, indent + "  ");
                 s << "\n" << indent << "}";
                 return s.str();
             }
@@ -314,6 +328,7 @@ namespace michi
                  << "  \"stirring_without_criterion\": " << pathJson(checkA, "  ") << ",\n"
                  << "  \"planner\": " << quoted(spec.planner) << ",\n"
                  << "  \"planning_time\": " << time << ",\n"
+                 << "  \"objective_weight\": " << spec.weight << ",\n"
                  << "  \"handover_approach_with_manipulability\": " << pathJson(handoverWith, "  ") << ",\n"
                  << "  \"handover_approach_path_length\": " << pathJson(handoverWithout, "  ") << ",\n"
                  << "  \"stirring_approach_with_manipulability\": " << pathJson(stirStartWith, "  ") << ",\n"

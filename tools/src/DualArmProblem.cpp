@@ -197,7 +197,9 @@ namespace michi
                 s.seed = r.count(n["seed"], "dual_arm.seed");
             if (const YAML::Node p = n["planning"])
             {
-                r.keys(p, "dual_arm.planning", {"planner", "time"});
+                r.keys(p, "dual_arm.planning", {"planner", "time", "weight"});
+                if (p["weight"])
+                    spec.weight = r.positive(p["weight"], "dual_arm.planning.weight");
                 if (p["planner"])
                     spec.planner = r.text(p["planner"], "dual_arm.planning.planner");
                 if (p["time"])

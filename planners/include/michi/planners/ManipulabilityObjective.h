@@ -13,15 +13,16 @@ namespace michi
     namespace planners
     {
         /** \brief An OMPL optimization objective that makes planners prefer dexterous configurations: the cost
-            of a state is max(1, reference / w(state)), where w is the manipulability sqrt(det(J J^T)) of an arm
-            (Yoshikawa), and the cost of a motion is that state cost integrated over the motion's length in the
-            state space (OMPL's StateCostIntegralObjective: by default the trapezoid rule over the motion's two end
-            states, which costs two evaluations of w per motion; with \e interpolate, the motion is subdivided at
-            the space's collision-checking resolution, which is more exact for long motions and much slower). Where w >=
-           reference a path costs its length; through less dexterous states it costs more, near a singularity much more.
-            Since every cost is at least the path length, the state-space distance is an admissible heuristic
-            (motionCostHeuristic, and the goal-region cost-to-go), so informed planners (BITstar, informed
-            RRTstar) can use it. Use it with RRTstar, PRMstar, BITstar, ... like PathLengthOptimizationObjective.
+            of a state is 1 + weight * max(0, reference / w(state) - 1) (weight 1 by default: max(1, reference / w)),
+           where w is the manipulability sqrt(det(J J^T)) of an arm (Yoshikawa), and the cost of a motion is that state
+           cost integrated over the motion's length in the state space (OMPL's StateCostIntegralObjective: by default
+           the trapezoid rule over the motion's two end states, which costs two evaluations of w per motion; with \e
+           interpolate, the motion is subdivided at the space's collision-checking resolution, which is more exact for
+           long motions and much slower). Where w >= reference a path costs its length; through less dexterous states it
+           costs more, near a singularity much more. Since every cost is at least the path length, the state-space
+           distance is an admissible heuristic (motionCostHeuristic, and the goal-region cost-to-go), so informed
+           planners (BITstar, informed RRTstar) can use it. Use it with RRTstar, PRMstar, BITstar, ... like
+           PathLengthOptimizationObjective.
 
             @par Short description
             Paper 004 (Takahama, Nagatani & Tanaka) chooses the stirring work position so that the small arm's
@@ -61,11 +62,19 @@ namespace michi
             {
                 return reference_;
             }
+            /** \brief How much less dexterous states cost: a state costs 1 + weight * max(0, reference / w - 1)
+                per unit length (default 1: max(1, reference / w)). Must be positive. */
+            void setWeight(double weight);
+            double getWeight() const
+            {
+                return weight_;
+            }
 
         private:
             Evaluator evaluator_;
             double reference_;
             double floor_;
+            double weight_{1.};
         };
     }  // namespace planners
 }  // namespace michi

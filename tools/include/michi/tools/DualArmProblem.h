@@ -23,8 +23,9 @@ namespace michi
         {
             DualArmArmSpec large, small;
             planners::DualArmSettings settings;
-            std::string planner{"geometric::RRTstar"};                    ///< plans the approach motions
-            double planningTime{2.};                                      ///< seconds per approach plan
+            std::string planner{"geometric::RRTstar"};  ///< plans the approach motions
+            double planningTime{2.};                    ///< seconds per approach plan
+            double weight{1.};                          ///< ManipulabilityObjective::setWeight for the approach plans
             std::array<double, 3> paperHandover{{-0.168, 0.365, 0.720}};  ///< reported for comparison
         };
 
