@@ -149,8 +149,10 @@ namespace michi
             /** \brief Solve both arms for hand position \e p (seeded from \e q); true when both reach it with
                 their orientations and the configuration is collision free (arms, base, each other). */
             bool solveBoth(const Eigen::Vector3d &p, std::vector<double> &q) const;
-            /** \brief Solve one arm (its values in \e q), trying \e q itself, then the nearest samples; true when
-                a collision-free solution (against the base and itself) is found. */
+            /** \brief Solve one arm for hand position \e p (its values in \e q; the others stay): IK from each of
+                \e extraSeeds (the arm's values, in chain order), then from the seedsPerCell constrained samples whose
+                hands are nearest to \e p (available after compute()); true when a solution that touches neither
+                the base nor the arm itself is found. */
             bool solveArm(const ArmTask &task, const Eigen::Vector3d &p, std::vector<double> &q,
                           const std::vector<std::vector<double>> &extraSeeds = {}) const;
             /** \brief The stirring motion about \e centre from configuration \e q (both hands at the centre). */
