@@ -1,6 +1,7 @@
 // The `michi` command: benchmark and plan on michi problem files, list the planners.
 #include <michi/tools/BenchmarkRunner.h>
 #include <michi/tools/HeadingLatticeReport.h>
+#include <michi/tools/DualArmCommand.h>
 #include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
@@ -39,6 +40,8 @@ namespace
         "  michi lattice PROBLEM.yaml --out DIR [--cell-sizes A,B,...] [--angle-steps A,B,...] [--time SECONDS]\n"
         "      build the heading-constrained lattice (paper 003) per setting: nodes, build and query times\n"
         "      (DIR/lattice.md) and pictures of the lattice, groups, path correction and path (DIR/*.svg)\n"
+        "  michi dualarm PROBLEM.yaml --out DIR [--time SECONDS] [--seed S]\n"
+        "      dual-arm work positions by manipulability (paper 004); writes DIR/dualarm.json and pictures\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -282,6 +285,26 @@ namespace
         return 0;
     }
 
+    int dualarm(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "time", "seed"});
+        if (args.positional.size() != 1)
+            throw UsageError("dualarm takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("dualarm needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        const Problem problem = loadProblem(args.positional[0]);
+        ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(args.number("seed", problem.benchmark.seed, true)));
+        DualArmOptions options;
+        options.outDir = args.get("out");
+        options.planningTime = args.number("time", 0.);
+        options.progress = &std::cerr;
+        std::cout << runDualArm(problem, options);
+        std::cerr << "michi dualarm: wrote " << (fs::path(options.outDir) / "dualarm.json").string()
+                  << " and dualarm-*.svg/.png" << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -308,6 +331,8 @@ int main(int argc, char **argv)
             return jmap(argc, argv);
         if (command == "lattice")
             return lattice(argc, argv);
+        if (command == "dualarm")
+            return dualarm(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

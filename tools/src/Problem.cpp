@@ -903,7 +903,8 @@ namespace michi
                 r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
             static const std::set<std::string> known{"name",     "description", "robot",     "scene",
                                                      "start",    "goal",        "request",   "queries",
-                                                     "planners", "benchmark",   "collision", "extras"};
+                                                     "planners", "benchmark",   "collision", "extras",
+                                                     "dual_arm"};  // dual_arm: read by DualArmProblem.cpp
             for (const auto &kv : root)
                 if (!known.count(kv.first.as<std::string>()))
                     r.fail(kv.first.as<std::string>(), "unknown top-level key");

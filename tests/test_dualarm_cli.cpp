@@ -1,0 +1,133 @@
+// `michi dualarm` as a user runs it (on a coarse grid so it takes a few seconds): it writes dualarm.json with the
+// work positions and the stirring motion's manipulability, and the pictures; a problem without a dual_arm section
+// or with a misspelt key gives a one-line error naming the file and key, a non-zero exit and no output folder.
+#include "support/TestScenes.h"
+
+#include <boost/filesystem.hpp>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+
+namespace
+{
+    struct CommandRun
+    {
+        int exitCode;
+        std::string output;
+    };
+
+    CommandRun runMichi(const std::string &args)
+    {
+        const std::string command = std::string(MICHI_BINARY_DIR) + "/bin/michi " + args + " 2>&1";
+        CommandRun run{-1, ""};
+        FILE *pipe = popen(command.c_str(), "r");
+        if (pipe == nullptr)
+            return run;
+        std::array<char, 4096> buffer{};
+        std::size_t n;
+        while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+            run.output.append(buffer.data(), n);
+        const int status = pclose(pipe);
+        run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        return run;
+    }
+
+    std::string slurp(const fs::path &p)
+    {
+        std::ifstream in(p.string());
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+
+    /** The bundled dual_arm problem, made coarse and quick, written to \e dir; \e edit changes its text. */
+    std::string quickProblem(const fs::path &dir, const std::pair<std::string, std::string> &edit = {})
+    {
+        std::string text = slurp(michi::test::sourcePath("problems/dual_arm.yaml"));
+        auto replace = [&text](const std::string &from, const std::string &to)
+        {
+            const auto at = text.find(from);
+            EXPECT_NE(at, std::string::npos) << from;
+            if (at != std::string::npos)
+                text.replace(at, from.size(), to);
+        };
+        replace("urdf: robots/dual_arm.urdf", "urdf: " + michi::test::sourcePath("problems/robots/dual_arm.urdf"));
+        replace("resolution: 0.02", "resolution: 0.04");
+        replace("seed_samples: 3000", "seed_samples: 1500");
+        replace("planning: {planner: geometric::RRTstar, time: 2}",
+                "planning: {planner: geometric::RRTstar, time: 0.2}");
+        if (!edit.first.empty())
+            replace(edit.first, edit.second);
+        const fs::path file = dir / "dual_arm_quick.yaml";
+        std::ofstream(file.string()) << text;
+        return file.string();
+    }
+
+    double number(const std::string &json, const std::string &key)
+    {
+        std::smatch m;
+        const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
+        EXPECT_TRUE(std::regex_search(json, m, re)) << key;
+        return m.empty() ? 0. : std::stod(m[1]);
+    }
+
+    class DualArmCli : public ::testing::Test
+    {
+    protected:
+        void SetUp() override
+        {
+            dir_ = fs::temp_directory_path() / fs::unique_path("michi-dualarm-%%%%%%");
+            fs::create_directories(dir_);
+        }
+        void TearDown() override
+        {
+            fs::remove_all(dir_);
+        }
+        fs::path dir_;
+    };
+}  // namespace
+
+TEST_F(DualArmCli, WritesPositionsStirringAndPictures)
+{
+    const fs::path out = dir_ / "out";
+    const auto run = runMichi("dualarm " + quickProblem(dir_) + " --out " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string json = slurp(out / "dualarm.json");
+    for (const char *key : {"type_a_position", "type_b_position", "common_workspace_volume_m3", "threshold",
+                            "min_manipulability_stirring", "joint_motion_stirring"})
+        EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
+    EXPECT_GT(number(json, "common_workspace_volume_m3"), 0.);
+    EXPECT_GE(number(json, "min_manipulability_stirring"), number(json, "threshold"));
+    EXPECT_NEAR(number(json, "threshold"), 0.004, 1e-12);
+    for (const char *name : {"dualarm-workspace", "dualarm-manipulability", "dualarm-stirring"})
+    {
+        EXPECT_TRUE(fs::exists(out / (std::string(name) + ".svg"))) << name;
+        EXPECT_TRUE(fs::exists(out / (std::string(name) + ".png"))) << name;
+    }
+}
+
+TEST_F(DualArmCli, BadProblemNamesFileAndKeyAndWritesNothing)
+{
+    const fs::path out = dir_ / "out";
+    const std::string noSection = michi::test::sourcePath("problems/planar_2link.yaml");
+    auto run = runMichi("dualarm " + noSection + " --out " + out.string());
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find(noSection + ": dual_arm: missing"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    const std::string misspelt = quickProblem(dir_, {"seeds_per_cell: 4", "seeds_per_cel: 4"});
+    run = runMichi("dualarm " + misspelt + " --out " + out.string());
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find(misspelt + ": dual_arm.seeds_per_cel: unknown key"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    run = runMichi("dualarm " + misspelt);
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.output.find("dualarm needs --out DIR"), std::string::npos) << run.output;
+}
