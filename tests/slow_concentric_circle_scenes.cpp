@@ -1,0 +1,56 @@
+// ConcentricCircle on 50 random planar scenes (label `slow`): each scene (6 random polygons, a 0.5 m + 0.4 m arm,
+// fixed seeds 1..50) gets a start and a goal whose straight motion collides and that a grid search (0.05 rad
+// cells over the whole C-space, neighbours joined by valid motions) proves linked. ConcentricCircle must solve
+// every one, with paths that pass the motion validator and, finely interpolated, the exact FCL checker.
+#include "support/GridReachability.h"
+
+#include <michi/planners/ConcentricCircle.h>
+
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace michi;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+TEST(ConcentricCircleScenes, SolvesFiftyScenesTheGridSolves)
+{
+    int scenes = 0, solved = 0;
+    double seconds = 0.;
+    for (unsigned int seed = 1; scenes < 50 && seed <= 80; ++seed)
+    {
+        const auto q = test::reachableArmQuery(seed);
+        if (!q.found)
+            continue;
+        ++scenes;
+        og::SimpleSetup ss(q.setup.si);
+        ob::ScopedState<> start(q.setup.si->getStateSpace()), goal(q.setup.si->getStateSpace());
+        q.setup.si->getStateSpace()->copyFromReals(start.get(), q.start);
+        q.setup.si->getStateSpace()->copyFromReals(goal.get(), q.goal);
+        ss.setStartAndGoalStates(start, goal);
+        ss.setPlanner(std::make_shared<planners::ConcentricCircle>(ss.getSpaceInformation()));
+        const auto status = ss.solve(60.);
+        seconds += ss.getLastPlanComputationTime();
+        EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << "scene " << seed;
+        if (status != ob::PlannerStatus::EXACT_SOLUTION)
+            continue;
+        const auto &path = ss.getSolutionPath();
+        bool ok = true;
+        for (std::size_t i = 1; i < path.getStateCount(); ++i)
+            ok = ok && q.setup.si->checkMotion(path.getState(i - 1), path.getState(i));
+        og::PathGeometric fine(path);
+        fine.interpolate(static_cast<unsigned int>(std::ceil(path.length() / 0.005)) + path.getStateCount());
+        for (std::size_t i = 0; i < fine.getStateCount(); ++i)
+            ok = ok && q.setup.checker->isValid(fine.getState(i));
+        EXPECT_TRUE(ok) << "scene " << seed;
+        solved += ok ? 1 : 0;
+    }
+    EXPECT_EQ(scenes, 50);
+    EXPECT_EQ(solved, scenes);
+    std::cout << "ConcentricCircle solved " << solved << " of " << scenes << " grid-solvable scenes, "
+              << seconds / std::max(1, scenes) << " s per scene on average" << std::endl;
+}
