@@ -31,6 +31,8 @@ namespace michi
                                  &ConcentricCircle::getRingSpacing, "0.005:0.005:1.");
             declareParam<int>("divisions", this, &ConcentricCircle::setDivisions, &ConcentricCircle::getDivisions,
                               "8:4:720");
+            declareParam<double>("point_spacing", this, &ConcentricCircle::setPointSpacing,
+                                 &ConcentricCircle::getPointSpacing, "0.:0.01:1.");
             declareParam<double>("k_goal", this, &ConcentricCircle::setKGoal, &ConcentricCircle::getKGoal,
                                  "0.:0.1:100.");
             declareParam<double>("k_obstacle", this, &ConcentricCircle::setKObstacle, &ConcentricCircle::getKObstacle,
@@ -39,6 +41,7 @@ namespace michi
                                  &ConcentricCircle::getPotentialRange, "0.:0.01:10.");
             declareParam<int>("max_arc_points", this, &ConcentricCircle::setMaxArcPoints,
                               &ConcentricCircle::getMaxArcPoints, "0:1:720");
+            declareParam<bool>("arc_ends", this, &ConcentricCircle::setArcEnds, &ConcentricCircle::getArcEnds, "0,1");
             declareParam<int>("max_recursions", this, &ConcentricCircle::setMaxRecursions,
                               &ConcentricCircle::getMaxRecursions, "0:1:1000");
             declareParam<bool>("outer_rings", this, &ConcentricCircle::setOuterRings, &ConcentricCircle::getOuterRings,

@@ -145,7 +145,12 @@ namespace michi
                 const Eigen::Vector2d towards = image(ring.centre, nodes_[set.goalNode].p) - ring.centre;
                 // the first point faces the goal, so the straight way is always sampled
                 const double phase = towards.norm() > 0. ? std::atan2(towards.y(), towards.x()) : 0.;
-                const int n = set.divisions;
+                // the paper's fixed number of points, or more on large circles so that neighbouring points stay
+                // within pointSpacing of each other
+                const double pointSpacing = settings_.pointSpacing * set.spacing / settings_.ringSpacing;
+                const int n = pointSpacing > 0. ? std::max(set.divisions, static_cast<int>(std::ceil(
+                                                                              2. * M_PI * ring.radius / pointSpacing))) :
+                                                  set.divisions;
                 ring.points.resize(n);
                 ring.free.assign(n, 0);
                 ring.potential.assign(n, 0.);
@@ -223,7 +228,7 @@ namespace michi
                 return true;
             const CcSet set = sets_[s];
             const Eigen::Vector2d goal = image(nodes_[set.centreNode].p, nodes_[set.goalNode].p);
-            const int n = set.divisions;
+            const int n = static_cast<int>(rings_[r].points.size());
             // free arcs: maximal runs of free points (cyclic); the minimum-potential point of each is a candidate
             std::vector<char> freeMask = rings_[r].free;
             int firstBlocked = -1;
@@ -249,40 +254,62 @@ namespace michi
                     arcs.back().push_back(i);
                 }
             }
-            // long arcs are cut into pieces of at most maxArcPoints points, one candidate each (0: the paper's
-            // one candidate per arc)
-            if (settings_.maxArcPoints > 0)
+            // Candidates of each free arc, in order along it: the minimum-potential point of the arc (the paper);
+            // with maxArcPoints > 0 a long arc is cut into pieces of at most that many points (an angle: finer
+            // circles of a recursion get proportionally more points per piece), one minimum each; with arcEnds
+            // the arc's two end points (next to the obstacles) as well. Neighbours along one arc are linked when
+            // their chord is free, so chains can follow an arc around an obstacle.
+            const int piecePoints = settings_.maxArcPoints > 0 ?
+                                        std::max(1, settings_.maxArcPoints * set.divisions / settings_.divisions) :
+                                        n;
+            auto candidate = [&](int i)
             {
-                std::vector<std::vector<int>> pieces;
-                for (const auto &arc : arcs)
-                {
-                    const int count = (static_cast<int>(arc.size()) + settings_.maxArcPoints - 1) / settings_.maxArcPoints;
-                    const int size = (static_cast<int>(arc.size()) + count - 1) / count;
-                    for (std::size_t from = 0; from < arc.size(); from += size)
-                        pieces.emplace_back(arc.begin() + from, arc.begin() + std::min(arc.size(), from + size));
-                }
-                arcs = std::move(pieces);
-            }
+                const int node = addNode(rings_[r].points[i], s, r);
+                nodes_[node].potential = rings_[r].potential[i];
+                rings_[r].candidates.push_back(node);
+                return node;
+            };
+            std::vector<std::vector<int>> chains;
             for (const auto &arc : arcs)
             {
                 if (ptc)
                     return false;
-                int best = -1;
-                double bestPhi = INF;
                 for (const int i : arc)
+                    rings_[r].potential[i] = potential(rings_[r].points[i], goal, s, k);
+                const bool closed = static_cast<int>(arc.size()) == n;
+                const bool ends = settings_.arcEnds && !closed && arc.size() >= 3;
+                std::vector<int> chain;
+                if (ends)
+                    chain.push_back(candidate(arc.front()));
+                const int count = (static_cast<int>(arc.size()) + piecePoints - 1) / piecePoints;
+                const int size = (static_cast<int>(arc.size()) + count - 1) / count;
+                for (std::size_t from = 0; from < arc.size(); from += size)
                 {
-                    const double phi = potential(rings_[r].points[i], goal, s, k);
-                    rings_[r].potential[i] = phi;
-                    if (phi < bestPhi)
-                    {
-                        bestPhi = phi;
-                        best = i;
-                    }
+                    int best = -1;
+                    double bestPhi = INF;
+                    for (std::size_t j = from; j < std::min(arc.size(), from + size); ++j)
+                        if (rings_[r].potential[arc[j]] < bestPhi)
+                        {
+                            bestPhi = rings_[r].potential[arc[j]];
+                            best = arc[j];
+                        }
+                    if (ends && (best == arc.front() || best == arc.back()))
+                        continue;  // already a candidate
+                    chain.push_back(candidate(best));
                 }
-                const int node = addNode(rings_[r].points[best], s, r);
-                nodes_[node].potential = bestPhi;
-                rings_[r].candidates.push_back(node);
+                if (ends)
+                    chain.push_back(candidate(arc.back()));
+                if (closed && chain.size() > 2)
+                    chain.push_back(chain.front());
+                chains.push_back(std::move(chain));
             }
+            for (const auto &chain : chains)
+                for (std::size_t j = 1; j < chain.size(); ++j)
+                {
+                    if (ptc)
+                        return false;
+                    tryLink(chain[j - 1], chain[j]);
+                }
             // links: to the centre (first circle) or to the candidates of the circle inside, and to the goal when
             // this circle is next to the goal's radius
             const std::vector<int> candidates = rings_[r].candidates;
@@ -294,7 +321,18 @@ namespace michi
                     tryLink(set.centreNode, c);
                 else
                     for (const int d : rings_[set.rings[k - 2]].candidates)
+                    {
+                        // with cut arcs, only candidates within two pieces' angle of each other are tried
+                        if (settings_.maxArcPoints > 0)
+                        {
+                            const Eigen::Vector2d centre = rings_[r].centre;
+                            const Eigen::Vector2d u = nodes_[c].p - centre, v = nodes_[d].p - centre;
+                            const double angle = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+                            if (std::abs(angle) > 2. * 2. * M_PI * std::min(piecePoints, n / 4) / n + 1e-9)
+                                continue;
+                        }
                         tryLink(d, c);
+                    }
                 // the paper's rule (the circle passes the goal), or the goal (another image of it on a wrapping
                 // axis) lies within two spacings
                 const Eigen::Vector2d pc = nodes_[c].p;
@@ -449,15 +487,26 @@ namespace michi
                     return collectPaths();
             // 3. recursion: the closest pair of unlinked nodes (one reached from the start, one reaching the goal)
             //    becomes a new start and goal, with finer circles
+            std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> triedPositions;
             while (!connected() && recursions_ < settings_.maxRecursions && !ptc)
             {
                 const std::vector<char> fromS = component(0), fromG = component(1);
                 int bestA = -1, bestB = -1;
                 double bestD = INF;
+                // a pair next to one already tried (both ends within two spacings) would repeat it: skipped
+                auto nearTried = [&](const Eigen::Vector2d &pa, const Eigen::Vector2d &pb)
+                {
+                    const double near = 2. * settings_.ringSpacing;
+                    for (const auto &t : triedPositions)
+                        if (((t.first - pa).norm() < near && (t.second - pb).norm() < near))
+                            return true;
+                    return false;
+                };
                 for (std::size_t a = 0; a < nodes_.size(); ++a)
                     if (fromS[a])
                         for (std::size_t b = 0; b < nodes_.size(); ++b)
-                            if (fromG[b] && !tried_.count({static_cast<int>(a), static_cast<int>(b)}))
+                            if (fromG[b] && !tried_.count({static_cast<int>(a), static_cast<int>(b)}) &&
+                                !nearTried(nodes_[a].p, nodes_[b].p))
                             {
                                 const double d = (image(nodes_[a].p, nodes_[b].p) - nodes_[a].p).norm();
                                 if (d < bestD)
@@ -470,6 +519,7 @@ namespace michi
                 if (bestA < 0)
                     break;
                 tried_.insert({bestA, bestB});
+                triedPositions.emplace_back(nodes_[bestA].p, nodes_[bestB].p);
                 ++recursions_;
                 if (tryLink(bestA, bestB))
                     continue;  // the new start sees the new goal

@@ -1,5 +1,7 @@
 #include "support/GridReachability.h"
 
+#include <michi/validity/ConservativeMotionValidator.h>
+
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -133,6 +135,8 @@ namespace michi
             ArmQuery q;
             q.setup = planarArmSetup({0.5, 0.4}, randomPolygons(seed, options));
             const auto &si = q.setup.si;
+            // the exact (conservative-advancement) motion validator, for the grid and for the planners
+            si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, q.setup.checker));
             GridComponents grid(si, step);
             ompl::RNG rng(7000 + seed);
             ob::State *a = si->allocState(), *b = si->allocState();

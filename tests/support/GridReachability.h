@@ -21,7 +21,8 @@ namespace michi
                            const std::vector<double> &goal, double step);
 
         /** \brief A random planar scene (6 random polygons, a 0.5 m + 0.4 m arm) with a start and a goal at
-            least 1 rad apart whose straight motion collides and that gridReachable() links at \e step. */
+            least 1 rad apart whose straight motion collides and that gridReachable() links at \e step. The space's
+            motion validator is the exact ConservativeMotionValidator (for the grid and for planners). */
         struct ArmQuery
         {
             CheckerSetup setup;

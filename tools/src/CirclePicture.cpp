@@ -136,9 +136,13 @@ namespace michi
                     svg << num(X(p.x())) << "," << num(Y(p.y())) << " ";
                 svg << "\"/>\n";
             }
+            // candidates: black, or green / red when linked to the start / the goal while no path exists
+            const bool joined = !search.paths().empty();
+            const auto fromStart = search.component(0), toGoal = search.component(1);
             for (std::size_t v = 2; v < nodes.size(); ++v)
                 svg << "<circle cx=\"" << num(X(nodes[v].p.x())) << "\" cy=\"" << num(Y(nodes[v].p.y()))
-                    << "\" r=\"2.2\" fill=\"#111\"/>\n";
+                    << "\" r=\"2.2\" fill=\""
+                    << (joined ? "#111" : fromStart[v] ? "#2ca02c" : toGoal[v] ? "#d62728" : "#111") << "\"/>\n";
             const char *colours[2] = {"#2ca02c", "#d62728"};
             for (int v = 0; v < 2 && v < static_cast<int>(nodes.size()); ++v)
                 svg << "<circle cx=\"" << num(X(nodes[v].p.x())) << "\" cy=\"" << num(Y(nodes[v].p.y()))

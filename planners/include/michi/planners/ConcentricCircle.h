@@ -83,6 +83,14 @@ namespace michi
             {
                 return settings_.divisions;
             }
+            void setPointSpacing(double v)
+            {
+                settings_.pointSpacing = v;
+            }
+            double getPointSpacing() const
+            {
+                return settings_.pointSpacing;
+            }
             void setKGoal(double v)
             {
                 settings_.kGoal = v;
@@ -114,6 +122,14 @@ namespace michi
             int getMaxArcPoints() const
             {
                 return settings_.maxArcPoints;
+            }
+            void setArcEnds(bool v)
+            {
+                settings_.arcEnds = v;
+            }
+            bool getArcEnds() const
+            {
+                return settings_.arcEnds;
             }
             void setMaxRecursions(int v)
             {

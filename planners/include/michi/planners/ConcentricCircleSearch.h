@@ -20,6 +20,9 @@ namespace michi
         {
             double ringSpacing{0.1};  ///< radial distance between two circles (map units, radians for J-maps)
             int divisions{72};        ///< points per circle (the paper: 72, every 5 degrees)
+            /** \brief Large circles get more than \e divisions points so that neighbouring points are at most
+                this far apart (0: always \e divisions, as in the paper, whose circles stay small). */
+            double pointSpacing{0.1};
             double kGoal{1.};         ///< Kg of the attraction -Kg / Dg
             double kObstacle{1e-3};   ///< Kp of the repulsion Kp / Dp^2
             /** \brief Obstacle edges farther than this from P are left out of the repulsion sum (their term is
@@ -29,6 +32,9 @@ namespace michi
                 one candidate per arc, as in the paper). One minimum on a long arc is often out of sight of the
                 next circle's candidates although the arcs overlap; the pieces keep the circles linked. */
             int maxArcPoints{9};
+            /** \brief Also make the two end points of every free arc (next to the obstacles) candidates, so
+                chains can follow obstacle boundaries (the paper: only the minimum). */
+            bool arcEnds{true};
             int maxRecursions{8};  ///< sub-problems (new start and goal between unlinked points) before giving up
             /** \brief After the paper's circles (until the goal is reached) fail, keep adding circles around the
                 start until they cover the whole map before recursing. */
@@ -125,6 +131,8 @@ namespace michi
             {
                 return recursions_;
             }
+            /** \brief Per node: 1 when linked (through any chain) to node \e from. */
+            std::vector<char> component(int from) const;
             /** \brief \e to shifted by whole periods on wrapping axes to lie within half a period of \e from. */
             Eigen::Vector2d image(const Eigen::Vector2d &from, const Eigen::Vector2d &to) const;
 
@@ -138,7 +146,6 @@ namespace michi
             /** sample rings k and k + 1, make the candidates of k and link them; false when terminated */
             bool linkRing(int s, int k, const ompl::base::PlannerTerminationCondition &ptc);
             double potential(const Eigen::Vector2d &p, const Eigen::Vector2d &goal, int s, int k) const;
-            std::vector<char> component(int from) const;
             bool connected() const;
             void dijkstra(int source, std::vector<double> &dist, std::vector<int> &parent) const;
 
