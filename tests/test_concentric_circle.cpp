@@ -14,7 +14,6 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
@@ -49,9 +48,11 @@ namespace
         ob::PlannerStatus status;
     };
 
-    Run planProblem(const std::string &name)
+    Run planProblem(const std::string &name, const std::string &checker = "")
     {
         Run r{tools::loadProblem(test::sourcePath("problems/" + name + ".yaml")), {}, nullptr, {}};
+        if (!checker.empty())
+            r.problem.checker = checker;
         r.ctx = tools::makePlanningContext(r.problem);
         r.planner = std::make_shared<planners::ConcentricCircle>(r.ctx.setup->getSpaceInformation());
         r.ctx.setup->setPlanner(r.planner);
@@ -94,6 +95,16 @@ TEST(ConcentricCircle, SolvesPlanar2Link)
     r.planner->getPlannerData(data);
     EXPECT_EQ(data.numVertices(), search.nodes().size());
     EXPECT_EQ(data.numEdges(), 2 * search.links().size());
+}
+
+TEST(ConcentricCircle, PlansOnTheJMapPolygonsWithTheJMapChecker)
+{
+    auto r = planProblem("planar_2link", "jmap");
+    ASSERT_EQ(r.status, ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(r.planner->usedMode(), "jmap");
+    ASSERT_EQ(r.planner->stages().size(), 1u);
+    EXPECT_NE(dynamic_cast<const planners::PolygonCircleMap *>(r.planner->stages()[0].map.get()), nullptr);
+    EXPECT_EQ(exactCheck(r.ctx.setup->getSpaceInformation(), *r.ctx.checker, r.ctx.setup->getSolutionPath()), "");
 }
 
 TEST(ConcentricCircle, SolvesPlanar3dofHandThroughTheHierarchy)
@@ -198,20 +209,6 @@ TEST(ConcentricCircle, SolvesRandomScenesTheGridSolves)
             o.view = {-M_PI, -M_PI, M_PI, M_PI};
             o.background = 200;
             tools::writeCircleSvg(planner->stages()[0], "/tmp/ccdbg/scene" + std::to_string(seed) + ".svg", o);
-            og::SimpleSetup rc(q.setup.si);
-            rc.setStartAndGoalStates(start, goal);
-            rc.setPlanner(std::make_shared<og::RRTConnect>(rc.getSpaceInformation()));
-            if (rc.solve(10.) == ob::PlannerStatus::EXACT_SOLUTION)
-            {
-                rc.simplifySolution(2.);
-                rc.getSolutionPath().interpolate();
-                for (auto *st : rc.getSolutionPath().getStates())
-                {
-                    std::vector<double> v;
-                    q.setup.si->getStateSpace()->copyToReals(v, st);
-                    std::cout << "rc " << v[0] << " " << v[1] << "\n";
-                }
-            }
             std::cout << "start " << q.start[0] << " " << q.start[1] << " goal " << q.goal[0] << " " << q.goal[1]
                       << std::endl;
         }

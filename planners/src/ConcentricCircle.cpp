@@ -216,12 +216,9 @@ namespace michi
             stages_.push_back(stage);
             if (!found || ptc)
                 return false;
+            // every link of these paths was checked with the space's motion validator on the same states
             for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
-            {
-                auto states = liftPath(stage, i, true);
-                if (!states.empty())
-                    fullPaths_.push_back(states);
-            }
+                fullPaths_.push_back(liftPath(stage, i, false));
             return !fullPaths_.empty();
         }
 
@@ -281,11 +278,7 @@ namespace michi
                 stages_[0].chosenPath = static_cast<int>(i);
                 stages_.push_back(handStage);
                 for (std::size_t j = 0; j < handStage.search->paths().size(); ++j)
-                {
-                    auto states = liftPath(handStage, j, true);
-                    if (!states.empty())
-                        fullPaths_.push_back(states);
-                }
+                    fullPaths_.push_back(liftPath(handStage, j, false));
                 if (!fullPaths_.empty())
                     return true;
                 stages_.pop_back();
@@ -375,16 +368,31 @@ namespace michi
                 si_->copyState(p.front(), startState);
                 si_->copyState(p.back(), goalState);
             }
-            double bestCost = std::numeric_limits<double>::infinity();
+            // the best path whose every motion the space's motion validator accepts (checked again here, with
+            // the exact start and goal states)
+            std::vector<std::pair<double, int>> ranked;
             for (std::size_t i = 0; i < fullPaths_.size(); ++i)
+                ranked.emplace_back(pathCost(fullPaths_[i]), static_cast<int>(i));
+            std::stable_sort(ranked.begin(), ranked.end(),
+                             [](const std::pair<double, int> &a, const std::pair<double, int> &b)
+                             {
+                                 return a.first < b.first;
+                             });
+            for (const auto &r : ranked)
             {
-                const double c = pathCost(fullPaths_[i]);
-                if (c < bestCost)
+                const auto &states = fullPaths_[r.second];
+                bool ok = true;
+                for (std::size_t j = 1; ok && j < states.size(); ++j)
+                    ok = si_->checkMotion(states[j - 1], states[j]);
+                if (ok)
                 {
-                    bestCost = c;
-                    bestPath_ = static_cast<int>(i);
+                    bestPath_ = r.second;
+                    break;
                 }
+                OMPL_WARN("%s: path %d failed the motion validator", getName().c_str(), r.second);
             }
+            if (bestPath_ < 0)
+                return ob::PlannerStatus::ABORT;
             if (!stages_.empty())
                 stages_.back().chosenPath = bestPath_;
             auto path = std::make_shared<og::PathGeometric>(si_);

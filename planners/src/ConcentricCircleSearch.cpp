@@ -78,6 +78,57 @@ namespace michi
             return true;
         }
 
+        void ConcentricCircleSearch::proposeLink(int a, int b)
+        {
+            if (a == b)
+                return;
+            for (const auto &e : adjacency_[a])
+                if (e.first == b)
+                    return;
+            addLink(a, b);
+            unchecked_.insert({std::min(a, b), std::max(a, b)});
+        }
+
+        bool ConcentricCircleSearch::validateLink(int a, int b)
+        {
+            const auto it = unchecked_.find({std::min(a, b), std::max(a, b)});
+            if (it == unchecked_.end())
+                return true;
+            unchecked_.erase(it);
+            const Eigen::Vector2d pa = nodes_[a].p, pb = image(pa, nodes_[b].p);
+            if (map_.isVisible(pa, pb))
+                return true;
+            removeLink(a, b);
+            return false;
+        }
+
+        bool ConcentricCircleSearch::validatePath(const std::vector<int> &path)
+        {
+            for (std::size_t i = 1; i < path.size(); ++i)
+                if (!validateLink(path[i - 1], path[i]))
+                    return false;
+            return true;
+        }
+
+        bool ConcentricCircleSearch::lazyConnect()
+        {
+            std::vector<double> dist;
+            std::vector<int> parent;
+            while (ptc_ == nullptr || !*ptc_)
+            {
+                dijkstra(0, dist, parent);
+                if (dist[1] == INF)
+                    return false;
+                std::vector<int> path;
+                for (int u = 1; u >= 0; u = parent[u])
+                    path.push_back(u);
+                std::reverse(path.begin(), path.end());
+                if (validatePath(path))
+                    return true;
+            }
+            return false;
+        }
+
         void ConcentricCircleSearch::removeLink(int a, int b)
         {
             auto drop = [this](int from, int to)
@@ -92,6 +143,7 @@ namespace michi
             };
             drop(a, b);
             drop(b, a);
+            unchecked_.erase({std::min(a, b), std::max(a, b)});
         }
 
         std::vector<std::pair<int, int>> ConcentricCircleSearch::links() const
@@ -99,7 +151,7 @@ namespace michi
             std::vector<std::pair<int, int>> out;
             for (std::size_t a = 0; a < adjacency_.size(); ++a)
                 for (const auto &e : adjacency_[a])
-                    if (static_cast<int>(a) < e.first)
+                    if (static_cast<int>(a) < e.first && !unchecked_.count({static_cast<int>(a), e.first}))
                         out.emplace_back(static_cast<int>(a), e.first);
             return out;
         }
@@ -308,7 +360,7 @@ namespace michi
                 {
                     if (ptc)
                         return false;
-                    tryLink(chain[j - 1], chain[j]);
+                    proposeLink(chain[j - 1], chain[j]);
                 }
             // links: to the centre (first circle) or to the candidates of the circle inside, and to the goal when
             // this circle is next to the goal's radius
@@ -318,7 +370,7 @@ namespace michi
                 if (ptc)
                     return false;
                 if (k == 1)
-                    tryLink(set.centreNode, c);
+                    proposeLink(set.centreNode, c);
                 else
                     for (const int d : rings_[set.rings[k - 2]].candidates)
                     {
@@ -331,14 +383,14 @@ namespace michi
                             if (std::abs(angle) > 2. * 2. * M_PI * std::min(piecePoints, n / 4) / n + 1e-9)
                                 continue;
                         }
-                        tryLink(d, c);
+                        proposeLink(d, c);
                     }
                 // the paper's rule (the circle passes the goal), or the goal (another image of it on a wrapping
                 // axis) lies within two spacings
                 const Eigen::Vector2d pc = nodes_[c].p;
                 if (std::abs(rings_[r].radius - set.goalRadius) <= set.spacing + 1e-12 ||
                     (image(pc, nodes_[set.goalNode].p) - pc).norm() <= 2. * set.spacing)
-                    tryLink(c, set.goalNode);
+                    proposeLink(c, set.goalNode);
             }
             rings_[r].linked = true;
             return true;
@@ -363,9 +415,9 @@ namespace michi
             return seen;
         }
 
-        bool ConcentricCircleSearch::connected() const
+        bool ConcentricCircleSearch::connected()
         {
-            return component(0)[1] != 0;
+            return lazyConnect();
         }
 
         void ConcentricCircleSearch::dijkstra(int source, std::vector<double> &dist, std::vector<int> &parent) const
@@ -395,12 +447,10 @@ namespace michi
         bool ConcentricCircleSearch::collectPaths()
         {
             paths_.clear();
+            if (!lazyConnect())
+                return false;
             std::vector<double> distS, distG;
             std::vector<int> parS, parG;
-            dijkstra(0, distS, parS);
-            if (distS[1] == INF)
-                return false;
-            dijkstra(1, distG, parG);
             std::vector<std::pair<double, std::vector<int>>> found;
             auto fromStart = [&](int v)
             {
@@ -417,39 +467,64 @@ namespace michi
                     p.push_back(u);
                 return p;
             };
+            // a new path (no node twice, not yet found) whose links all pass the visibility check
             auto add = [&](std::vector<int> p)
             {
                 if (p.size() < 2 || p.front() != 0 || p.back() != 1)
-                    return;
-                // no node twice
+                    return true;
                 std::vector<int> sorted = p;
                 std::sort(sorted.begin(), sorted.end());
                 if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-                    return;
+                    return true;
                 for (const auto &f : found)
                     if (f.second == p)
-                        return;
+                        return true;
+                if (!validatePath(p))
+                    return false;
                 double len = 0.;
                 for (std::size_t i = 1; i < p.size(); ++i)
                     len += (image(nodes_[p[i - 1]].p, nodes_[p[i]].p) - nodes_[p[i - 1]].p).norm();
                 found.emplace_back(len, std::move(p));
+                return true;
             };
+            dijkstra(0, distS, parS);
             add(fromStart(1));
-            // alternatives: through each link of the goal, and through each link of the start (left and right of
-            // an obstacle, ...)
+            // alternatives: the shortest path through each link of the goal and through each link of the start
+            // (left and right of an obstacle, ...); a path whose link fails its check is looked for again
+            std::vector<int> goalLinks, startLinks;
             for (const auto &e : adjacency_[1])
-                if (distS[e.first] < INF)
-                {
-                    auto p = fromStart(e.first);
-                    p.push_back(1);
-                    add(p);
-                }
+                goalLinks.push_back(e.first);
             for (const auto &e : adjacency_[0])
-                if (distG[e.first] < INF)
+                startLinks.push_back(e.first);
+            for (const int v : goalLinks)
+                for (int attempt = 0; attempt < 8 && static_cast<int>(found.size()) < settings_.maxPaths; ++attempt)
                 {
-                    auto p = toGoal(e.first);
+                    dijkstra(0, distS, parS);
+                    if (distS[v] == INF || std::none_of(adjacency_[v].begin(), adjacency_[v].end(),
+                                                        [](const std::pair<int, double> &e)
+                                                        {
+                                                            return e.first == 1;
+                                                        }))
+                        break;
+                    auto p = fromStart(v);
+                    p.push_back(1);
+                    if (add(p))
+                        break;
+                }
+            for (const int u : startLinks)
+                for (int attempt = 0; attempt < 8 && static_cast<int>(found.size()) < settings_.maxPaths; ++attempt)
+                {
+                    dijkstra(1, distG, parG);
+                    if (distG[u] == INF || std::none_of(adjacency_[u].begin(), adjacency_[u].end(),
+                                                        [](const std::pair<int, double> &e)
+                                                        {
+                                                            return e.first == 0;
+                                                        }))
+                        break;
+                    auto p = toGoal(u);
                     p.insert(p.begin(), 0);
-                    add(p);
+                    if (add(p))
+                        break;
                 }
             std::stable_sort(found.begin(), found.end(),
                              [](const auto &a, const auto &b)
@@ -464,10 +539,20 @@ namespace michi
         bool ConcentricCircleSearch::run(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,
                                          const ompl::base::PlannerTerminationCondition &ptc)
         {
+            ptc_ = &ptc;
+            const bool found = runCircles(start, goal, ptc);
+            ptc_ = nullptr;
+            return found;
+        }
+
+        bool ConcentricCircleSearch::runCircles(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,
+                                                const ompl::base::PlannerTerminationCondition &ptc)
+        {
             nodes_.clear();
             rings_.clear();
             sets_.clear();
             adjacency_.clear();
+            unchecked_.clear();
             paths_.clear();
             tried_.clear();
             recursions_ = 0;
@@ -475,7 +560,7 @@ namespace michi
             addNode(image(start, goal), -1, -1);
             if (ptc || !map_.isFree(nodes_[0].p) || !map_.isFree(nodes_[1].p))
                 return false;
-            tryLink(0, 1);  // the straight segment, when free, is one of the paths
+            proposeLink(0, 1);  // the straight segment, when free, is one of the paths
             // 1. the paper's circles: from the start until the goal is reached
             const int main = addSet(0, 1, settings_.ringSpacing, settings_.divisions, settings_.outerRings);
             for (int k = 1; k <= sets_[main].goalRings + 1 && k <= sets_[main].maxRings; ++k)

@@ -115,7 +115,8 @@ namespace michi
             {
                 return sets_;
             }
-            /** \brief Links as node pairs (a < b). */
+            /** \brief Links checked for visibility, as node pairs (a < b). Links are proposed between candidates
+                and checked lazily, when a shortest path uses them (whether a path exists does not change). */
             std::vector<std::pair<int, int>> links() const;
             /** \brief Paths as node ids from node 0 (start) to node 1 (goal), shortest first. */
             const std::vector<std::vector<int>> &paths() const
@@ -137,16 +138,24 @@ namespace michi
             Eigen::Vector2d image(const Eigen::Vector2d &from, const Eigen::Vector2d &to) const;
 
         private:
+            bool runCircles(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,
+                            const ompl::base::PlannerTerminationCondition &ptc);
             int addNode(const Eigen::Vector2d &p, int set, int ring);
             void addLink(int a, int b);
             bool tryLink(int a, int b);
+            /** a link whose visibility is checked only when a path uses it (lazily, as LazyPRM) */
+            void proposeLink(int a, int b);
+            bool validateLink(int a, int b);
+            bool validatePath(const std::vector<int> &path);
+            /** checks the links of shortest paths until one passes or none is left */
+            bool lazyConnect();
             int addSet(int centre, int goal, double spacing, int divisions, bool cover);
             /** sample ring k (1-based) of set s if not yet sampled; returns its index in rings_ */
             int sampleRing(int s, int k, const ompl::base::PlannerTerminationCondition &ptc);
             /** sample rings k and k + 1, make the candidates of k and link them; false when terminated */
             bool linkRing(int s, int k, const ompl::base::PlannerTerminationCondition &ptc);
             double potential(const Eigen::Vector2d &p, const Eigen::Vector2d &goal, int s, int k) const;
-            bool connected() const;
+            bool connected();
             void dijkstra(int source, std::vector<double> &dist, std::vector<int> &parent) const;
 
             const CircleMap &map_;
@@ -157,7 +166,9 @@ namespace michi
             std::vector<std::vector<std::pair<int, double>>> adjacency_;
             std::vector<std::vector<int>> paths_;
             std::set<std::pair<int, int>> tried_;
+            std::set<std::pair<int, int>> unchecked_;  ///< proposed links not yet checked (a < b)
             int recursions_{0};
+            const ompl::base::PlannerTerminationCondition *ptc_{nullptr};  ///< of the running search
         };
     }  // namespace planners
 }  // namespace michi
