@@ -2,6 +2,8 @@
 // fixed seeds 1..50) gets a start and a goal whose straight motion collides and that a grid search (0.05 rad
 // cells over the whole C-space, neighbours joined by valid motions) proves linked. ConcentricCircle must solve
 // every one, with paths that pass the motion validator and, finely interpolated, the exact FCL checker.
+// MICHI_CC_SET="name=value,..." sets planner parameters (for ablations, e.g. point_spacing=0: the test then
+// reports how many scenes the changed planner solves).
 #include "support/GridReachability.h"
 
 #include <michi/planners/ConcentricCircle.h>
@@ -11,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <iostream>
 
 using namespace michi;
@@ -32,7 +36,16 @@ TEST(ConcentricCircleScenes, SolvesFiftyScenesTheGridSolves)
         q.setup.si->getStateSpace()->copyFromReals(start.get(), q.start);
         q.setup.si->getStateSpace()->copyFromReals(goal.get(), q.goal);
         ss.setStartAndGoalStates(start, goal);
-        ss.setPlanner(std::make_shared<planners::ConcentricCircle>(ss.getSpaceInformation()));
+        auto planner = std::make_shared<planners::ConcentricCircle>(ss.getSpaceInformation());
+        if (const char *set = std::getenv("MICHI_CC_SET"))
+        {
+            std::stringstream in(set);
+            std::string kv;
+            while (std::getline(in, kv, ','))
+                ASSERT_TRUE(planner->params().setParam(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1)))
+                    << kv;
+        }
+        ss.setPlanner(planner);
         const auto status = ss.solve(60.);
         seconds += ss.getLastPlanComputationTime();
         EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << "scene " << seed;

@@ -91,15 +91,26 @@ namespace michi
             {
                 const int n = options.background;
                 const double cw = (bgHi.x() - bgLo.x()) / n, ch = (bgHi.y() - bgLo.y()) / n;
+                // one rectangle per vertical run of blocked cells
                 for (int i = 0; i < n; ++i)
-                    for (int j = 0; j < n; ++j)
+                {
+                    const double x = bgLo.x() + i * cw;
+                    int runStart = -1;
+                    for (int j = 0; j <= n; ++j)
                     {
-                        const Eigen::Vector2d c(bgLo.x() + (i + 0.5) * cw, bgLo.y() + (j + 0.5) * ch);
-                        if (!map.isFree(c))
-                            svg << "<rect x=\"" << num(X(c.x() - cw / 2)) << "\" y=\"" << num(Y(c.y() + ch / 2))
-                                << "\" width=\"" << num(cw * s + 0.6) << "\" height=\"" << num(ch * s + 0.6)
+                        const bool blocked =
+                            j < n && !map.isFree(Eigen::Vector2d(x + 0.5 * cw, bgLo.y() + (j + 0.5) * ch));
+                        if (blocked && runStart < 0)
+                            runStart = j;
+                        if (!blocked && runStart >= 0)
+                        {
+                            svg << "<rect x=\"" << num(X(x)) << "\" y=\"" << num(Y(bgLo.y() + j * ch)) << "\" width=\""
+                                << num(cw * s + 0.6) << "\" height=\"" << num((j - runStart) * ch * s + 0.6)
                                 << "\" fill=\"#3b6fb6\" fill-opacity=\"0.45\"/>\n";
+                            runStart = -1;
+                        }
                     }
+                }
             }
             // circles and their points
             for (const auto &ring : search.rings())
@@ -108,7 +119,7 @@ namespace michi
                     << "\" r=\"" << num(ring.radius * s) << "\" fill=\"none\" stroke=\"#999\" stroke-width=\"0.4\""
                     << (ring.set > 0 ? " stroke-dasharray=\"2,2\"" : "") << "/>\n";
                 for (std::size_t i = 0; i < ring.points.size(); ++i)
-                    if (!ring.free[i])
+                    if (!ring.free[i] && map.inRange(ring.points[i]))
                         svg << "<circle cx=\"" << num(X(ring.points[i].x())) << "\" cy=\""
                             << num(Y(ring.points[i].y())) << "\" r=\"1\" fill=\"#d62728\"/>\n";
             }
