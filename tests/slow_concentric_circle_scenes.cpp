@@ -42,8 +42,7 @@ TEST(ConcentricCircleScenes, SolvesFiftyScenesTheGridSolves)
             std::stringstream in(set);
             std::string kv;
             while (std::getline(in, kv, ','))
-                ASSERT_TRUE(planner->params().setParam(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1)))
-                    << kv;
+                ASSERT_TRUE(planner->params().setParam(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1))) << kv;
         }
         ss.setPlanner(planner);
         const auto status = ss.solve(60.);

@@ -172,8 +172,7 @@ TEST(ConcentricCircle, ContinuousJointsWrap)
     // a continuous 2-link arm; a post blocks the way through zero, the way round through +-pi is free
     test::PlanarArmOptions options;
     options.continuous = true;
-    const auto setup =
-        test::planarArmSetup({0.5, 0.4}, {test::boxOutline({0.35, -0.08}, {0.6, 0.08})}, options);
+    const auto setup = test::planarArmSetup({0.5, 0.4}, {test::boxOutline({0.35, -0.08}, {0.6, 0.08})}, options);
     og::SimpleSetup ss(setup.si);
     ob::ScopedState<> start(setup.si->getStateSpace()), goal(setup.si->getStateSpace());
     std::vector<double> s{-1.2, 0.}, g{1.2, 0.};

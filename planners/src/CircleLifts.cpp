@@ -99,12 +99,12 @@ namespace michi
 
         ProjectionLift::ProjectionLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal,
                                        int axis1, int axis2)
-          : si_(std::move(si))
-          , start_(std::move(start))
-          , goal_(std::move(goal))
-          , axis1_(axis1)
-          , axis2_(axis2)
-          , axes_(valueAxes(*si_->getStateSpace()))
+            : si_(std::move(si))
+            , start_(std::move(start))
+            , goal_(std::move(goal))
+            , axis1_(axis1)
+            , axis2_(axis2)
+            , axes_(valueAxes(*si_->getStateSpace()))
         {
             if (axes_.size() != start_.size())
                 throw ompl::Exception("ConcentricCircle", "the space's values do not match its components");
@@ -161,14 +161,14 @@ namespace michi
 
         HandLift::HandLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal, int axis1,
                            int axis2, int hand, std::vector<Eigen::Vector2d> armPath)
-          : si_(std::move(si))
-          , start_(std::move(start))
-          , goal_(std::move(goal))
-          , axis1_(axis1)
-          , axis2_(axis2)
-          , hand_(hand)
-          , axes_(valueAxes(*si_->getStateSpace()))
-          , arm_(std::move(armPath))
+            : si_(std::move(si))
+            , start_(std::move(start))
+            , goal_(std::move(goal))
+            , axis1_(axis1)
+            , axis2_(axis2)
+            , hand_(hand)
+            , axes_(valueAxes(*si_->getStateSpace()))
+            , arm_(std::move(armPath))
         {
             s_.push_back(0.);
             for (std::size_t i = 1; i < arm_.size(); ++i)
@@ -301,8 +301,7 @@ namespace michi
                                                     const std::vector<int> &handValues)
         {
             const auto *fcl = fclOf(si);
-            const auto *rgb =
-                fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
+            const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
             validity::PlanarArmPtr planar;
             if (rgb != nullptr)
             {
@@ -330,8 +329,8 @@ namespace michi
                     links.push_back(static_cast<int>(l));
             }
             auto axes = validity::planarAxes(*planar, variables[arm.axis1()], variables[arm.axis2()], configuration);
-            auto source = std::make_shared<validity::PlanarIntervalSource>(planar, fcl->scene()->polygons2d(), axes,
-                                                                           links);
+            auto source =
+                std::make_shared<validity::PlanarIntervalSource>(planar, fcl->scene()->polygons2d(), axes, links);
             const auto &valueAxis = arm.axes();
             const ValueAxis ax1 = valueAxis[arm.axis1()], ax2 = valueAxis[arm.axis2()];
             auto freeAt = [source](const Eigen::Vector2d &p)

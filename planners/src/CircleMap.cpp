@@ -69,7 +69,7 @@ namespace michi
         }
 
         CallbackCircleMap::CallbackCircleMap(PointTest isFree, SegmentTest isVisible, Breaks breaks)
-          : isFree_(std::move(isFree)), isVisible_(std::move(isVisible)), breaks_(std::move(breaks))
+            : isFree_(std::move(isFree)), isVisible_(std::move(isVisible)), breaks_(std::move(breaks))
         {
         }
 
@@ -96,7 +96,7 @@ namespace michi
 
         PolygonCircleMap::PolygonCircleMap(validity::MultiPolygon2 obstacles, const Eigen::Vector2d &lo,
                                            const Eigen::Vector2d &hi)
-          : obstacles_(std::move(obstacles)), index_(std::make_unique<Index>())
+            : obstacles_(std::move(obstacles)), index_(std::make_unique<Index>())
         {
             this->lo = lo;
             this->hi = hi;

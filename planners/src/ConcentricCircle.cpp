@@ -256,8 +256,8 @@ namespace michi
             // 2. along each arm path (shortest first): the hand map, arm-path arc length x hand value
             for (std::size_t i = 0; i < armStage.search->paths().size() && !ptc; ++i)
             {
-                auto handLift = std::make_shared<HandLift>(si_, start, goal, axis1_, axis2_, hand,
-                                                           armStage.search->pathPoints(i));
+                auto handLift =
+                    std::make_shared<HandLift>(si_, start, goal, axis1_, axis2_, hand, armStage.search->pathPoints(i));
                 Stage handStage;
                 handStage.name = "hand";
                 handStage.map = handLift->makeMap();

@@ -32,7 +32,7 @@ namespace michi
         }  // namespace
 
         ConcentricCircleSearch::ConcentricCircleSearch(const CircleMap &map, ConcentricCircleSettings settings)
-          : map_(map), settings_(settings)
+            : map_(map), settings_(settings)
         {
             settings_.divisions = std::max(settings_.divisions, 4);
             settings_.ringSpacing = std::max(settings_.ringSpacing, 1e-6);
@@ -171,8 +171,8 @@ namespace michi
             {
                 Eigen::Vector2d far;
                 for (int i = 0; i < 2; ++i)
-                    far[i] = map_.wraps[i] ? 0.5 * (map_.hi[i] - map_.lo[i]) :
-                                             std::max(std::abs(c[i] - map_.lo[i]), std::abs(map_.hi[i] - c[i]));
+                    far[i] = map_.wraps[i] ? 0.5 * (map_.hi[i] - map_.lo[i])
+                                           : std::max(std::abs(c[i] - map_.lo[i]), std::abs(map_.hi[i] - c[i]));
                 reach = far.norm();
             }
             set.maxRings = std::max(set.goalRings + 1, static_cast<int>(std::ceil(reach / spacing)));
@@ -200,9 +200,10 @@ namespace michi
                 // the paper's fixed number of points, or more on large circles so that neighbouring points stay
                 // within pointSpacing of each other
                 const double pointSpacing = settings_.pointSpacing * set.spacing / settings_.ringSpacing;
-                const int n = pointSpacing > 0. ? std::max(set.divisions, static_cast<int>(std::ceil(
-                                                                              2. * M_PI * ring.radius / pointSpacing))) :
-                                                  set.divisions;
+                const int n =
+                    pointSpacing > 0.
+                        ? std::max(set.divisions, static_cast<int>(std::ceil(2. * M_PI * ring.radius / pointSpacing)))
+                        : set.divisions;
                 ring.points.resize(n);
                 ring.free.assign(n, 0);
                 ring.potential.assign(n, 0.);
@@ -311,9 +312,9 @@ namespace michi
             // circles of a recursion get proportionally more points per piece), one minimum each; with arcEnds
             // the arc's two end points (next to the obstacles) as well. Neighbours along one arc are linked when
             // their chord is free, so chains can follow an arc around an obstacle.
-            const int piecePoints = settings_.maxArcPoints > 0 ?
-                                        std::max(1, settings_.maxArcPoints * set.divisions / settings_.divisions) :
-                                        n;
+            const int piecePoints = settings_.maxArcPoints > 0
+                                        ? std::max(1, settings_.maxArcPoints * set.divisions / settings_.divisions)
+                                        : n;
             auto candidate = [&](int i)
             {
                 const int node = addNode(rings_[r].points[i], s, r);
@@ -615,8 +616,8 @@ namespace michi
                 const double spacing = settings_.ringSpacing / (1 << level);
                 const int divisions = settings_.divisions * (1 << level);
                 const bool fromGoalSide = recursions_ % 2 == 1;
-                const int s = fromGoalSide ? addSet(bestB, bestA, spacing, divisions, false) :
-                                             addSet(bestA, bestB, spacing, divisions, false);
+                const int s = fromGoalSide ? addSet(bestB, bestA, spacing, divisions, false)
+                                           : addSet(bestA, bestB, spacing, divisions, false);
                 for (int k = 1; k <= sets_[s].goalRings + 2 && k <= sets_[s].maxRings; ++k)
                     if (!linkRing(s, k, ptc))
                         return collectPaths();

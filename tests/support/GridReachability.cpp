@@ -21,7 +21,7 @@ namespace michi
             {
             public:
                 GridComponents(const ob::SpaceInformationPtr &si, double step)
-                  : si_(si), bounds_(si->getStateSpace()->as<ob::RealVectorStateSpace>()->getBounds())
+                    : si_(si), bounds_(si->getStateSpace()->as<ob::RealVectorStateSpace>()->getBounds())
                 {
                     nx_ = static_cast<int>(std::floor((bounds_.high[0] - bounds_.low[0]) / step));
                     ny_ = static_cast<int>(std::floor((bounds_.high[1] - bounds_.low[1]) / step));
@@ -76,10 +76,10 @@ namespace michi
                 std::vector<int> attach(const std::vector<double> &q)
                 {
                     std::vector<int> out;
-                    const int ci =
-                        static_cast<int>(std::floor((q[0] - bounds_.low[0]) / (bounds_.high[0] - bounds_.low[0]) * nx_));
-                    const int cj =
-                        static_cast<int>(std::floor((q[1] - bounds_.low[1]) / (bounds_.high[1] - bounds_.low[1]) * ny_));
+                    const int ci = static_cast<int>(
+                        std::floor((q[0] - bounds_.low[0]) / (bounds_.high[0] - bounds_.low[0]) * nx_));
+                    const int cj = static_cast<int>(
+                        std::floor((q[1] - bounds_.low[1]) / (bounds_.high[1] - bounds_.low[1]) * ny_));
                     set(a_, q[0], q[1]);
                     for (int i = ci - 1; i <= ci + 1; ++i)
                         for (int j = cj - 1; j <= cj + 1; ++j)

@@ -58,12 +58,12 @@ namespace michi
                 writeCircleSvg(stage, file, picture);
                 const auto &search = *stage.search;
                 out << "  " << stage.name << ": " << search.rings().size() << " circles, " << search.nodes().size() - 2
-                    << " candidates, " << search.links().size() << " links, " << search.paths().size()
-                    << " paths, " << search.recursions() << " recursions -> " << file << "\n";
+                    << " candidates, " << search.links().size() << " links, " << search.paths().size() << " paths, "
+                    << search.recursions() << " recursions -> " << file << "\n";
             }
             if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
-                throw std::runtime_error(out.str() + problem.file + ": ConcentricCircle found no path (" + status.asString() +
-                                         "); pictures of the search are in " + options.outDir);
+                throw std::runtime_error(out.str() + problem.file + ": ConcentricCircle found no path (" +
+                                         status.asString() + "); pictures of the search are in " + options.outDir);
             auto &path = ctx.setup->getSolutionPath();
             std::vector<std::vector<double>> states;
             for (const auto *s : path.getStates())
@@ -80,8 +80,9 @@ namespace michi
 
         int circlesCommand(int argc, char **argv)
         {
-            const char *usage = "usage: michi circles PROBLEM.yaml --out DIR [--checker fcl|jmap] [--time S] "
-                                "[--set NAME=VALUE]...\n";
+            const char *usage =
+                "usage: michi circles PROBLEM.yaml --out DIR [--checker fcl|jmap] [--time S] "
+                "[--set NAME=VALUE]...\n";
             std::string problemFile;
             CircleOptions options;
             try

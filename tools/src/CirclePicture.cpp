@@ -115,13 +115,13 @@ namespace michi
             // circles and their points
             for (const auto &ring : search.rings())
             {
-                svg << "<circle cx=\"" << num(X(ring.centre.x())) << "\" cy=\"" << num(Y(ring.centre.y()))
-                    << "\" r=\"" << num(ring.radius * s) << "\" fill=\"none\" stroke=\"#999\" stroke-width=\"0.4\""
+                svg << "<circle cx=\"" << num(X(ring.centre.x())) << "\" cy=\"" << num(Y(ring.centre.y())) << "\" r=\""
+                    << num(ring.radius * s) << "\" fill=\"none\" stroke=\"#999\" stroke-width=\"0.4\""
                     << (ring.set > 0 ? " stroke-dasharray=\"2,2\"" : "") << "/>\n";
                 for (std::size_t i = 0; i < ring.points.size(); ++i)
                     if (!ring.free[i] && map.inRange(ring.points[i]))
-                        svg << "<circle cx=\"" << num(X(ring.points[i].x())) << "\" cy=\""
-                            << num(Y(ring.points[i].y())) << "\" r=\"1\" fill=\"#d62728\"/>\n";
+                        svg << "<circle cx=\"" << num(X(ring.points[i].x())) << "\" cy=\"" << num(Y(ring.points[i].y()))
+                            << "\" r=\"1\" fill=\"#d62728\"/>\n";
             }
             // links
             const auto &nodes = search.nodes();
@@ -153,7 +153,11 @@ namespace michi
             for (std::size_t v = 2; v < nodes.size(); ++v)
                 svg << "<circle cx=\"" << num(X(nodes[v].p.x())) << "\" cy=\"" << num(Y(nodes[v].p.y()))
                     << "\" r=\"2.2\" fill=\""
-                    << (joined ? "#111" : fromStart[v] ? "#2ca02c" : toGoal[v] ? "#d62728" : "#111") << "\"/>\n";
+                    << (joined         ? "#111"
+                        : fromStart[v] ? "#2ca02c"
+                        : toGoal[v]    ? "#d62728"
+                                       : "#111")
+                    << "\"/>\n";
             const char *colours[2] = {"#2ca02c", "#d62728"};
             for (int v = 0; v < 2 && v < static_cast<int>(nodes.size()); ++v)
                 svg << "<circle cx=\"" << num(X(nodes[v].p.x())) << "\" cy=\"" << num(Y(nodes[v].p.y()))
@@ -165,9 +169,9 @@ namespace michi
                 << "<text x=\"14\" y=\"" << num(top + h / 2) << "\" transform=\"rotate(-90 14 " << num(top + h / 2)
                 << ")\">" << options.axis2 << " [" << num(lo.y()) << ", " << num(hi.y()) << "]</text>\n";
             const double lx = options.width - right + 16;
-            const char *labels[][2] = {{"#3b6fb6", "obstacle"},      {"#d62728", "blocked circle point"},
-                                       {"#111", "candidate"},        {"#2ca02c", "link"},
-                                       {"#ff7f0e", "path found"},    {"#9467bd", "chosen path"}};
+            const char *labels[][2] = {{"#3b6fb6", "obstacle"},   {"#d62728", "blocked circle point"},
+                                       {"#111", "candidate"},     {"#2ca02c", "link"},
+                                       {"#ff7f0e", "path found"}, {"#9467bd", "chosen path"}};
             for (int i = 0; i < 6; ++i)
                 svg << "<rect x=\"" << lx << "\" y=\"" << top + 20 * i << "\" width=\"12\" height=\"12\" fill=\""
                     << labels[i][0] << "\"/><text x=\"" << lx + 18 << "\" y=\"" << top + 20 * i + 11 << "\">"

@@ -90,8 +90,8 @@ namespace michi
         class HandLift
         {
         public:
-            HandLift(ompl::base::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal,
-                     int axis1, int axis2, int hand, std::vector<Eigen::Vector2d> armPath);
+            HandLift(ompl::base::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal, int axis1,
+                     int axis2, int hand, std::vector<Eigen::Vector2d> armPath);
             ~HandLift();
             const Eigen::Vector2d &start2() const
             {
@@ -135,8 +135,8 @@ namespace michi
             of a planar arm (every joint about z), the exact capsule geometry of the arm's links without the
             links that the values \e handValues move (as the paper's arm J-map), segments sampled every 0.005
             rad; otherwise \e arm's projection map. */
-        std::shared_ptr<CircleMap> makeArmCircleMap(const ompl::base::SpaceInformationPtr &si, const ProjectionLift &arm,
-                                                    const std::vector<int> &handValues);
+        std::shared_ptr<CircleMap> makeArmCircleMap(const ompl::base::SpaceInformationPtr &si,
+                                                    const ProjectionLift &arm, const std::vector<int> &handValues);
     }  // namespace planners
 }  // namespace michi
 

@@ -60,7 +60,8 @@ namespace michi
         public:
             using PointTest = std::function<bool(const Eigen::Vector2d &)>;
             using SegmentTest = std::function<bool(const Eigen::Vector2d &, const Eigen::Vector2d &)>;
-            using Breaks = std::function<std::vector<Eigen::Vector2d>(const Eigen::Vector2d &, const Eigen::Vector2d &)>;
+            using Breaks =
+                std::function<std::vector<Eigen::Vector2d>(const Eigen::Vector2d &, const Eigen::Vector2d &)>;
 
             CallbackCircleMap(PointTest isFree, SegmentTest isVisible, Breaks breaks = {});
             bool isFree(const Eigen::Vector2d &p) const override;

@@ -23,8 +23,8 @@ namespace michi
             /** \brief Large circles get more than \e divisions points so that neighbouring points are at most
                 this far apart (0: always \e divisions, as in the paper, whose circles stay small). */
             double pointSpacing{0.1};
-            double kGoal{1.};         ///< Kg of the attraction -Kg / Dg
-            double kObstacle{1e-3};   ///< Kp of the repulsion Kp / Dp^2
+            double kGoal{1.};        ///< Kg of the attraction -Kg / Dg
+            double kObstacle{1e-3};  ///< Kp of the repulsion Kp / Dp^2
             /** \brief Obstacle edges farther than this from P are left out of the repulsion sum (their term is
                 below Kp / range^2; the paper sums over every visible edge). */
             double potentialRange{0.3};
@@ -61,8 +61,8 @@ namespace michi
             Eigen::Vector2d centre{Eigen::Vector2d::Zero()};
             std::vector<Eigen::Vector2d> points;
             std::vector<char> free;
-            std::vector<double> potential;  ///< per free point (0 for blocked points)
-            std::vector<int> candidates;    ///< node ids
+            std::vector<double> potential;    ///< per free point (0 for blocked points)
+            std::vector<int> candidates;      ///< node ids
             std::vector<Edge2> blockedEdges;  ///< chords of the blocked runs (potential without polygons)
             bool linked{false};               ///< candidates computed and linked
         };
@@ -75,8 +75,8 @@ namespace michi
             double spacing{0.1};
             int divisions{72};
             double goalRadius{0.};
-            int goalRings{1};  ///< circles until the goal is reached
-            int maxRings{1};   ///< circles that cover the map
+            int goalRings{1};        ///< circles until the goal is reached
+            int maxRings{1};         ///< circles that cover the map
             std::vector<int> rings;  ///< indices into rings(), innermost first
         };
 

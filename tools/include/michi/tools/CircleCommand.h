@@ -15,7 +15,7 @@ namespace michi
         struct CircleOptions
         {
             std::string outDir;
-            std::string checker;                       ///< "fcl" or "jmap"; empty: the problem's
+            std::string checker;                        ///< "fcl" or "jmap"; empty: the problem's
             std::map<std::string, std::string> params;  ///< ConcentricCircle parameters by name
             double timeLimit{30.};
             std::size_t query{0};
