@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SVD>
+
 using namespace michi;
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -118,9 +120,31 @@ TEST(ConcentricCircle, SolvesPlanar3dofHandThroughTheHierarchy)
     EXPECT_EQ(exactCheck(r.ctx.setup->getSpaceInformation(), *r.ctx.checker, r.ctx.setup->getSolutionPath()), "");
 }
 
+TEST(ConcentricCircle, SolvesArch3dofOnTheRestrictionSurface)
+{
+    auto r = planProblem("arch_3dof");
+    ASSERT_EQ(r.status, ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(r.planner->usedMode(), "surface");
+    const auto si = r.ctx.setup->getSpaceInformation();
+    // the straight joint motion collides: the path leaves the start-goal line
+    EXPECT_FALSE(si->checkMotion(r.ctx.setup->getProblemDefinition()->getStartState(0),
+                                 r.ctx.setup->getSolutionPath().getStates().back()));
+    EXPECT_GT(r.ctx.setup->getSolutionPath().getStateCount(), 2u);
+    EXPECT_EQ(exactCheck(si, *r.ctx.checker, r.ctx.setup->getSolutionPath()), "");
+    // every state lies on the plane through start and goal: a combination of start, goal - start and one more
+    // direction, so the path's states span at most a 2-D affine subspace
+    const auto values = pathValues(si, r.ctx.setup->getSolutionPath());
+    Eigen::MatrixXd m(values.size() - 1, 3);
+    for (std::size_t i = 1; i < values.size(); ++i)
+        for (int j = 0; j < 3; ++j)
+            m(i - 1, j) = values[i][j] - values[0][j];
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(m);
+    EXPECT_LT(svd.singularValues()(2), 1e-9);
+}
+
 TEST(ConcentricCircle, SameProblemTwiceGivesTheSamePath)
 {
-    for (const std::string name : {"planar_2link", "planar_3dof_hand"})
+    for (const std::string name : {"planar_2link", "planar_3dof_hand", "arch_3dof"})
     {
         auto a = planProblem(name);
         auto b = planProblem(name);

@@ -259,6 +259,135 @@ namespace michi
             return map;
         }
 
+        // ---------------------------------------------------------------- trajectory-restriction surface
+
+        SurfaceLift::SurfaceLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal,
+                                 double angle, double margin)
+            : si_(std::move(si)), start_(std::move(start)), margin_(margin)
+        {
+            const auto axes = valueAxes(*si_->getStateSpace());
+            const std::size_t n = start_.size();
+            std::vector<double> d(n);
+            for (std::size_t i = 0; i < n; ++i)
+                d[i] = difference(axes[i], start_[i], goal[i]);
+            double len = 0.;
+            for (double x : d)
+                len += x * x;
+            len = std::sqrt(len);
+            e1_.assign(n, 0.);
+            if (len > 0.)
+                for (std::size_t i = 0; i < n; ++i)
+                    e1_[i] = d[i] / len;
+            else
+                e1_[0] = 1.;
+            // the two coordinate axes least aligned with e1, orthonormalised against e1 (and each other)
+            std::vector<std::size_t> order(n);
+            for (std::size_t i = 0; i < n; ++i)
+                order[i] = i;
+            std::stable_sort(order.begin(), order.end(),
+                             [this](std::size_t a, std::size_t b)
+                             {
+                                 return std::abs(e1_[a]) < std::abs(e1_[b]);
+                             });
+            std::vector<std::vector<double>> basis{e1_};
+            for (std::size_t k = 0; k < n && basis.size() < 3; ++k)
+            {
+                std::vector<double> v(n, 0.);
+                v[order[k]] = 1.;
+                for (const auto &b : basis)
+                {
+                    double dot = 0.;
+                    for (std::size_t i = 0; i < n; ++i)
+                        dot += v[i] * b[i];
+                    for (std::size_t i = 0; i < n; ++i)
+                        v[i] -= dot * b[i];
+                }
+                double norm = 0.;
+                for (double x : v)
+                    norm += x * x;
+                norm = std::sqrt(norm);
+                if (norm < 1e-9)
+                    continue;
+                for (double &x : v)
+                    x /= norm;
+                basis.push_back(v);
+            }
+            e2_.assign(n, 0.);
+            for (std::size_t i = 0; i < n; ++i)
+                e2_[i] = std::cos(angle) * basis[1][i] + (basis.size() > 2 ? std::sin(angle) * basis[2][i] : 0.);
+            start2_ = Eigen::Vector2d::Zero();
+            goal2_ = Eigen::Vector2d(len, 0.);
+            a_ = si_->allocState();
+            b_ = si_->allocState();
+        }
+
+        SurfaceLift::~SurfaceLift()
+        {
+            si_->freeState(a_);
+            si_->freeState(b_);
+        }
+
+        std::vector<double> SurfaceLift::values(const Eigen::Vector2d &p) const
+        {
+            std::vector<double> v(start_);
+            for (std::size_t i = 0; i < v.size(); ++i)
+                v[i] += p.x() * e1_[i] + p.y() * e2_[i];
+            return v;
+        }
+
+        void SurfaceLift::lift(const Eigen::Vector2d &p, ob::State *state) const
+        {
+            setStateValues(*si_->getStateSpace(), values(p), state);
+        }
+
+        std::shared_ptr<CircleMap> SurfaceLift::makeMap() const
+        {
+            auto map = std::make_shared<CallbackCircleMap>(
+                [this](const Eigen::Vector2d &p)
+                {
+                    // values beyond a bounded joint's limits are outside the map (not clamped)
+                    si_->getStateSpace()->copyFromReals(a_, values(p));
+                    if (!si_->satisfiesBounds(a_))
+                    {
+                        si_->getStateSpace()->enforceBounds(a_);
+                        std::vector<double> wrapped;
+                        si_->getStateSpace()->copyToReals(wrapped, a_);
+                        const auto v = values(p);
+                        const auto axes = valueAxes(*si_->getStateSpace());
+                        for (std::size_t i = 0; i < v.size(); ++i)
+                            if (!axes[i].wraps && std::abs(wrapped[i] - v[i]) > 1e-12)
+                                return false;
+                    }
+                    return si_->isValid(a_);
+                },
+                [this](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                {
+                    lift(a, a_);
+                    lift(b, b_);
+                    return si_->checkMotion(a_, b_);
+                });
+            map->lo = Eigen::Vector2d(-margin_, -margin_);
+            map->hi = Eigen::Vector2d(goal2_.x() + margin_, margin_);
+            return map;
+        }
+
+        bool isPlanarArm(const ob::SpaceInformationPtr &si)
+        {
+            const auto *fcl = fclOf(si);
+            const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
+            if (rgb == nullptr)
+                return false;
+            try
+            {
+                validity::PlanarArm::fromModel(*rgb->model());
+                return true;
+            }
+            catch (const std::invalid_argument &)
+            {
+                return false;
+            }
+        }
+
         // ---------------------------------------------------------------- J-map polygons
 
         std::shared_ptr<CircleMap> makeJMapCircleMap(const ob::SpaceInformationPtr &si)

@@ -51,9 +51,11 @@ namespace michi
             declareParam<std::string>("objective", this, &ConcentricCircle::setObjective,
                                       &ConcentricCircle::getObjective, "length,clearance");
             declareParam<std::string>("mode", this, &ConcentricCircle::setMode, &ConcentricCircle::getMode,
-                                      "auto,jmap,projection,hierarchy");
+                                      "auto,jmap,projection,hierarchy,surface");
             declareParam<int>("axis1", this, &ConcentricCircle::setAxis1, &ConcentricCircle::getAxis1, "0:1:100");
             declareParam<int>("axis2", this, &ConcentricCircle::setAxis2, &ConcentricCircle::getAxis2, "0:1:100");
+            declareParam<double>("surface_angle", this, &ConcentricCircle::setSurfaceAngle,
+                                 &ConcentricCircle::getSurfaceAngle, "-3.15:0.05:3.15");
             declareParam<int>("hand_axis", this, &ConcentricCircle::setHandAxis, &ConcentricCircle::getHandAxis,
                               "-1:1:100");
         }
@@ -72,8 +74,9 @@ namespace michi
 
         void ConcentricCircle::setMode(const std::string &v)
         {
-            if (v != "auto" && v != "jmap" && v != "projection" && v != "hierarchy")
-                throw ompl::Exception(getName(), "mode must be auto, jmap, projection or hierarchy, got '" + v + "'");
+            if (v != "auto" && v != "jmap" && v != "projection" && v != "hierarchy" && v != "surface")
+                throw ompl::Exception(getName(),
+                                      "mode must be auto, jmap, projection, hierarchy or surface, got '" + v + "'");
             mode_ = v;
         }
 
@@ -286,6 +289,34 @@ namespace michi
             return false;
         }
 
+        bool ConcentricCircle::solveSurface(const std::vector<double> &start, const std::vector<double> &goal,
+                                            const ob::PlannerTerminationCondition &ptc)
+        {
+            // the plane at surface_angle, then turned by 45, 90 and 135 degrees (angle and angle + pi give the same
+            // plane); the paper leaves switching surfaces open
+            for (int k = 0; k < 4 && !ptc; ++k)
+            {
+                auto surface = std::make_shared<SurfaceLift>(si_, start, goal, surfaceAngle_ + k * M_PI / 4.);
+                Stage stage;
+                stage.name = "surface";
+                stage.map = surface->makeMap();
+                stage.lift = [surface](const Eigen::Vector2d &p, ob::State *s)
+                {
+                    surface->lift(p, s);
+                };
+                stage.search = std::make_shared<ConcentricCircleSearch>(*stage.map, settings_);
+                const bool found = stage.search->run(surface->start2(), surface->goal2(), ptc);
+                stages_.clear();
+                stages_.push_back(stage);
+                if (!found)
+                    continue;
+                for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
+                    fullPaths_.push_back(liftPath(stage, i, false));
+                return true;
+            }
+            return false;
+        }
+
         ob::PlannerStatus ConcentricCircle::solve(const ob::PlannerTerminationCondition &ptc)
         {
             checkValidity();
@@ -339,7 +370,8 @@ namespace michi
                 {
                     freePaths();
                     stages_.clear();
-                    usedMode_ = (mode_ == "auto" && n >= 3) ? "hierarchy" : "projection";
+                    usedMode_ =
+                        (mode_ == "auto" && n >= 3) ? (isPlanarArm(si_) ? "hierarchy" : "surface") : "projection";
                 }
             }
             else
@@ -347,7 +379,18 @@ namespace michi
             if (!found && !ptc)
             {
                 if (usedMode_ == "hierarchy" && n >= 3)
+                {
                     found = solveHierarchy(start, goalValues, ptc);
+                    if (!found && !ptc && mode_ == "auto")
+                    {
+                        // the arm -> hand split found nothing: the restriction surface through start and goal
+                        freePaths();
+                        usedMode_ = "surface";
+                        found = solveSurface(start, goalValues, ptc);
+                    }
+                }
+                else if (usedMode_ == "surface" && n >= 3)
+                    found = solveSurface(start, goalValues, ptc);
                 else
                 {
                     usedMode_ = "projection";

@@ -43,7 +43,12 @@ namespace michi
                 CirclePictureOptions picture;
                 picture.view = options.view;
                 picture.title = problem.name + ": concentric circles, " + stage.name + " map";
-                if (stage.name == "hand")
+                if (stage.name == "surface")
+                {
+                    picture.axis1 = "u: along start -> goal in joint space";
+                    picture.axis2 = "v: across, on the restriction plane";
+                }
+                else if (stage.name == "hand")
                 {
                     picture.axis1 = "arc length along the arm path";
                     picture.axis2 = names.size() > 2 ? names[2] : "hand";

@@ -127,6 +127,43 @@ namespace michi
             ompl::base::State *a_, *b_;
         };
 
+        /** \brief The paper's trajectory-restriction surface (section 4): the plane in joint space through start
+            and goal spanned by e1 = (goal - start) / |goal - start| and e2 = cos(angle) n1 + sin(angle) n2, where n1,
+            n2 are the two coordinate axes least aligned with e1, made orthonormal to e1 (Gram-Schmidt). A plane
+            point (u, v) is the state start + u e1 + v e2; u spans [-margin, |goal - start| + margin], v spans
+            [-margin, margin]. Points are checked with the space's validity checker (the J-map stack cut onto the
+            plane, point by point), segments (straight in joint space too) with its motion validator. */
+        class SurfaceLift
+        {
+        public:
+            SurfaceLift(ompl::base::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal,
+                        double angle, double margin = M_PI);
+            ~SurfaceLift();
+            const Eigen::Vector2d &start2() const
+            {
+                return start2_;
+            }
+            const Eigen::Vector2d &goal2() const
+            {
+                return goal2_;
+            }
+            std::vector<double> values(const Eigen::Vector2d &p) const;
+            void lift(const Eigen::Vector2d &p, ompl::base::State *state) const;
+            std::shared_ptr<CircleMap> makeMap() const;
+
+        private:
+            ompl::base::SpaceInformationPtr si_;
+            std::vector<double> start_;
+            std::vector<double> e1_, e2_;
+            double margin_;
+            Eigen::Vector2d start2_, goal2_;
+            ompl::base::State *a_, *b_;
+        };
+
+        /** \brief True when the space's checker is michi's FCL (or J-map) checker of a robot whose joints all turn
+            about z (a planar arm). */
+        bool isPlanarArm(const ompl::base::SpaceInformationPtr &si);
+
         /** \brief The J-map polygons of the space's checker when it is a michi::validity::JMapValidityChecker
             over exactly the two values of the state (every tile built, polygons united), else null. */
         std::shared_ptr<CircleMap> makeJMapCircleMap(const ompl::base::SpaceInformationPtr &si);

@@ -39,7 +39,12 @@ namespace michi
              planar arm (exact capsule geometry of michi::validity::PlanarArm), else as in projection mode; then,
              along each arm path (best first), a hand map (arm-path arc length x \e hand_axis) is planned with the
              space's own checker and motion validator; the first hand path found gives the full path.
-           - \c auto: jmap when possible, else hierarchy for 3 or more values, else projection.
+           - \c surface (3 or more values, the paper's trajectory-restriction surface): the plane in joint space
+             through start and goal at orientation \e surface_angle about the start-goal line; points and segments
+             checked with the space's checker and motion validator; if no path is found on it, the planes turned
+             by 45, 90 and 135 degrees are tried.
+           - \c auto: jmap when possible; for 3 or more values hierarchy when the robot is a planar arm, then
+             surface; else projection.
            Every returned path passes the space's motion validator.
 
            @par External documentation
@@ -161,7 +166,7 @@ namespace michi
             {
                 return objective_;
             }
-            /** \brief "auto", "jmap", "projection" or "hierarchy". */
+            /** \brief "auto", "jmap", "projection", "hierarchy" or "surface". */
             void setMode(const std::string &v);
             const std::string &getMode() const
             {
@@ -182,6 +187,15 @@ namespace michi
             int getAxis2() const
             {
                 return axis2_;
+            }
+            /** \brief Orientation of the trajectory-restriction plane about the start-goal line (radians). */
+            void setSurfaceAngle(double v)
+            {
+                surfaceAngle_ = v;
+            }
+            double getSurfaceAngle() const
+            {
+                return surfaceAngle_;
             }
             /** \brief The hand value of hierarchy mode (-1: the first value that is neither axis). */
             void setHandAxis(int v)
@@ -217,6 +231,8 @@ namespace michi
                                  const ompl::base::PlannerTerminationCondition &ptc);
             bool solveHierarchy(const std::vector<double> &start, const std::vector<double> &goal,
                                 const ompl::base::PlannerTerminationCondition &ptc);
+            bool solveSurface(const std::vector<double> &start, const std::vector<double> &goal,
+                              const ompl::base::PlannerTerminationCondition &ptc);
             /** states of path \e i of stage \e s (every segment checked with the motion validator); empty when
                 a segment fails */
             std::vector<ompl::base::State *> liftPath(const Stage &stage, std::size_t i, bool check);
@@ -229,6 +245,7 @@ namespace michi
             int axis1_{0};
             int axis2_{1};
             int handAxis_{-1};
+            double surfaceAngle_{0.};
 
             std::vector<Stage> stages_;
             std::string usedMode_;
