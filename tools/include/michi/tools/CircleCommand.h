@@ -25,8 +25,9 @@ namespace michi
         /** \brief `michi circles`: solve the problem once with michi::ConcentricCircle and draw the search:
             DIR/<problem>-cc-<stage>.svg for each stage (the paper's Fig. 5: circles, candidates, links, paths on
             the map) and DIR/<problem>-cc-robot.svg (Fig. 8: the robot along the chosen path, unsimplified).
-            Returns the text summary; throws ProblemError / std::runtime_error on bad input or when no path is
-            found (nothing is written then). */
+            Returns the text summary. Throws ProblemError (naming the file and key) on a bad problem or parameter,
+            before anything is written; when no path is found, the stage pictures of the failed search are
+            written and std::runtime_error (with the summary) is thrown. */
         std::string runCircles(const Problem &problem, const CircleOptions &options);
 
         /** \brief The `michi circles` command line (argv[1] == "circles"); returns the exit code. */
