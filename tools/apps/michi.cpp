@@ -2,6 +2,7 @@
 #include <michi/tools/BenchmarkRunner.h>
 #include <michi/tools/HeadingLatticeReport.h>
 #include <michi/tools/DualArmCommand.h>
+#include <michi/tools/CircleCommand.h>
 #include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
@@ -34,6 +35,8 @@ namespace
         "      and DIR/<problem>.svg\n"
         "  michi plan PROBLEM.yaml --planner NAME [--out DIR] [--time SECONDS] [--query I] [--seed S]\n"
         "      solve once, print the path, write DIR/<problem>-<planner>.path and .svg\n"
+        "  michi circles PROBLEM.yaml --out DIR [--checker fcl|jmap] [--time S] [--set NAME=VALUE]...\n"
+        "      solve with michi::ConcentricCircle and draw its circles, candidates, links and paths (paper 000)\n"
         "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
         "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
         "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
@@ -333,6 +336,8 @@ int main(int argc, char **argv)
             return lattice(argc, argv);
         if (command == "dualarm")
             return dualarm(argc, argv);
+        if (command == "circles")
+            return michi::tools::circlesCommand(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

@@ -1,6 +1,7 @@
 #include <michi/tools/PlannerRegistry.h>
 
 #include <michi/planners/HeadingLattice.h>
+#include <michi/planners/ConcentricCircle.h>
 
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
@@ -107,6 +108,7 @@ namespace michi
                 {"geometric::STRIDE", allocator<og::STRIDE>()},
                 {"geometric::TRRT", allocator<og::TRRT>()},
                 {"michi::HeadingLattice", allocator<michi::planners::HeadingLattice>()},
+                {"michi::ConcentricCircle", allocator<michi::planners::ConcentricCircle>()},
             };
             return registry;
         }

@@ -1,0 +1,93 @@
+// Solve times of michi::ConcentricCircle against OMPL's RRTConnect (the baseline, same process, same context) on
+// the problems of paper 000 (Google Benchmark; not part of ctest), with a plain timedPlannerTerminationCondition
+// (no helper thread, unlike Planner::solve(t >= 1 s) and OMPL's Benchmark):
+//   build/tests/micro/bench_concentric_circle --benchmark_min_time=2
+// Each iteration clears the planner and the solutions and solves once; RRTConnect's seed is fixed once, before the
+// first benchmark (its time varies with the seed; ConcentricCircle is deterministic).
+#include <michi/planners/ConcentricCircle.h>
+#include <michi/tools/PlanningContext.h>
+
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+
+namespace
+{
+    struct Fixture
+    {
+        michi::tools::Problem problem;
+        michi::tools::PlanningContext ctx;
+
+        explicit Fixture(const std::string &name)
+            : problem(michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
+            , ctx(michi::tools::makePlanningContext(problem))
+        {
+            ctx.setup->setup();
+        }
+    };
+
+    Fixture &fixture(const std::string &name)
+    {
+        static std::map<std::string, std::unique_ptr<Fixture>> cache;
+        auto &f = cache[name];
+        if (!f)
+            f = std::make_unique<Fixture>(name);
+        return *f;
+    }
+
+    template <typename P>
+    void solve(benchmark::State &bm, const std::string &name)
+    {
+        ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+        static const bool seeded = []
+        {
+            ompl::RNG::setSeed(1);
+            return true;
+        }();
+        (void)seeded;
+        auto &f = fixture(name);
+        const auto si = f.ctx.setup->getSpaceInformation();
+        auto planner = std::make_shared<P>(si);
+        planner->setProblemDefinition(f.ctx.setup->getProblemDefinition());
+        planner->setup();
+        std::size_t solved = 0, runs = 0;
+        for (auto _ : bm)
+        {
+            planner->clear();
+            f.ctx.setup->getProblemDefinition()->clearSolutionPaths();
+            const auto status = planner->solve(ompl::base::timedPlannerTerminationCondition(10.));
+            solved += status == ompl::base::PlannerStatus::EXACT_SOLUTION;
+            ++runs;
+        }
+        bm.counters["solved_fraction"] = static_cast<double>(solved) / std::max<std::size_t>(1, runs);
+    }
+
+    void rrtConnect(benchmark::State &bm, const std::string &name)
+    {
+        solve<ompl::geometric::RRTConnect>(bm, name);
+    }
+
+    void concentricCircle(benchmark::State &bm, const std::string &name)
+    {
+        solve<michi::planners::ConcentricCircle>(bm, name);
+    }
+}  // namespace
+
+BENCHMARK_CAPTURE(rrtConnect, planar_2link_RRTConnect, std::string("planar_2link"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(concentricCircle, planar_2link_ConcentricCircle, std::string("planar_2link"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rrtConnect, planar_3dof_hand_RRTConnect, std::string("planar_3dof_hand"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(concentricCircle, planar_3dof_hand_ConcentricCircle, std::string("planar_3dof_hand"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rrtConnect, arch_3dof_RRTConnect, std::string("arch_3dof"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(concentricCircle, arch_3dof_ConcentricCircle, std::string("arch_3dof"))
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

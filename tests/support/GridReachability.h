@@ -1,0 +1,37 @@
+// Ground truth for planners on 2-D joint spaces: a fine grid search over the whole C-space, and random planar
+// arm queries that the grid search proves solvable.
+#ifndef MICHI_TESTS_SUPPORT_GRID_REACHABILITY_
+#define MICHI_TESTS_SUPPORT_GRID_REACHABILITY_
+
+#include "support/TestScenes.h"
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace michi
+{
+    namespace test
+    {
+        /** \brief True when a breadth-first search over a grid of cell \e step on a 2-D bounded real vector space
+            links \e start to \e goal: grid points must be valid, grid neighbours (4-connected) and the start
+            and goal with their nearest grid points are joined by motions the space's motion validator accepts. */
+        bool gridReachable(const ompl::base::SpaceInformationPtr &si, const std::vector<double> &start,
+                           const std::vector<double> &goal, double step);
+
+        /** \brief A random planar scene (6 random polygons, a 0.5 m + 0.4 m arm) with a start and a goal at
+            least 1 rad apart whose straight motion collides and that gridReachable() links at \e step. The space's
+            motion validator is the exact ConservativeMotionValidator (for the grid and for planners). */
+        struct ArmQuery
+        {
+            CheckerSetup setup;
+            std::vector<double> start;
+            std::vector<double> goal;
+            bool found{false};  ///< false when no such query was found in 200 tries
+        };
+        ArmQuery reachableArmQuery(std::uint_fast32_t seed, double step = 0.05);
+    }  // namespace test
+}  // namespace michi
+
+#endif

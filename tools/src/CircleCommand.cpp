@@ -1,0 +1,154 @@
+#include <michi/tools/CircleCommand.h>
+
+#include <michi/tools/CirclePicture.h>
+#include <michi/tools/PlanningContext.h>
+#include <michi/tools/SvgPlot.h>
+
+#include <boost/filesystem.hpp>
+
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        std::string runCircles(const Problem &input, const CircleOptions &options)
+        {
+            Problem problem = input;
+            if (!options.checker.empty())
+            {
+                if (options.checker != "fcl" && options.checker != "jmap")
+                    throw std::invalid_argument("--checker expects fcl or jmap, got '" + options.checker + "'");
+                problem.checker = options.checker;
+            }
+            PlanningContext ctx = makePlanningContext(problem, options.query);
+            const auto si = ctx.setup->getSpaceInformation();
+            auto planner = std::make_shared<planners::ConcentricCircle>(si);
+            applyPlannerParams(*planner, PlannerSpec{"michi::ConcentricCircle", options.params}, problem.file);
+            ctx.setup->setPlanner(planner);
+            const auto status = ctx.setup->solve(options.timeLimit);
+            std::ostringstream out;
+            out << problem.name << ": ConcentricCircle " << status.asString() << " in "
+                << ctx.setup->getLastPlanComputationTime() << " s, mode " << planner->usedMode() << "\n";
+            if (!fs::exists(options.outDir))
+                fs::create_directories(options.outDir);
+            const auto names = problem.valueNames();
+            for (std::size_t k = 0; k < planner->stages().size(); ++k)
+            {
+                const auto &stage = planner->stages()[k];
+                CirclePictureOptions picture;
+                picture.view = options.view;
+                picture.title = problem.name + ": concentric circles, " + stage.name + " map";
+                if (stage.name == "surface")
+                {
+                    picture.axis1 = "u: along start -> goal in joint space";
+                    picture.axis2 = "v: across, on the restriction plane";
+                }
+                else if (stage.name == "hand")
+                {
+                    picture.axis1 = "arc length along the arm path";
+                    picture.axis2 = names.size() > 2 ? names[2] : "hand";
+                }
+                else if (names.size() >= 2)
+                {
+                    picture.axis1 = names[planner->getAxis1()];
+                    picture.axis2 = names[planner->getAxis2()];
+                }
+                const std::string file =
+                    (fs::path(options.outDir) / (problem.name + "-cc-" + stage.name + ".svg")).string();
+                writeCircleSvg(stage, file, picture);
+                const auto &search = *stage.search;
+                out << "  " << stage.name << ": " << search.rings().size() << " circles, " << search.nodes().size() - 2
+                    << " candidates, " << search.links().size() << " links, " << search.paths().size() << " paths, "
+                    << search.recursions() << " recursions -> " << file << "\n";
+            }
+            if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
+                throw std::runtime_error(out.str() + problem.file + ": ConcentricCircle found no path (" +
+                                         status.asString() + "); pictures of the search are in " + options.outDir);
+            auto &path = ctx.setup->getSolutionPath();
+            std::vector<std::vector<double>> states;
+            for (const auto *s : path.getStates())
+            {
+                states.emplace_back();
+                ctx.setup->getStateSpace()->copyToReals(states.back(), s);
+            }
+            const std::string robot = (fs::path(options.outDir) / (problem.name + "-cc-robot.svg")).string();
+            writeProblemSvg(problem, {PlotPath{"ConcentricCircle", states}}, robot, options.query);
+            out << "  path: " << states.size() << " states, length " << path.length() << ", clearance "
+                << path.clearance() << " -> " << robot << "\n";
+            return out.str();
+        }
+
+        int circlesCommand(int argc, char **argv)
+        {
+            const char *usage =
+                "usage: michi circles PROBLEM.yaml --out DIR [--checker fcl|jmap] [--time S] "
+                "[--set NAME=VALUE]...\n";
+            std::string problemFile;
+            CircleOptions options;
+            try
+            {
+                for (int i = 2; i < argc; ++i)
+                {
+                    const std::string a = argv[i];
+                    auto value = [&]() -> std::string
+                    {
+                        if (i + 1 >= argc)
+                            throw std::invalid_argument(a + " needs a value");
+                        return argv[++i];
+                    };
+                    if (a == "--out")
+                        options.outDir = value();
+                    else if (a == "--checker")
+                        options.checker = value();
+                    else if (a == "--time")
+                        options.timeLimit = std::stod(value());
+                    else if (a == "--view")
+                    {
+                        std::stringstream in(value());
+                        std::string item;
+                        while (std::getline(in, item, ','))
+                            options.view.push_back(std::stod(item));
+                        if (options.view.size() != 4)
+                            throw std::invalid_argument("--view expects XMIN,YMIN,XMAX,YMAX");
+                    }
+                    else if (a == "--set")
+                    {
+                        const std::string kv = value();
+                        const auto eq = kv.find('=');
+                        if (eq == std::string::npos)
+                            throw std::invalid_argument("--set expects NAME=VALUE, got '" + kv + "'");
+                        options.params[kv.substr(0, eq)] = kv.substr(eq + 1);
+                    }
+                    else if (!a.empty() && a[0] == '-')
+                        throw std::invalid_argument("unknown option " + a);
+                    else if (problemFile.empty())
+                        problemFile = a;
+                    else
+                        throw std::invalid_argument("circles takes one problem file");
+                }
+                if (problemFile.empty() || options.outDir.empty())
+                    throw std::invalid_argument("circles needs a problem file and --out DIR");
+            }
+            catch (const std::exception &e)
+            {
+                std::cerr << "michi circles: " << e.what() << "\n" << usage;
+                return 2;
+            }
+            try
+            {
+                std::cout << runCircles(loadProblem(problemFile), options);
+                return 0;
+            }
+            catch (const std::exception &e)
+            {
+                std::cerr << "michi circles: " << e.what() << std::endl;
+                return 1;
+            }
+        }
+    }  // namespace tools
+}  // namespace michi
