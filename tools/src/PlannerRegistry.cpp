@@ -1,5 +1,7 @@
 #include <michi/tools/PlannerRegistry.h>
 
+#include <michi/planners/DualRoadmap.h>
+
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/est/ProjEST.h>
@@ -104,6 +106,7 @@ namespace michi
                 {"geometric::SST", allocator<og::SST>()},
                 {"geometric::STRIDE", allocator<og::STRIDE>()},
                 {"geometric::TRRT", allocator<og::TRRT>()},
+                {"michi::DualRoadmap", allocator<michi::planners::DualRoadmap>()},
             };
             return registry;
         }
