@@ -4,6 +4,7 @@
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
 #include <michi/tools/PlanningContext.h>
+#include <michi/tools/ReplanCommand.h>
 #include <michi/tools/Problem.h>
 #include <michi/tools/SvgPlot.h>
 #include <michi/validity/RobotModel.h>
@@ -35,6 +36,9 @@ namespace
         "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
         "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
         "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
+        "  michi replan PROBLEM.yaml --out DIR [--episodes N] [--seed S] [--methods dual,rrtconnect,...]\n"
+        "      non-stop replanning among moving obstacles (paper 002): N randomized episodes per method; writes\n"
+        "      DIR/replan.json and DIR/episode/frame_*.svg\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -258,6 +262,26 @@ namespace
         return 0;
     }
 
+    int replan(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "episodes", "seed", "methods"});
+        if (args.positional.size() != 1)
+            throw UsageError("replan takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("replan needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_ERROR);
+        ReplanOptions options;
+        options.problemFile = args.positional[0];
+        options.outDir = args.get("out");
+        options.episodes = static_cast<unsigned int>(args.number("episodes", 20, true));
+        options.seed = static_cast<unsigned int>(args.number("seed", 1, true));
+        options.methods = splitComma(args.get("methods"));
+        options.progress = &std::cerr;
+        std::cout << runReplan(options);
+        std::cerr << "michi replan: wrote " << (fs::path(options.outDir) / "replan.json").string() << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -282,6 +306,8 @@ int main(int argc, char **argv)
             return plan(argc, argv);
         if (command == "jmap")
             return jmap(argc, argv);
+        if (command == "replan")
+            return replan(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

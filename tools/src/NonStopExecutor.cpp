@@ -142,6 +142,13 @@ namespace michi
                      });
         }
 
+        bool NonStopExecutor::waitForPlanner(double seconds)
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            return cv_.wait_for(lock, std::chrono::duration<double>(seconds),
+                                [this] { return queries_.empty() && !busy_; });
+        }
+
         void NonStopExecutor::transition(ExecState to, Signal signal)
         {
             transitions_.push_back(Transition{exec_, signal, to});

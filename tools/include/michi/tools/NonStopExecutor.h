@@ -128,6 +128,8 @@ namespace michi
             void step(double dt);
             /** \brief Block until the planning thread has nothing to do and its signals are queued (tests). */
             void waitForPlanner();
+            /** \brief The same for at most \e seconds of wall-clock time; true when the planner is idle. */
+            bool waitForPlanner(double seconds);
 
             ExecState execState() const
             {
