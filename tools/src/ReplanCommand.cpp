@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <iostream>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -191,8 +193,9 @@ namespace michi
                 int copies{1};
                 double horizon{0.};
 
+                /** \e grown false: the movers' true shapes. */
                 void build(const std::vector<validity::Obstacle> &statics, const std::vector<Mover> &movers, int n,
-                           double h)
+                           double h, bool grown = true)
                 {
                     copies = n;
                     horizon = h;
@@ -203,7 +206,7 @@ namespace michi
                         {
                             validity::Obstacle o;
                             o.name = m.name + "~" + std::to_string(i);
-                            o.shape = m.grown;
+                            o.shape = grown ? m.grown : m.shape;
                             o.pose = validity::Scene::poseAt(m.trajectory, 0.);
                             scene->add(o);
                         }
@@ -321,6 +324,8 @@ namespace michi
                     const int copies = static_cast<int>(settings.predictionCopies);
                     planSensed_.build(statics, movers, copies, settings.predictionHorizon);
                     execSensed_.build(statics, movers, copies, settings.predictionHorizon);
+                    planNow_.build(statics, movers, 1, 0., false);
+                    moving_.build({}, movers, 1, 0., false);
                     world_ = std::make_shared<validity::Scene>();
                     for (const auto &o : statics)
                         world_->add(o);
@@ -331,16 +336,12 @@ namespace michi
                         o.shape = m.shape;
                         o.trajectory = m.trajectory;
                         world_->add(o);
-                        validity::Obstacle still;
-                        still.name = m.name;
-                        still.shape = m.shape;
-                        still.pose = validity::Scene::poseAt(m.trajectory, 0.);
-                        moving_->add(still);
                     }
                     planCtx_ = context(planSensed_.scene);
+                    planNowCtx_ = context(planNow_.scene);
                     execCtx_ = context(execSensed_.scene);
                     worldCtx_ = context(world_);
-                    movingCtx_ = context(moving_);
+                    movingCtx_ = context(moving_.scene);
                     planner_ = allocatePlanner(method.planner, planCtx_.setup->getSpaceInformation());
                     applyPlannerParams(*planner_, PlannerSpec{method.planner, method.params}, problem.file);
                     if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
@@ -395,6 +396,15 @@ namespace michi
                         if (!worldSi->isValid(prev.get()) || !worldSi->isValid(cur.get()) ||
                             !worldSi->checkMotion(prev.get(), cur.get()))
                         {
+                            if (!collided && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
+                            {
+                                const auto c = exec.configuration();
+                                std::cerr << "\ncollision at t=" << t << " state " << NonStopExecutor::name(exec.execState())
+                                          << " q=(" << c[0] << "," << c[1] << "," << c[2] << ") v=" << exec.velocity()
+                                          << ": " << worldCtx_.checker->describeCollision(c.data()) << "\n";
+                                for (const auto &tr : exec.transitions())
+                                    std::cerr << "  " << NonStopExecutor::name(tr.from) << " -" << NonStopExecutor::name(tr.signal) << "-> " << NonStopExecutor::name(tr.to) << "\n";
+                            }
                             collided = true;
                             ++results.collisionSteps;
                         }
@@ -486,8 +496,7 @@ namespace michi
                     lastPoses_ = snap.poses;
                     lastSenseTime_ = t;
                     execSensed_.update(movers_, snap.poses, snap.velocities);
-                    for (std::size_t k = 0; k < movers_.size(); ++k)
-                        moving_->setPose(movers_[k].name, snap.poses[k]);
+                    moving_.update(movers_, snap.poses, snap.velocities);
                     std::lock_guard<std::mutex> lock(snapshotMutex_);
                     snapshots_[++snapshotId_] = std::move(snap);
                 }
@@ -517,17 +526,30 @@ namespace michi
                         out = toReals(esi, so.get());
                     };
                     const double lookahead = settings_.lookahead;
-                    h.firstInterference = [esi, lookahead](const ConfigurationPath &path)
+                    const auto msi = movingCtx_.setup->getSpaceInformation();
+                    h.firstInterference = [esi, msi, lookahead](const ConfigurationPath &path)
                     {
                         const double inf = std::numeric_limits<double>::infinity();
                         if (path.empty())
                             return inf;
                         ob::ScopedState<> a(esi), b(esi);
                         toState(esi, path[0], a.get());
-                        if (!esi->isValid(a.get()))
-                            return 0.;
                         double arc = 0.;
-                        for (std::size_t i = 1; i < path.size() && arc < lookahead; ++i)
+                        std::size_t first = 1;
+                        if (!esi->isValid(a.get()))
+                        {
+                            // the robot is already within the margin of a (predicted) obstacle: a path that leaves
+                            // it with its first segment, without touching the obstacles as they are, is an escape
+                            if (path.size() < 2)
+                                return 0.;
+                            toState(esi, path[1], b.get());
+                            if (!esi->isValid(b.get()) || !msi->checkMotion(a.get(), b.get()))
+                                return 0.;
+                            arc = esi->distance(a.get(), b.get());
+                            esi->copyState(a.get(), b.get());
+                            first = 2;
+                        }
+                        for (std::size_t i = first; i < path.size() && arc < lookahead; ++i)
                         {
                             toState(esi, path[i], b.get());
                             const double len = esi->distance(a.get(), b.get());
@@ -582,11 +604,21 @@ namespace michi
                             snap = snapshots_.at(id);
                         }
                         planSensed_.update(movers_, snap.poses, snap.velocities);
+                        planNow_.update(movers_, snap.poses, snap.velocities);
                         ob::ScopedState<> s(psi), g(psi);
                         toState(psi, from, s.get());
                         toState(psi, goal, g.get());
-                        if (!psi->isValid(s.get()) || !psi->isValid(g.get()))
+                        if (!psi->isValid(g.get()))
                             return false;
+                        ConfigurationPath prefix;
+                        if (!psi->isValid(s.get()))
+                        {
+                            // escape: the start is within the margin of a (predicted) obstacle; move first, along
+                            // a straight motion free of the obstacles as they are, to a nearby state outside it
+                            if (!escape(s.get(), cancel))
+                                return false;
+                            prefix.push_back(from);
+                        }
                         auto pdef = std::make_shared<ob::ProblemDefinition>(psi);
                         pdef->setStartAndGoalStates(s, g);
                         switch (method_.reuse)
@@ -623,7 +655,7 @@ namespace michi
                             simplifier.reduceVertices(p);
                             simplifier.shortcutPath(p);
                         }
-                        path.clear();
+                        path = prefix;
                         for (std::size_t i = 0; i < p.getStateCount(); ++i)
                             path.push_back(toReals(psi, p.getState(i)));
                         return true;
@@ -631,14 +663,40 @@ namespace michi
                     return h;
                 }
 
+                /** Replace \e s by a state valid in the planning scene reached from it by a motion that is free in
+                    the world as it is now (planning thread). */
+                bool escape(ob::State *s, const std::atomic<bool> &cancel)
+                {
+                    const auto psi = planCtx_.setup->getSpaceInformation();
+                    const auto nsi = planNowCtx_.setup->getSpaceInformation();
+                    if (!nsi->isValid(s))
+                        return false;
+                    if (!escapeSampler_)
+                        escapeSampler_ = psi->allocStateSampler();
+                    ob::ScopedState<> near(psi);
+                    const double extent = psi->getMaximumExtent();
+                    for (int i = 0; i < 400 && !cancel; ++i)
+                    {
+                        const double radius = extent * 0.01 * (1. + i / 40);
+                        escapeSampler_->sampleUniformNear(near.get(), s, radius);
+                        if (psi->isValid(near.get()) && nsi->checkMotion(s, near.get()))
+                        {
+                            psi->copyState(s, near.get());
+                            return true;
+                        }
+                    }
+                    return false;
+                }
+
                 const Problem &problem_;
                 std::vector<Mover> movers_;
+                ob::StateSamplerPtr escapeSampler_;
                 ReplanSettings settings_;
                 Method method_;
-                SensedWorld planSensed_, execSensed_;
+                SensedWorld planSensed_, execSensed_, planNow_;
                 validity::ScenePtr world_;
-                validity::ScenePtr moving_{std::make_shared<validity::Scene>()};
-                PlanningContext planCtx_, execCtx_, worldCtx_, movingCtx_;
+                SensedWorld moving_;  ///< the movers only, true shapes, where they are (clearance, deformation)
+                PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_;
                 ob::PlannerPtr planner_;
                 std::vector<std::vector<validity::TimedPose>> trajectories_;
                 std::vector<Eigen::Isometry3d> lastPoses_;
