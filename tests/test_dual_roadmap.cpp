@@ -110,7 +110,8 @@ TEST(DualRoadmap, SceneChangeSeedsOnlyEdgesValidInTheNewScene)
 {
     ompl::RNG::setSeed(5);
     Fixture f;
-    f.planner->setSeedEdges(100000);  // try every learning edge
+    f.planner->setSeedEdges(100000);   // try every learning edge
+    f.planner->setLazySeeding(false);  // and check each at once
     ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
     ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
     // close the lower gap and block the middle of the left half: some learned edges become invalid

@@ -45,6 +45,7 @@ namespace michi
             declareParam<unsigned int>("batch_size", this, &DualRoadmap::setBatchSize, &DualRoadmap::getBatchSize,
                                        "1:1:500");
             declareParam<bool>("smooth", this, &DualRoadmap::setSmooth, &DualRoadmap::getSmooth, "0,1");
+            declareParam<bool>("lazy_seeding", this, &DualRoadmap::setLazySeeding, &DualRoadmap::getLazySeeding, "0,1");
             declareParam<unsigned int>("max_learning_edges", this, &DualRoadmap::setMaxLearningEdges,
                                        &DualRoadmap::getMaxLearningEdges, "0:1000:1000000");
 
@@ -215,7 +216,7 @@ namespace michi
                 const auto &edge = learnEdges_[order[i]];
                 if (!valid(edge.first) || !valid(edge.second))
                     continue;
-                if (!si_->checkMotion(learnStates_[edge.first], learnStates_[edge.second]))
+                if (!lazySeeding_ && !si_->checkMotion(learnStates_[edge.first], learnStates_[edge.second]))
                     continue;
                 const Vertex a = vertexFor(edge.first);
                 const Vertex b = vertexFor(edge.second);
@@ -223,7 +224,7 @@ namespace michi
                 if (e.second)
                 {
                     graph_[e.first].weight = si_->distance(graph_[a].state, graph_[b].state);
-                    graph_[e.first].checked = true;
+                    graph_[e.first].checked = !lazySeeding_;
                     ++seeded_;
                 }
             }

@@ -56,8 +56,8 @@ namespace michi
 
         bool deformPath(ConfigurationPath &path, const validity::FclValidityChecker &checker,
                         const std::function<double(const Configuration &, const Configuration &)> &distance,
-                        const std::function<void(const Configuration &, const Configuration &, double,
-                                                 Configuration &)> &interpolate,
+                        const std::function<void(const Configuration &, const Configuration &, double, Configuration &)>
+                            &interpolate,
                         const std::function<bool(const ConfigurationPath &)> &accept,
                         const DeformationSettings &settings)
         {

@@ -46,24 +46,25 @@ namespace michi
             /** extras.replan of the problem file (docs/dual-roadmap.md). */
             struct ReplanSettings
             {
-                double dt{0.02};                ///< simulation step, seconds
-                double sensePeriod{0.1};        ///< Geo. change every this many seconds
-                double speed{1.};               ///< cruise speed along the path (state space distance / s)
-                double deceleration{2.};        ///< and acceleration
-                double safetyDistance{0.15};    ///< metres
-                double margin{0.15};            ///< moving obstacles are grown by this for planning and checks
-                double predictionHorizon{1.};   ///< seconds of constant-velocity prediction of moving obstacles
-                double predictionCopies{3.};    ///< copies of each moving obstacle along the prediction
-                double lookahead{4.};           ///< path length checked after a Geo. change
-                double stopMargin{0.05};        ///< path length between the stop and the interference
-                double planningTime{1.};        ///< seconds per query
-                double episodeTime{60.};        ///< simulated seconds before an episode counts as failed
-                double timingJitter{1.};        ///< moving obstacles start up to this many seconds earlier / later
-                double speedJitter{0.3};        ///< and move up to this fraction faster / slower
-                double realTime{1.};            ///< while planning, simulated time follows the wall clock times this
+                double dt{0.02};               ///< simulation step, seconds
+                double sensePeriod{0.1};       ///< Geo. change every this many seconds
+                double speed{1.};              ///< cruise speed along the path (state space distance / s)
+                double deceleration{2.};       ///< and acceleration
+                double safetyDistance{0.15};   ///< metres
+                double margin{0.15};           ///< moving obstacles are grown by this for planning and checks
+                double predictionHorizon{1.};  ///< seconds of constant-velocity prediction of moving obstacles
+                double predictionCopies{3.};   ///< copies of each moving obstacle along the prediction
+                double lookahead{4.};          ///< path length checked after a Geo. change
+                double stopMargin{0.05};       ///< path length between the stop and the interference
+                double planningTime{1.};       ///< seconds per query
+                double episodeTime{60.};       ///< simulated seconds before an episode counts as failed
+                double timingJitter{1.};       ///< moving obstacles start up to this many seconds earlier / later
+                double speedJitter{0.3};       ///< and move up to this fraction faster / slower
+                double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
                 bool deformation{true};
                 DeformationSettings deform;
                 double frames{8.};
+                std::map<std::string, std::string> dualParams;  ///< dual_roadmap_params: set on both DualRoadmap runs
             };
 
             [[noreturn]] void fail(const std::string &file, const std::string &key, const std::string &what)
@@ -113,11 +114,19 @@ namespace michi
                 std::string expected;
                 for (const auto &kv : numbers)
                     expected += kv.first + ", ";
-                expected += "deformation";
+                expected += "deformation, dual_roadmap_params";
                 for (const auto &kv : r)
                 {
                     const std::string key = kv.first.as<std::string>();
                     const std::string path = "extras.replan." + key;
+                    if (key == "dual_roadmap_params")
+                    {
+                        if (!kv.second.IsMap())
+                            fail(file, path, "expected a mapping of DualRoadmap parameter names to values");
+                        for (const auto &p : kv.second)
+                            s.dualParams[p.first.as<std::string>()] = p.second.as<std::string>();
+                        continue;
+                    }
                     if (key == "deformation")
                     {
                         try
@@ -171,9 +180,10 @@ namespace michi
                     case validity::Shape::Type::CAPSULE:
                         return validity::Shape::capsule(z.x() + m, z.z());
                     default:
-                        fail(file, key, "a moving obstacle must be a box, sphere, cylinder or capsule for michi replan "
-                                        "(it is grown by extras.replan.margin), got " +
-                                            shape.describe());
+                        fail(file, key,
+                             "a moving obstacle must be a box, sphere, cylinder or capsule for michi replan "
+                             "(it is grown by extras.replan.margin), got " +
+                                 shape.describe());
                 }
             }
 
@@ -252,9 +262,14 @@ namespace michi
                     {"dual", "michi::DualRoadmap", "michi::DualRoadmap", {}, Method::Reuse::DUAL, false},
                     {"rrtconnect", "geometric::RRTConnect", "geometric::RRTConnect", {}, Method::Reuse::SCRATCH, true},
                     {"prm", "geometric::PRM", "geometric::PRM", {}, Method::Reuse::SCRATCH, true},
-                    {"lazyprm", "geometric::LazyPRM (roadmap kept)", "geometric::LazyPRM", {},
-                     Method::Reuse::KEEP_ROADMAP, true},
-                    {"dual-no-learning", "michi::DualRoadmap (no learning roadmap)",
+                    {"lazyprm",
+                     "geometric::LazyPRM (roadmap kept)",
+                     "geometric::LazyPRM",
+                     {},
+                     Method::Reuse::KEEP_ROADMAP,
+                     true},
+                    {"dual-no-learning",
+                     "michi::DualRoadmap (no learning roadmap)",
                      "michi::DualRoadmap",
                      {{"use_learning", "0"}},
                      Method::Reuse::DUAL,
@@ -278,8 +293,7 @@ namespace michi
                 if (v.empty())
                     return std::numeric_limits<double>::quiet_NaN();
                 std::sort(v.begin(), v.end());
-                const std::size_t rank =
-                    static_cast<std::size_t>(std::ceil(p / 100. * static_cast<double>(v.size())));
+                const std::size_t rank = static_cast<std::size_t>(std::ceil(p / 100. * static_cast<double>(v.size())));
                 return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
             }
 
@@ -319,7 +333,7 @@ namespace michi
             public:
                 MethodRun(const Problem &problem, const std::vector<validity::Obstacle> &statics,
                           const std::vector<Mover> &movers, const ReplanSettings &settings, const Method &method)
-                  : problem_(problem), movers_(movers), settings_(settings), method_(method)
+                    : problem_(problem), movers_(movers), settings_(settings), method_(method)
                 {
                     const int copies = static_cast<int>(settings.predictionCopies);
                     planSensed_.build(statics, movers, copies, settings.predictionHorizon);
@@ -343,11 +357,19 @@ namespace michi
                     worldCtx_ = context(world_);
                     movingCtx_ = context(moving_.scene);
                     planner_ = allocatePlanner(method.planner, planCtx_.setup->getSpaceInformation());
-                    applyPlannerParams(*planner_, PlannerSpec{method.planner, method.params}, problem.file);
+                    std::map<std::string, std::string> params = method.params;
+                    if (method.reuse == Method::Reuse::DUAL)
+                        for (const auto &kv : settings.dualParams)
+                            params.insert(kv);
+                    applyPlannerParams(*planner_, PlannerSpec{method.planner, params}, problem.file);
                     if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
                     {
                         auto scene = planSensed_.scene;
-                        dual->setSceneChangeCounter([scene] { return scene->changeCount(); });
+                        dual->setSceneChangeCounter(
+                            [scene]
+                            {
+                                return scene->changeCount();
+                            });
                     }
                 }
 
@@ -399,11 +421,14 @@ namespace michi
                             if (!collided && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
                             {
                                 const auto c = exec.configuration();
-                                std::cerr << "\ncollision at t=" << t << " state " << NonStopExecutor::name(exec.execState())
-                                          << " q=(" << c[0] << "," << c[1] << "," << c[2] << ") v=" << exec.velocity()
-                                          << ": " << worldCtx_.checker->describeCollision(c.data()) << "\n";
+                                std::cerr << "\ncollision at t=" << t << " state "
+                                          << NonStopExecutor::name(exec.execState()) << " q=(" << c[0] << "," << c[1]
+                                          << "," << c[2] << ") v=" << exec.velocity() << ": "
+                                          << worldCtx_.checker->describeCollision(c.data()) << "\n";
                                 for (const auto &tr : exec.transitions())
-                                    std::cerr << "  " << NonStopExecutor::name(tr.from) << " -" << NonStopExecutor::name(tr.signal) << "-> " << NonStopExecutor::name(tr.to) << "\n";
+                                    std::cerr << "  " << NonStopExecutor::name(tr.from) << " -"
+                                              << NonStopExecutor::name(tr.signal) << "-> "
+                                              << NonStopExecutor::name(tr.to) << "\n";
                             }
                             collided = true;
                             ++results.collisionSteps;
@@ -563,7 +588,9 @@ namespace michi
                     };
                     auto movingChecker = movingCtx_.checker;
                     h.clearance = [movingChecker](const Configuration &q)
-                    { return movingChecker->clearanceConfiguration(q.data()); };
+                    {
+                        return movingChecker->clearanceConfiguration(q.data());
+                    };
                     if (settings_.deformation)
                     {
                         auto distance = h.distance;
@@ -642,7 +669,11 @@ namespace michi
                             planner_->setup();
                         const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
                             ob::timedPlannerTerminationCondition(settings_.planningTime),
-                            ob::PlannerTerminationCondition([&cancel] { return cancel.load(); }));
+                            ob::PlannerTerminationCondition(
+                                [&cancel]
+                                {
+                                    return cancel.load();
+                                }));
                         if (planner_->solve(ptc) != ob::PlannerStatus::EXACT_SOLUTION || cancel)
                             return false;
                         auto solution = std::dynamic_pointer_cast<og::PathGeometric>(pdef->getSolutionPath());
@@ -768,7 +799,11 @@ namespace michi
             else
                 for (const auto &name : options.methods)
                 {
-                    auto it = std::find_if(all.begin(), all.end(), [&](const Method &m) { return m.id == name || m.label == name; });
+                    auto it = std::find_if(all.begin(), all.end(),
+                                           [&](const Method &m)
+                                           {
+                                               return m.id == name || m.label == name;
+                                           });
                     if (it == all.end())
                     {
                         std::string known;
@@ -820,10 +855,11 @@ namespace michi
             json << "{\n  \"scenario\": " << quote(problem.name) << ",\n  \"problem\": " << quote(problem.file)
                  << ",\n  \"seed\": " << options.seed << ",\n  \"method\": " << quote(methods[0].label) << ",\n";
             writeResults(json, results[0], "  ");
-            json << ",\n  \"settings\": {\"dt\": " << num(settings.dt) << ", \"sense_period\": "
-                 << num(settings.sensePeriod) << ", \"speed\": " << num(settings.speed)
+            json << ",\n  \"settings\": {\"dt\": " << num(settings.dt)
+                 << ", \"sense_period\": " << num(settings.sensePeriod) << ", \"speed\": " << num(settings.speed)
                  << ", \"deceleration\": " << num(settings.deceleration)
-                 << ", \"safety_distance\": " << num(settings.safetyDistance) << ", \"margin\": " << num(settings.margin)
+                 << ", \"safety_distance\": " << num(settings.safetyDistance)
+                 << ", \"margin\": " << num(settings.margin)
                  << ", \"prediction_horizon\": " << num(settings.predictionHorizon)
                  << ", \"planning_time\": " << num(settings.planningTime)
                  << ", \"episode_time\": " << num(settings.episodeTime)
@@ -835,8 +871,8 @@ namespace michi
             {
                 json << (mi > 1 ? "," : "") << "\n    " << quote(methods[mi].label) << ": {\n";
                 writeResults(json, results[mi], "      ");
-                const double ratio = percentile(results[mi].replanLatency, 50.) /
-                                     percentile(results[0].replanLatency, 50.);
+                const double ratio =
+                    percentile(results[mi].replanLatency, 50.) / percentile(results[0].replanLatency, 50.);
                 json << ",\n      \"median_latency_ratio_to_method\": " << num(ratio) << "\n    }";
             }
             json << "\n  }\n}\n";
@@ -852,7 +888,8 @@ namespace michi
                 const std::size_t want = std::max<std::size_t>(1, static_cast<std::size_t>(settings.frames));
                 std::vector<std::size_t> chosen;
                 for (std::size_t i = 0; i < want && !frames.empty(); ++i)
-                    chosen.push_back(frames.size() == 1 ? 0 : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
+                    chosen.push_back(frames.size() == 1 ? 0
+                                                        : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
                 chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
                 int n = 0;
                 for (std::size_t idx : chosen)

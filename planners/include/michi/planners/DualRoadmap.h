@@ -27,11 +27,11 @@ namespace michi
            <em>learning roadmap</em> keeps every local path (edge) that was ever found collision-free, across
            queries and scene changes (and across runs: saveLearningRoadmap() / loadLearningRoadmap()). The
            <em>working roadmap</em> belongs to the current scene. When the scene changes, the working roadmap is
-           cleared and seeded with randomly chosen learning-roadmap edges that are still valid (both states and
-           the motion re-checked); then start and goal are connected and the roadmap is expanded by uniform
-           samples, with edges checked lazily (only those on a candidate shortest path, as LazyPRM does). Edges
-           that the search proved valid are added to the learning roadmap. The path found is smoothed (redundant
-           vertices removed, shortcuts).
+           cleared and seeded with randomly chosen learning-roadmap edges that are still valid (both states
+           re-checked at once, the motion lazily or at once: lazy_seeding); then start and goal are connected and the
+           roadmap is expanded by uniform samples, with edges checked lazily (only those on a candidate shortest path,
+           as LazyPRM does). Edges that the search proved valid are added to the learning roadmap. The path found is
+           smoothed (redundant vertices removed, shortcuts).
 
            How the planner learns that the scene changed (it only has \e si): either the owner calls
            notifySceneChanged(), or it installs a change counter with setSceneChangeCounter() (for michi's
@@ -149,6 +149,17 @@ namespace michi
             {
                 return smooth_;
             }
+            /** \brief Seed the working roadmap with learning edges whose two states are valid in the new scene, and
+                check their motions lazily (only on a candidate path, like the new edges); false: check every seeded
+                motion at once, so the working roadmap holds only local paths proved valid. */
+            void setLazySeeding(bool lazy)
+            {
+                lazySeeding_ = lazy;
+            }
+            bool getLazySeeding() const
+            {
+                return lazySeeding_;
+            }
             /** \brief The learning roadmap stops growing at this many edges. */
             void setMaxLearningEdges(unsigned int n)
             {
@@ -205,11 +216,12 @@ namespace michi
             std::atomic<std::size_t> learningEdgeCountAtomic_{0};  ///< for the progress property (other thread)
 
             bool useLearning_{true};
-            unsigned int seedEdges_{200};
+            unsigned int seedEdges_{50};
             unsigned int k_{10};
             double rangeFraction_{0.3};
             unsigned int batchSize_{20};
             bool smooth_{true};
+            bool lazySeeding_{true};
             unsigned int maxLearningEdges_{50000};
         };
     }  // namespace planners

@@ -39,8 +39,8 @@ namespace michi
             deformed path (it should check it against the world). \e interpolate is the state space's. */
         bool deformPath(ConfigurationPath &path, const validity::FclValidityChecker &checker,
                         const std::function<double(const Configuration &, const Configuration &)> &distance,
-                        const std::function<void(const Configuration &, const Configuration &, double,
-                                                 Configuration &)> &interpolate,
+                        const std::function<void(const Configuration &, const Configuration &, double, Configuration &)>
+                            &interpolate,
                         const std::function<bool(const ConfigurationPath &)> &accept,
                         const DeformationSettings &settings);
     }  // namespace tools
