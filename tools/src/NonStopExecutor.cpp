@@ -146,7 +146,10 @@ namespace michi
         {
             std::unique_lock<std::mutex> lock(mutex_);
             return cv_.wait_for(lock, std::chrono::duration<double>(seconds),
-                                [this] { return queries_.empty() && !busy_; });
+                                [this]
+                                {
+                                    return queries_.empty() && !busy_;
+                                });
         }
 
         void NonStopExecutor::transition(ExecState to, Signal signal)
@@ -432,7 +435,14 @@ namespace michi
             {
                 velocity_ = 0.;
                 cancelQuery();
-                transition(ExecState::FINISHED, Signal::FINISHED);
+                if (hooks_.distance(current_, goal_) <= 1e-6)
+                {
+                    transition(ExecState::FINISHED, Signal::FINISHED);
+                    return;
+                }
+                // the end of a partial path (an escape that did not reach the goal): wait there for a path
+                transition(ExecState::STOPPED, Signal::STEP);
+                sendQuery(current_, s_);
                 return;
             }
             if (exec_ == ExecState::REPLANNING &&

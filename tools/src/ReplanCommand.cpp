@@ -61,6 +61,7 @@ namespace michi
                 double timingJitter{1.};       ///< moving obstacles start up to this many seconds earlier / later
                 double speedJitter{0.3};       ///< and move up to this fraction faster / slower
                 double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
+                double escapeHorizon{0.};      ///< escapes avoid the obstacles' true shapes over this many seconds
                 bool deformation{true};
                 DeformationSettings deform;
                 double frames{8.};
@@ -106,6 +107,7 @@ namespace michi
                     {"timing_jitter", &s.timingJitter},
                     {"speed_jitter", &s.speedJitter},
                     {"real_time", &s.realTime},
+                    {"escape_horizon", &s.escapeHorizon},
                     {"deformation_distance", &s.deform.startDistance},
                     {"deformation_window", &s.deform.window},
                     {"deformation_spacing", &s.deform.spacing},
@@ -153,7 +155,7 @@ namespace michi
                     }
                     const bool mayBeZero = key == "safety_distance" || key == "margin" || key == "timing_jitter" ||
                                            key == "speed_jitter" || key == "real_time" || key == "stop_margin" ||
-                                           key == "prediction_horizon" || key == "frames";
+                                           key == "prediction_horizon" || key == "frames" || key == "escape_horizon";
                     if (!std::isfinite(v) || v < 0. || (!mayBeZero && v == 0.))
                         fail(file, path, mayBeZero ? "expected a number >= 0" : "expected a number > 0");
                     *it->second = v;
@@ -338,8 +340,8 @@ namespace michi
                     const int copies = static_cast<int>(settings.predictionCopies);
                     planSensed_.build(statics, movers, copies, settings.predictionHorizon);
                     execSensed_.build(statics, movers, copies, settings.predictionHorizon);
-                    planNow_.build(statics, movers, 1, 0., false);
-                    moving_.build({}, movers, 1, 0., false);
+                    planNow_.build(statics, movers, 3, settings.escapeHorizon, false);
+                    moving_.build({}, movers, 3, settings.escapeHorizon, false);
                     world_ = std::make_shared<validity::Scene>();
                     for (const auto &o : statics)
                         world_->add(o);
@@ -424,7 +426,10 @@ namespace michi
                                 std::cerr << "\ncollision at t=" << t << " state "
                                           << NonStopExecutor::name(exec.execState()) << " q=(" << c[0] << "," << c[1]
                                           << "," << c[2] << ") v=" << exec.velocity() << ": "
-                                          << worldCtx_.checker->describeCollision(c.data()) << "\n";
+                                          << worldCtx_.checker->describeCollision(c.data())
+                                          << " | sensed: " << execCtx_.checker->describeCollision(c.data()) << "\n";
+                                for (const auto &o : execSensed_.scene->obstacles())
+                                    std::cerr << "   " << o.name << " " << o.pose.translation().transpose() << "\n";
                                 for (const auto &tr : exec.transitions())
                                     std::cerr << "  " << NonStopExecutor::name(tr.from) << " -"
                                               << NonStopExecutor::name(tr.signal) << "-> "
@@ -552,7 +557,7 @@ namespace michi
                     };
                     const double lookahead = settings_.lookahead;
                     const auto msi = movingCtx_.setup->getSpaceInformation();
-                    h.firstInterference = [esi, msi, lookahead](const ConfigurationPath &path)
+                    h.firstInterference = [this, esi, msi, lookahead](const ConfigurationPath &path)
                     {
                         const double inf = std::numeric_limits<double>::infinity();
                         if (path.empty())
@@ -563,16 +568,30 @@ namespace michi
                         std::size_t first = 1;
                         if (!esi->isValid(a.get()))
                         {
-                            // the robot is already within the margin of a (predicted) obstacle: a path that leaves
-                            // it with its first segment, without touching the obstacles as they are, is an escape
-                            if (path.size() < 2)
+                            // the robot is already within the margin of a (predicted) obstacle: only an escape the
+                            // planner made (its target within the next waypoints), reached without touching the
+                            // obstacles as they are, is acceptable
+                            std::size_t target = 0;
+                            {
+                                std::lock_guard<std::mutex> lock(escapeMutex_);
+                                for (std::size_t k = 1; k < std::min<std::size_t>(path.size(), 3) && target == 0; ++k)
+                                    for (const auto &e : escapeTargets_)
+                                        if (e == path[k])
+                                            target = k;
+                            }
+                            if (target == 0)
                                 return 0.;
-                            toState(esi, path[1], b.get());
-                            if (!esi->isValid(b.get()) || !msi->checkMotion(a.get(), b.get()))
+                            for (std::size_t k = 1; k <= target; ++k)
+                            {
+                                toState(esi, path[k], b.get());
+                                if (!msi->checkMotion(a.get(), b.get()))
+                                    return 0.;
+                                arc += esi->distance(a.get(), b.get());
+                                esi->copyState(a.get(), b.get());
+                            }
+                            if (!esi->isValid(a.get()))
                                 return 0.;
-                            arc = esi->distance(a.get(), b.get());
-                            esi->copyState(a.get(), b.get());
-                            first = 2;
+                            first = target + 1;
                         }
                         for (std::size_t i = first; i < path.size() && arc < lookahead; ++i)
                         {
@@ -635,8 +654,6 @@ namespace michi
                         ob::ScopedState<> s(psi), g(psi);
                         toState(psi, from, s.get());
                         toState(psi, goal, g.get());
-                        if (!psi->isValid(g.get()))
-                            return false;
                         ConfigurationPath prefix;
                         if (!psi->isValid(s.get()))
                         {
@@ -645,7 +662,22 @@ namespace michi
                             if (!escape(s.get(), cancel))
                                 return false;
                             prefix.push_back(from);
+                            {
+                                std::lock_guard<std::mutex> lock(escapeMutex_);
+                                escapeTargets_.push_back(toReals(psi, s.get()));
+                                if (escapeTargets_.size() > 8)
+                                    escapeTargets_.erase(escapeTargets_.begin());
+                            }
+                            if (!psi->isValid(g.get()))
+                            {
+                                // the goal is taken for now: just get out of the way and wait there
+                                path = prefix;
+                                path.push_back(toReals(psi, s.get()));
+                                return true;
+                            }
                         }
+                        if (!psi->isValid(g.get()))
+                            return false;
                         auto pdef = std::make_shared<ob::ProblemDefinition>(psi);
                         pdef->setStartAndGoalStates(s, g);
                         switch (method_.reuse)
@@ -722,11 +754,13 @@ namespace michi
                 const Problem &problem_;
                 std::vector<Mover> movers_;
                 ob::StateSamplerPtr escapeSampler_;
+                std::mutex escapeMutex_;
+                std::vector<Configuration> escapeTargets_;  ///< the last escapes the planning thread made
                 ReplanSettings settings_;
                 Method method_;
                 SensedWorld planSensed_, execSensed_, planNow_;
                 validity::ScenePtr world_;
-                SensedWorld moving_;  ///< the movers only, true shapes, where they are (clearance, deformation)
+                SensedWorld moving_;  ///< the movers only, true shapes over escape_horizon (clearance, deformation)
                 PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_;
                 ob::PlannerPtr planner_;
                 std::vector<std::vector<validity::TimedPose>> trajectories_;

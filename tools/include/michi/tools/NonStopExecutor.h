@@ -26,7 +26,8 @@ namespace michi
         {
             /** \brief Plan from \e from to \e goal in the world as sensed when the query was made; return false when
                 no path was found (time limit) or \e cancel became true. \e snapshot is what sensedWorld() returned
-                when the query was sent. */
+                when the query was sent. A path that does not end at the goal (an escape) is followed to its end,
+                then the robot waits there and queries again. */
             std::function<bool(const Configuration &from, const Configuration &goal, std::uint64_t snapshot,
                                const std::atomic<bool> &cancel, ConfigurationPath &path)>
                 plan;
