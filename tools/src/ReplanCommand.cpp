@@ -62,6 +62,7 @@ namespace michi
                 double speedJitter{0.3};       ///< and move up to this fraction faster / slower
                 double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
                 double escapeHorizon{0.};      ///< escapes avoid the obstacles' true shapes over this many seconds
+                double crossTime{0.6};  ///< s: a robot inside a predicted region keeps going if it leaves it this fast
                 bool deformation{true};
                 DeformationSettings deform;
                 double frames{8.};
@@ -108,6 +109,7 @@ namespace michi
                     {"speed_jitter", &s.speedJitter},
                     {"real_time", &s.realTime},
                     {"escape_horizon", &s.escapeHorizon},
+                    {"cross_time", &s.crossTime},
                     {"deformation_distance", &s.deform.startDistance},
                     {"deformation_window", &s.deform.window},
                     {"deformation_spacing", &s.deform.spacing},
@@ -155,7 +157,8 @@ namespace michi
                     }
                     const bool mayBeZero = key == "safety_distance" || key == "margin" || key == "timing_jitter" ||
                                            key == "speed_jitter" || key == "real_time" || key == "stop_margin" ||
-                                           key == "prediction_horizon" || key == "frames" || key == "escape_horizon";
+                                           key == "prediction_horizon" || key == "frames" || key == "escape_horizon" ||
+                                           key == "cross_time";
                     if (!std::isfinite(v) || v < 0. || (!mayBeZero && v == 0.))
                         fail(file, path, mayBeZero ? "expected a number >= 0" : "expected a number > 0");
                     *it->second = v;
@@ -430,10 +433,11 @@ namespace michi
                                           << " | sensed: " << execCtx_.checker->describeCollision(c.data()) << "\n";
                                 for (const auto &o : execSensed_.scene->obstacles())
                                     std::cerr << "   " << o.name << " " << o.pose.translation().transpose() << "\n";
-                                for (const auto &tr : exec.transitions())
-                                    std::cerr << "  " << NonStopExecutor::name(tr.from) << " -"
-                                              << NonStopExecutor::name(tr.signal) << "-> "
-                                              << NonStopExecutor::name(tr.to) << "\n";
+                                const auto &trs = exec.transitions();
+                                for (std::size_t ti = trs.size() > 10 ? trs.size() - 10 : 0; ti < trs.size(); ++ti)
+                                    std::cerr << "  " << NonStopExecutor::name(trs[ti].from) << " -"
+                                              << NonStopExecutor::name(trs[ti].signal) << "-> "
+                                              << NonStopExecutor::name(trs[ti].to) << "\n";
                             }
                             collided = true;
                             ++results.collisionSteps;
@@ -500,6 +504,26 @@ namespace michi
                     return q;
                 }
 
+                /** Arc length to the first interference of \e path (its first state valid) within \e lookahead. */
+                static double firstInterferenceFree(const ob::SpaceInformationPtr &esi, const ConfigurationPath &path,
+                                                    double lookahead)
+                {
+                    ob::ScopedState<> a(esi), b(esi);
+                    toState(esi, path[0], a.get());
+                    double arc = 0.;
+                    for (std::size_t i = 1; i < path.size() && arc < lookahead; ++i)
+                    {
+                        toState(esi, path[i], b.get());
+                        const double len = esi->distance(a.get(), b.get());
+                        std::pair<ob::State *, double> last(nullptr, 0.);
+                        if (!esi->satisfiesBounds(b.get()) || !esi->checkMotion(a.get(), b.get(), last))
+                            return arc + last.second * len;
+                        arc += len;
+                        esi->copyState(a.get(), b.get());
+                    }
+                    return std::numeric_limits<double>::infinity();
+                }
+
                 NonStopSettings executorSettings() const
                 {
                     NonStopSettings s;
@@ -557,7 +581,8 @@ namespace michi
                     };
                     const double lookahead = settings_.lookahead;
                     const auto msi = movingCtx_.setup->getSpaceInformation();
-                    h.firstInterference = [this, esi, msi, lookahead](const ConfigurationPath &path)
+                    const double crossDistance = settings_.speed * settings_.crossTime;
+                    h.firstInterference = [this, esi, msi, lookahead, crossDistance](const ConfigurationPath &path)
                     {
                         const double inf = std::numeric_limits<double>::infinity();
                         if (path.empty())
@@ -580,7 +605,44 @@ namespace michi
                                             target = k;
                             }
                             if (target == 0)
+                            {
+                                // not an escape: the robot may still be crossing the (predicted) way of an obstacle
+                                // that is not there yet; keep going if the path leaves the predicted region within
+                                // crossDistance, free of the obstacles as they are (braking there would be worse)
+                                double along = 0.;
+                                ob::ScopedState<> c(esi);
+                                esi->copyState(c.get(), a.get());
+                                for (std::size_t k = 1; k < path.size() && along <= crossDistance; ++k)
+                                {
+                                    toState(esi, path[k], b.get());
+                                    const double len = esi->distance(c.get(), b.get());
+                                    const int n = std::max(1, static_cast<int>(std::ceil(len / 0.02)));
+                                    ob::ScopedState<> x(esi), y(esi);
+                                    esi->copyState(y.get(), c.get());
+                                    for (int i = 1; i <= n; ++i)
+                                    {
+                                        esi->getStateSpace()->interpolate(c.get(), b.get(), static_cast<double>(i) / n,
+                                                                          x.get());
+                                        if (!msi->checkMotion(y.get(), x.get()))
+                                            return 0.;
+                                        along += len / n;
+                                        esi->copyState(y.get(), x.get());
+                                        if (esi->isValid(x.get()))
+                                        {
+                                            // out of the predicted region: check the rest of the path from here
+                                            ConfigurationPath rest{toReals(esi, x.get())};
+                                            for (std::size_t r = k; r < path.size(); ++r)
+                                                rest.push_back(path[r]);
+                                            const double more = firstInterferenceFree(esi, rest, lookahead - along);
+                                            return std::isinf(more) ? more : along + more;
+                                        }
+                                        if (along > crossDistance)
+                                            return 0.;
+                                    }
+                                    esi->copyState(c.get(), b.get());
+                                }
                                 return 0.;
+                            }
                             for (std::size_t k = 1; k <= target; ++k)
                             {
                                 toState(esi, path[k], b.get());
