@@ -7,6 +7,7 @@
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
 #include <michi/tools/PlanningContext.h>
+#include <michi/tools/ReplanCommand.h>
 #include <michi/tools/Problem.h>
 #include <michi/tools/SvgPlot.h>
 #include <michi/validity/RobotModel.h>
@@ -45,6 +46,9 @@ namespace
         "      (DIR/lattice.md) and pictures of the lattice, groups, path correction and path (DIR/*.svg)\n"
         "  michi dualarm PROBLEM.yaml --out DIR [--time SECONDS] [--seed S]\n"
         "      dual-arm work positions by manipulability (paper 004); writes DIR/dualarm.json and pictures\n"
+        "  michi replan PROBLEM.yaml --out DIR [--episodes N] [--seed S] [--methods dual,rrtconnect,...]\n"
+        "      non-stop replanning among moving obstacles (paper 002): N randomized episodes per method; writes\n"
+        "      DIR/replan.json and DIR/episode/frame_*.svg\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -308,6 +312,26 @@ namespace
         return 0;
     }
 
+    int replan(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "episodes", "seed", "methods"});
+        if (args.positional.size() != 1)
+            throw UsageError("replan takes one problem file");
+        if (!args.has("out"))
+            throw UsageError("replan needs --out DIR");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_ERROR);
+        ReplanOptions options;
+        options.problemFile = args.positional[0];
+        options.outDir = args.get("out");
+        options.episodes = static_cast<unsigned int>(args.number("episodes", 20, true));
+        options.seed = static_cast<unsigned int>(args.number("seed", 1, true));
+        options.methods = splitComma(args.get("methods"));
+        options.progress = &std::cerr;
+        std::cout << runReplan(options);
+        std::cerr << "michi replan: wrote " << (fs::path(options.outDir) / "replan.json").string() << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -338,6 +362,8 @@ int main(int argc, char **argv)
             return dualarm(argc, argv);
         if (command == "circles")
             return michi::tools::circlesCommand(argc, argv);
+        if (command == "replan")
+            return replan(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

@@ -2,6 +2,7 @@
 
 #include <michi/planners/HeadingLattice.h>
 #include <michi/planners/ConcentricCircle.h>
+#include <michi/planners/DualRoadmap.h>
 
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
@@ -109,6 +110,7 @@ namespace michi
                 {"geometric::TRRT", allocator<og::TRRT>()},
                 {"michi::HeadingLattice", allocator<michi::planners::HeadingLattice>()},
                 {"michi::ConcentricCircle", allocator<michi::planners::ConcentricCircle>()},
+                {"michi::DualRoadmap", allocator<michi::planners::DualRoadmap>()},
             };
             return registry;
         }

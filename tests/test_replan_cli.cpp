@@ -1,0 +1,97 @@
+// Tests of `michi replan` (paper 002): a short run writes replan.json with the required fields (also per baseline)
+// and the episode's frames; bad input (no moving obstacle, bad extras.replan key, unknown method, bad --episodes)
+// gives a clear error, a non-zero exit and no output directory.
+#include "support/TestScenes.h"
+
+#include <boost/filesystem.hpp>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace fs = boost::filesystem;
+
+namespace
+{
+    struct CommandRun
+    {
+        int exitCode;
+        std::string output;
+    };
+
+    CommandRun runMichi(const std::string &args)
+    {
+        const std::string command = std::string(MICHI_BINARY_DIR) + "/bin/michi " + args + " 2>&1";
+        CommandRun run{-1, ""};
+        FILE *pipe = popen(command.c_str(), "r");
+        if (pipe == nullptr)
+            return run;
+        std::array<char, 4096> buffer{};
+        std::size_t n;
+        while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+            run.output.append(buffer.data(), n);
+        const int status = pclose(pipe);
+        run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        return run;
+    }
+
+    std::string readFile(const std::string &path)
+    {
+        std::ifstream in(path);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+}  // namespace
+
+TEST(ReplanCli, WritesResultsForMethodAndBaselines)
+{
+    michi::test::TempDir dir;
+    const std::string out = dir.path() + "/run";
+    const auto run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_mobile_passage.yaml") +
+                              " --episodes 2 --seed 3 --methods dual,dual-no-learning --out " + out);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string json = readFile(out + "/replan.json");
+    for (const char *key : {"\"episodes\": 2", "\"reached_goal\"", "\"collisions\"", "\"stops\"", "\"deformations\"",
+                            "\"replans\"", "\"replan_latency_ms_median\"", "\"replan_latency_ms_p95\"", "\"baselines\"",
+                            "\"michi::DualRoadmap (no learning roadmap)\"", "\"median_latency_ratio_to_method\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key << " missing in\n" << json;
+    EXPECT_TRUE(fs::exists(out + "/episode/frame_00.svg"));
+    EXPECT_FALSE(fs::exists(out + ".partial"));
+}
+
+TEST(ReplanCli, BadInputIsRejectedAndWritesNothing)
+{
+    michi::test::TempDir dir;
+    const std::string out = dir.path() + "/run";
+    // a problem without moving obstacles
+    auto run = runMichi("replan " + michi::test::sourcePath("problems/planar_2link.yaml") + " --out " + out);
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find("moving obstacle"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    // a misspelt setting
+    const std::string source = readFile(michi::test::sourcePath("problems/dynamic_mobile_passage.yaml"));
+    std::string bad = source;
+    bad.replace(bad.find("    sense_period:"), 17, "    sense_periodd:");
+    const std::string badFile = dir.write("bad.yaml", bad);
+    run = runMichi("replan " + badFile + " --out " + out);
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find("extras.replan.sense_periodd"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_mobile_passage.yaml") +
+                   " --methods dual,nonsense --episodes 1 --out " + out);
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find("nonsense"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_mobile_passage.yaml") +
+                   " --episodes 0 --out " + out);
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_FALSE(fs::exists(out));
+}
