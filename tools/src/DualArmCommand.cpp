@@ -1,4 +1,5 @@
 #include <michi/tools/DualArmCommand.h>
+#include <michi/tools/FileOutput.h>
 
 #include <michi/planners/ManipulabilityObjective.h>
 #include <michi/tools/DualArmPicture.h>
@@ -50,18 +51,6 @@ namespace michi
                     s << (i ? ", " : "") << v[i];
                 s << "]";
                 return s.str();
-            }
-
-            std::string quoted(const std::string &text)
-            {
-                std::string out = "\"";
-                for (char c : text)
-                {
-                    if (c == '"' || c == '\\')
-                        out += '\\';
-                    out += c;
-                }
-                return out + "\"";
             }
 
             std::vector<double> groupValues(const std::vector<double> &full, const std::vector<int> &vars)
@@ -218,7 +207,7 @@ namespace michi
                 std::ostringstream s;
                 s << std::setprecision(6) << "{\n"
                   << indent << "  \"solved\": " << (r.solved ? "true" : "false") << ",\n"
-                  << indent << "  \"status\": " << quoted(r.status);
+                  << indent << "  \"status\": " << jsonString(r.status);
                 if (!r.states.empty())
                     s << ",\n"
                       << indent << "  \"states\": " << r.states.size() << ",\n"
@@ -290,11 +279,11 @@ namespace michi
                 jointNames.push_back(problem.model->variableJoint(static_cast<std::size_t>(v)).name);
             std::ostringstream json;
             json << std::setprecision(6) << "{\n"
-                 << "  \"problem\": " << quoted(problem.name) << ",\n"
+                 << "  \"problem\": " << jsonString(problem.name) << ",\n"
                  << "  \"configuration_joint_names\": [";
             const auto names = problem.model->variableNames();
             for (std::size_t i = 0; i < names.size(); ++i)
-                json << (i ? ", " : "") << quoted(names[i]);
+                json << (i ? ", " : "") << jsonString(names[i]);
             json << "],\n"
                  << "  \"type_a_position\": " << vec(ws.typeAPosition()) << ",\n"
                  << "  \"type_a_centroid\": " << vec(ws.typeACentroid()) << ",\n"
@@ -319,14 +308,14 @@ namespace michi
                  << "  \"stirring_states\": " << stirB.states.size() << ",\n"
                  << "  \"small_joint_names\": [";
             for (std::size_t i = 0; i < jointNames.size(); ++i)
-                json << (i ? ", " : "") << quoted(jointNames[i]);
+                json << (i ? ", " : "") << jsonString(jointNames[i]);
             json << "],\n"
                  << "  \"min_manipulability_stirring\": " << stirB.minManipulability << ",\n"
                  << "  \"joint_motion_stirring\": " << list(stirB.jointMotion) << ",\n"
                  << "  \"joint_motion_share_stirring\": " << list(shares(stirB.jointMotion)) << ",\n"
                  << "  \"stirring\": " << pathJson(checkB, "  ") << ",\n"
                  << "  \"stirring_without_criterion\": " << pathJson(checkA, "  ") << ",\n"
-                 << "  \"planner\": " << quoted(spec.planner) << ",\n"
+                 << "  \"planner\": " << jsonString(spec.planner) << ",\n"
                  << "  \"planning_time\": " << time << ",\n"
                  << "  \"objective_weight\": " << spec.weight << ",\n"
                  << "  \"handover_approach_with_manipulability\": " << pathJson(handoverWith, "  ") << ",\n"
@@ -339,44 +328,28 @@ namespace michi
                  << "}\n";
 
             // staged output: nothing in DIR unless everything was written
-            const fs::path out = fs::absolute(options.outDir);
-            const fs::path stage =
-                out.parent_path() / ("." + out.filename().string() + ".partial-" + std::to_string(getpid()));
-            fs::remove_all(stage);
-            fs::create_directories(stage);
-            try
+            StagedDirectory stage(options.outDir);
+            std::vector<DualArmJointPlot> plots;
+            auto toPlot = [&](const std::string &label, const planners::StirringMotion &m)
             {
-                std::vector<DualArmJointPlot> plots;
-                auto toPlot = [&](const std::string &label, const planners::StirringMotion &m)
-                {
-                    DualArmJointPlot p{label, {}};
-                    for (const auto &q : m.states)
-                        p.values.push_back(groupValues(q, problem.groupVariables));
-                    plots.push_back(p);
-                };
-                toPlot("stirring at type B (manipulability area)", stirB);
-                if (stirA.valid)
-                    toPlot("stirring at type A (work space centroid, no manipulability)", stirA);
-                writeDualArmPictures(ws, (stage / "dualarm-workspace.svg").string(),
-                                     (stage / "dualarm-manipulability.svg").string(),
-                                     (stage / "dualarm-stirring.svg").string(), plots, problem.name);
-                for (const char *name : {"dualarm-workspace", "dualarm-manipulability", "dualarm-stirring"})
-                    if (!svgToPng((stage / (std::string(name) + ".svg")).string(),
-                                  (stage / (std::string(name) + ".png")).string()))
-                        throw std::runtime_error(std::string("cannot render ") + name +
-                                                 ".png (is rsvg-convert installed? scripts/setup.sh installs it)");
-                std::ofstream((stage / "dualarm.json").string()) << json.str();
-                fs::create_directories(out);
-                for (const auto &entry : fs::directory_iterator(stage))
-                    fs::rename(entry.path(), out / entry.path().filename());
-                fs::remove_all(stage);
-            }
-            catch (...)
-            {
-                boost::system::error_code ec;
-                fs::remove_all(stage, ec);
-                throw;
-            }
+                DualArmJointPlot p{label, {}};
+                for (const auto &q : m.states)
+                    p.values.push_back(groupValues(q, problem.groupVariables));
+                plots.push_back(p);
+            };
+            toPlot("stirring at type B (manipulability area)", stirB);
+            if (stirA.valid)
+                toPlot("stirring at type A (work space centroid, no manipulability)", stirA);
+            writeDualArmPictures(ws, stage.path("dualarm-workspace.svg").string(),
+                                 stage.path("dualarm-manipulability.svg").string(),
+                                 stage.path("dualarm-stirring.svg").string(), plots, problem.name);
+            for (const char *name : {"dualarm-workspace", "dualarm-manipulability", "dualarm-stirring"})
+                if (!svgToPng(stage.path(std::string(name) + ".svg").string(),
+                              stage.path(std::string(name) + ".png").string()))
+                    throw std::runtime_error(std::string("cannot render ") + name +
+                                             ".png (is rsvg-convert installed? scripts/setup.sh installs it)");
+            writeAtomically(json.str(), stage.path("dualarm.json").string());
+            stage.commit();
             return json.str();
         }
     }  // namespace tools

@@ -1,5 +1,9 @@
 #include <michi/tools/FileOutput.h>
 
+#include <boost/filesystem.hpp>
+
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -39,6 +43,57 @@ namespace michi
             for (char c : text)
                 quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
             return quoted + "'";
+        }
+
+        std::string jsonString(const std::string &text)
+        {
+            std::string out = "\"";
+            for (char c : text)
+            {
+                if (c == '"' || c == '\\')
+                    out += '\\';
+                if (static_cast<unsigned char>(c) < 0x20)
+                {
+                    char code[8];
+                    std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned int>(c));
+                    out += code;
+                }
+                else
+                    out += c;
+            }
+            return out + "\"";
+        }
+
+        StagedDirectory::StagedDirectory(const std::string &outDir)
+          : out_(boost::filesystem::absolute(outDir))
+          , dir_(out_.parent_path() / ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
+        {
+            boost::filesystem::remove_all(dir_);
+            boost::filesystem::create_directories(dir_);
+        }
+
+        StagedDirectory::~StagedDirectory()
+        {
+            boost::system::error_code ec;
+            boost::filesystem::remove_all(dir_, ec);
+        }
+
+        boost::filesystem::path StagedDirectory::path(const std::string &name) const
+        {
+            return dir_ / name;
+        }
+
+        void StagedDirectory::commit()
+        {
+            namespace fs = boost::filesystem;
+            fs::create_directories(out_);
+            for (const auto &entry : fs::directory_iterator(dir_))
+            {
+                const fs::path target = out_ / entry.path().filename();
+                if (fs::is_directory(target))
+                    fs::remove_all(target);
+                fs::rename(entry.path(), target);
+            }
         }
     }  // namespace tools
 }  // namespace michi

@@ -1,4 +1,5 @@
 #include <michi/tools/JMapReport.h>
+#include <michi/tools/FileOutput.h>
 
 #include <michi/tools/JMapPicture.h>
 #include <michi/tools/JMapSetup.h>
@@ -155,35 +156,19 @@ namespace michi
                  << "}\n";
 
             // staged output: nothing in DIR unless everything was written
-            const fs::path out = fs::absolute(options.outDir);
-            const fs::path stage =
-                out.parent_path() / ("." + out.filename().string() + ".partial-" + std::to_string(getpid()));
-            fs::remove_all(stage);
-            fs::create_directories(stage);
-            try
-            {
-                JMapPictureOptions picture;
-                picture.title = problem.name + ": J-map (" + source->name() + ", " +
-                                std::to_string(map->slices().size()) + " slices)";
-                picture.axis1 = problem.model->variableJoint(jp.axes.axis1).name;
-                picture.axis2 = problem.model->variableJoint(jp.axes.axis2).name;
-                picture.grown = grown;
-                picture.bottleneck = neck;
-                picture.start = {problem.queries[0].start[0], problem.queries[0].start[1]};
-                picture.goal = {problem.queries[0].goal[0], problem.queries[0].goal[1]};
-                writeJMapSvg(*map, (stage / "jmap.svg").string(), picture);
-                std::ofstream((stage / "jmap.json").string()) << json.str();
-                fs::create_directories(out);
-                for (const auto &entry : fs::directory_iterator(stage))
-                    fs::rename(entry.path(), out / entry.path().filename());
-                fs::remove_all(stage);
-            }
-            catch (...)
-            {
-                boost::system::error_code ec;
-                fs::remove_all(stage, ec);
-                throw;
-            }
+            StagedDirectory stage(options.outDir);
+            JMapPictureOptions picture;
+            picture.title =
+                problem.name + ": J-map (" + source->name() + ", " + std::to_string(map->slices().size()) + " slices)";
+            picture.axis1 = problem.model->variableJoint(jp.axes.axis1).name;
+            picture.axis2 = problem.model->variableJoint(jp.axes.axis2).name;
+            picture.grown = grown;
+            picture.bottleneck = neck;
+            picture.start = {problem.queries[0].start[0], problem.queries[0].start[1]};
+            picture.goal = {problem.queries[0].goal[0], problem.queries[0].goal[1]};
+            writeJMapSvg(*map, stage.path("jmap.svg").string(), picture);
+            writeAtomically(json.str(), stage.path("jmap.json").string());
+            stage.commit();
             return json.str();
         }
     }  // namespace tools

@@ -1,6 +1,8 @@
 #ifndef MICHI_TOOLS_FILE_OUTPUT_
 #define MICHI_TOOLS_FILE_OUTPUT_
 
+#include <boost/filesystem/path.hpp>
+
 #include <string>
 
 namespace michi
@@ -13,6 +15,37 @@ namespace michi
 
         /** \brief \e text quoted for a POSIX shell (single quotes). */
         std::string shellQuote(const std::string &text);
+
+        /** \brief \e text as a JSON string literal (quotes, backslashes and control characters escaped). */
+        std::string jsonString(const std::string &text);
+
+        /** \brief A folder of outputs written all-or-nothing: files go to a hidden staging folder beside the output
+            folder, and commit() moves them in (replacing entries of the same name); without commit() the staging
+            folder is removed, so a failure leaves the output folder as it was. */
+        class StagedDirectory
+        {
+        public:
+            explicit StagedDirectory(const std::string &outDir);
+            ~StagedDirectory();
+            StagedDirectory(const StagedDirectory &) = delete;
+            StagedDirectory &operator=(const StagedDirectory &) = delete;
+
+            /** \brief Where to write the staged entry \e name. */
+            boost::filesystem::path path(const std::string &name) const;
+
+            /** \brief Move every staged entry into the output folder. */
+            void commit();
+
+            /** \brief The output folder (absolute). */
+            const boost::filesystem::path &out() const
+            {
+                return out_;
+            }
+
+        private:
+            boost::filesystem::path out_;
+            boost::filesystem::path dir_;
+        };
     }  // namespace tools
 }  // namespace michi
 
