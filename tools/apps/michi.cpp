@@ -1,5 +1,6 @@
 // The `michi` command: benchmark and plan on michi problem files, list the planners.
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlannerRegistry.h>
@@ -35,6 +36,8 @@ namespace
         "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
         "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
         "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
+        "  michi experience-queries PROBLEM.yaml --out FILE [--count N] [--training N] [--start-spread RAD]\n"
+        "      [--goal-spread RAD] [--seed S]   training and held-out start/goal pairs (docs/path-seed.md)\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -163,6 +166,7 @@ namespace
         options.runs = static_cast<unsigned int>(args.number("runs", 0, true));
         options.timeLimit = args.number("time", 0.);
         options.query = args.index("query");
+        options.heldOut = !args.has("query");  // --query: that query in every run, not the held-out ones
         options.progress = &std::cerr;
         const BenchResult result = runBenchmark(problem, options);
         std::ifstream summary(result.summary);
@@ -258,6 +262,22 @@ namespace
         return 0;
     }
 
+    int experienceQueries(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "count", "training", "start-spread", "goal-spread", "seed"});
+        if (args.positional.size() != 1 || !args.has("out"))
+            throw UsageError("experience-queries takes one problem file and --out FILE");
+        ExperienceQueriesOptions options;
+        options.out = args.get("out");
+        options.count = static_cast<std::size_t>(args.number("count", options.count, true));
+        options.training = args.index("training") ? args.index("training") : options.training;
+        options.startSpread = args.number("start-spread", options.startSpread);
+        options.goalSpread = args.number("goal-spread", options.goalSpread);
+        options.seed = static_cast<unsigned int>(args.number("seed", options.seed, true));
+        std::cerr << writeExperienceQueriesFile(loadProblem(args.positional[0]), options) << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -282,6 +302,8 @@ int main(int argc, char **argv)
             return plan(argc, argv);
         if (command == "jmap")
             return jmap(argc, argv);
+        if (command == "experience-queries")
+            return experienceQueries(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

@@ -1,5 +1,8 @@
 #include <michi/tools/PlannerRegistry.h>
 
+#include <michi/planners/ExperiencePeers.h>
+#include <michi/planners/PathSeed.h>
+
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/est/ProjEST.h>
@@ -104,6 +107,9 @@ namespace michi
                 {"geometric::SST", allocator<og::SST>()},
                 {"geometric::STRIDE", allocator<og::STRIDE>()},
                 {"geometric::TRRT", allocator<og::TRRT>()},
+                {"michi::PathSeed", allocator<michi::planners::PathSeed>()},
+                {"experience::Lightning", allocator<michi::planners::LightningPlanner>()},
+                {"experience::Thunder", allocator<michi::planners::ThunderPlanner>()},
             };
             return registry;
         }

@@ -1,5 +1,6 @@
 #include <michi/tools/Problem.h>
 
+#include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/MoveItImport.h>
 #include <michi/tools/MovingAiMap.h>
 
@@ -879,7 +880,8 @@ namespace michi
                 r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
             static const std::set<std::string> known{"name",     "description", "robot",     "scene",
                                                      "start",    "goal",        "request",   "queries",
-                                                     "planners", "benchmark",   "collision", "extras"};
+                                                     "planners", "benchmark",   "collision", "extras",
+                                                     "experience"};
             for (const auto &kv : root)
                 if (!known.count(kv.first.as<std::string>()))
                     r.fail(kv.first.as<std::string>(), "unknown top-level key");
@@ -1009,6 +1011,7 @@ namespace michi
                                "valid_segment_fraction)");
                 }
             }
+            problem.experience = readExperienceQueries(path, problem);  // ExperienceQueries.cpp
             return problem;
         }
     }  // namespace tools
