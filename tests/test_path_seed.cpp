@@ -168,6 +168,9 @@ TEST(PathSeedRepair, FailFastCheckAgreesWithPathCheck)
         si->freeState(s);
         const bool fast = michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition());
         EXPECT_EQ(fast, path.check()) << i;
+        // two threads sharing the checks: the same answer
+        EXPECT_EQ(michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition(), nullptr, 2), fast)
+            << i;
         (fast ? valid : invalid)++;
     }
     EXPECT_GT(invalid, 0);

@@ -47,6 +47,8 @@ namespace michi
             declareParam<bool>("learn", this, &PathSeed::setLearn, &PathSeed::getLearn, "0,1");
             declareParam<double>("range", this, &PathSeed::setRange, &PathSeed::getRange, "0.:0.1:10.");
             declareParam<bool>("stitch", this, &PathSeed::setStitch, &PathSeed::getStitch, "0,1");
+            declareParam<unsigned int>("check_threads", this, &PathSeed::setCheckThreads, &PathSeed::getCheckThreads,
+                                       "1:1:8");
             declareParam<bool>("anchored", this, &PathSeed::setAnchored, &PathSeed::getAnchored, "0,1");
             declareParam<unsigned int>("stitch_neighbours", this, &PathSeed::setStitchNeighbours,
                                        &PathSeed::getStitchNeighbours, "1:1:20");
@@ -228,7 +230,7 @@ namespace michi
             {
                 if (ptc)
                     break;
-                if (checkPathFailFast(si_, decoded_[o.second], ptc, &checks))
+                if (checkPathFailFast(si_, decoded_[o.second], ptc, &checks, threads_))
                 {
                     out = decoded_[o.second];
                     lastSource_ = RECALL;
@@ -245,7 +247,7 @@ namespace michi
             std::vector<og::PathGeometric> all(decoded_);
             all.insert(all.end(), anchoredPaths_.begin(), anchoredPaths_.end());
             unsigned long checks = 0;
-            const bool found = stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks);
+            const bool found = stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
             if (found)
                 lastSource_ = STITCH;
             lastChecks_ += checks;

@@ -15,6 +15,8 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -34,7 +36,8 @@ namespace michi
                 index of an invalid motion, motions.size() when all are valid, or -1 when \e ptc fired. */
             long checkMotionsFailFast(const ob::SpaceInformationPtr &si,
                                       const std::vector<std::pair<const ob::State *, const ob::State *>> &motions,
-                                      const ob::PlannerTerminationCondition &ptc, unsigned long &count)
+                                      const ob::PlannerTerminationCondition &ptc, unsigned long &count,
+                                      unsigned int threads)
             {
                 const auto *wmv =
                     dynamic_cast<const validity::WorkspaceMotionValidator *>(si->getMotionValidator().get());
@@ -50,7 +53,7 @@ namespace michi
                     return static_cast<long>(motions.size());
                 }
                 // the validator's own states (j / n, j = 1 .. n - 1, n = stepCount), bisection order per motion,
-                // round-robin over the motions
+                // round-robin over the motions; the order does not depend on the results, so it is listed first
                 struct Segment
                 {
                     std::size_t index;
@@ -64,10 +67,8 @@ namespace michi
                     if (n > 1)
                         segments.push_back(Segment{i, n, {{1u, n - 1}}});
                 }
-                ob::State *state = si->allocState();
-                long result = static_cast<long>(motions.size());
-                bool pending = true;
-                while (pending && result == static_cast<long>(motions.size()))
+                std::vector<std::pair<std::size_t, double>> items;  // (motion, fraction)
+                for (bool pending = true; pending;)
                 {
                     pending = false;
                     for (auto &seg : segments)
@@ -76,35 +77,61 @@ namespace michi
                             seg.intervals.pop_front();
                         if (seg.intervals.empty())
                             continue;
-                        if (ptc)
-                        {
-                            result = -1;
-                            break;
-                        }
                         const auto [lo, hi] = seg.intervals.front();
                         seg.intervals.pop_front();
                         const unsigned int mid = (lo + hi) / 2;
-                        si->getStateSpace()->interpolate(motions[seg.index].first, motions[seg.index].second,
-                                                         static_cast<double>(mid) / seg.n, state);
-                        ++count;
-                        if (!si->isValid(state))
-                        {
-                            result = static_cast<long>(seg.index);
-                            break;
-                        }
+                        items.emplace_back(seg.index, static_cast<double>(mid) / seg.n);
                         if (mid > lo)
                             seg.intervals.emplace_back(lo, mid - 1);
                         seg.intervals.emplace_back(mid + 1, hi);
                         pending = true;
                     }
                 }
-                si->freeState(state);
-                return result;
+                // threads take every threads-th item; the first failure stops all
+                const long all = static_cast<long>(motions.size());
+                std::atomic<long> failed{all};
+                std::atomic<bool> stopped{false};
+                std::atomic<unsigned long> checked{0};
+                auto work = [&](std::size_t first, std::size_t stride)
+                {
+                    ob::State *state = si->allocState();
+                    for (std::size_t i = first; i < items.size(); i += stride)
+                    {
+                        if (failed.load() != all || stopped.load())
+                            break;
+                        if (ptc)
+                        {
+                            stopped = true;
+                            break;
+                        }
+                        const auto &item = items[i];
+                        si->getStateSpace()->interpolate(motions[item.first].first, motions[item.first].second,
+                                                         item.second, state);
+                        ++checked;
+                        if (!si->isValid(state))
+                        {
+                            failed = static_cast<long>(item.first);
+                            break;
+                        }
+                    }
+                    si->freeState(state);
+                };
+                const std::size_t T = std::max<std::size_t>(1, std::min<std::size_t>(threads, items.size() / 8 + 1));
+                std::vector<std::thread> helpers;
+                for (std::size_t t = 1; t < T; ++t)
+                    helpers.emplace_back(work, t, T);
+                work(0, T);
+                for (auto &h : helpers)
+                    h.join();
+                count += checked.load();
+                if (failed.load() != all)
+                    return failed.load();
+                return stopped.load() ? -1 : all;
             }
         }  // namespace
 
         bool checkPathFailFast(const ob::SpaceInformationPtr &si, const og::PathGeometric &path,
-                               const ob::PlannerTerminationCondition &ptc, unsigned long *checks)
+                               const ob::PlannerTerminationCondition &ptc, unsigned long *checks, unsigned int threads)
         {
             const auto &states = const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
             unsigned long count = 0;
@@ -128,7 +155,7 @@ namespace michi
                 std::vector<std::pair<const ob::State *, const ob::State *>> motions;
                 for (std::size_t i = 0; i + 1 < states.size(); ++i)
                     motions.emplace_back(states[i], states[i + 1]);
-                ok = checkMotionsFailFast(si, motions, ptc, count) == static_cast<long>(motions.size());
+                ok = checkMotionsFailFast(si, motions, ptc, count, threads) == static_cast<long>(motions.size());
             }
             if (checks)
                 *checks += count;
@@ -161,7 +188,7 @@ namespace michi
 
         bool stitchPaths(const ob::SpaceInformationPtr &si, const std::vector<og::PathGeometric> &paths,
                          const ob::PlannerTerminationCondition &ptc, og::PathGeometric &out, unsigned int neighbours,
-                         unsigned long *checks)
+                         unsigned long *checks, unsigned int threads)
         {
             if (paths.empty())
                 return false;
@@ -248,7 +275,7 @@ namespace michi
                 std::vector<std::pair<const ob::State *, const ob::State *>> motions;
                 for (const auto &key : unknown)
                     motions.emplace_back(states[key.first], states[key.second]);
-                const long failed = checkMotionsFailFast(si, motions, ptc, count);
+                const long failed = checkMotionsFailFast(si, motions, ptc, count, threads);
                 if (failed < 0)
                     break;
                 const bool allValid = failed == static_cast<long>(motions.size());

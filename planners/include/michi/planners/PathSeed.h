@@ -8,6 +8,7 @@
 #include <ompl/base/Planner.h>
 #include <ompl/geometric/PathGeometric.h>
 
+#include <algorithm>
 #include <atomic>
 #include <string>
 #include <vector>
@@ -129,6 +130,15 @@ namespace michi
             {
                 return neighbours_;
             }
+            /** \brief Threads that share the state checks of recall and stitching (default 1: none; on a loaded machine more threads were slower). */
+            void setCheckThreads(unsigned int threads)
+            {
+                threads_ = std::max(1u, threads);
+            }
+            unsigned int getCheckThreads() const
+            {
+                return threads_;
+            }
             /** \brief Step of the RRT-Connect runs (from scratch and in repair); 0: OMPL's default. */
             void setRange(double range)
             {
@@ -190,6 +200,7 @@ namespace michi
             std::vector<ompl::geometric::PathGeometric> anchoredPaths_;  ///< seeds' own paths moved to s~ or g~
             bool anchored_{true};
             unsigned int neighbours_{3};
+            unsigned int threads_{1};
             std::vector<ompl::geometric::PathGeometric> solution_;
             ompl::base::PlannerPtr scratch_;
             std::atomic<int> lastSource_{0};

@@ -17,10 +17,12 @@ namespace michi
             in bisection order (first every segment's midpoint, then the quarters, ...): exactly the states the
             validator itself would check, so a path that passes also passes PathGeometric::check(). With any
             other motion validator the segments go to SpaceInformation::checkMotion one by one. Returns false
-            when \e ptc fires before the check is complete. \e checks (if given) counts the state checks. */
+            when \e ptc fires before the check is complete. \e checks (if given) counts the state checks. With
+            \e threads > 1 the motions' states (in the same order) are shared out among that many threads, which stop
+            at the first invalid state (the validity checker must be thread-safe, as michi's FCL checker is). */
         bool checkPathFailFast(const ompl::base::SpaceInformationPtr &si, const ompl::geometric::PathGeometric &path,
                                const ompl::base::PlannerTerminationCondition &ptc,
-                               unsigned long *checks = nullptr);
+                               unsigned long *checks = nullptr, unsigned int threads = 1);
 
         /** \brief Where a path is invalid: state i (bounds or collision), segment i (from state i to i + 1). */
         struct PathValidity
@@ -53,7 +55,7 @@ namespace michi
             (false). A valid path costs its own check; an invalid one usually a few state checks. */
         bool stitchPaths(const ompl::base::SpaceInformationPtr &si, const std::vector<ompl::geometric::PathGeometric> &paths,
                          const ompl::base::PlannerTerminationCondition &ptc, ompl::geometric::PathGeometric &out,
-                         unsigned int neighbours = 3, unsigned long *checks = nullptr);
+                         unsigned int neighbours = 3, unsigned long *checks = nullptr, unsigned int threads = 1);
 
         /** \brief Settings of the STOMP-style optimizer (Kalakrishnan et al., ICRA 2011), the paper's repair. */
         struct StompSettings
