@@ -4,12 +4,9 @@
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/experience/LightningRetrieveRepair.h>
-#include <ompl/geometric/planners/experience/ThunderRetrieveRepair.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/tools/lightning/LightningDB.h>
 #include <ompl/tools/multiplan/ParallelPlan.h>
-#include <ompl/tools/thunder/SPARSdb.h>
-#include <ompl/tools/thunder/ThunderDB.h>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -94,34 +91,5 @@ namespace michi
             return db_->getExperiencesCount();
         }
 
-        ThunderPlanner::ThunderPlanner(const ob::SpaceInformationPtr &si)
-          : ExperienceRace(si, "Thunder"), db_(std::make_shared<ompl::tools::ThunderDB>(si->getStateSpace()))
-        {
-            retrieveRepair_ = std::make_shared<og::ThunderRetrieveRepair>(si, db_);
-        }
-
-        void ThunderPlanner::addExperience(const og::PathGeometric &path)
-        {
-            if (!db_->getSPARSdb())
-            {
-                // as ompl::tools::Thunder::setup() does
-                auto spars = std::make_shared<og::SPARSdb>(si_);
-                spars->setProblemDefinition(std::make_shared<ob::ProblemDefinition>(si_));
-                spars->setup();
-                spars->setStretchFactor(1.2);
-                spars->setSparseDeltaFraction(0.05);
-                spars->setDenseDeltaFraction(0.001);
-                db_->setSPARSdb(spars);
-            }
-            og::PathGeometric copy(path);
-            double insertionTime = 0.;
-            if (db_->addPath(copy, insertionTime))
-                ++inserted_;
-        }
-
-        std::size_t ThunderPlanner::experienceCount() const
-        {
-            return inserted_;
-        }
     }  // namespace planners
 }  // namespace michi

@@ -132,6 +132,12 @@ namespace michi
             return library_->size();
         }
 
+        bool PathSeed::loadExperience(const std::string &file)
+        {
+            setLibraryFile(file);
+            return true;
+        }
+
         Eigen::VectorXd PathSeed::toVector(const ob::State *state) const
         {
             std::vector<double> reals;

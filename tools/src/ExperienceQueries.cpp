@@ -1,6 +1,7 @@
 #include <michi/tools/ExperienceQueries.h>
 
 #include <michi/planners/ExperiencePlanner.h>
+#include <michi/planners/PathSeedLibrary.h>
 #include <michi/tools/FileOutput.h>
 
 #include <ompl/base/ProblemDefinition.h>
@@ -121,8 +122,9 @@ namespace michi
             for (const auto &kv : e)
             {
                 const std::string k = kv.first.as<std::string>();
-                if (k != "queries" && k != "training_time")
-                    throw ProblemError(problemFile, "experience." + k, "unknown key (expected queries, training_time)");
+                if (k != "queries" && k != "training_time" && k != "library")
+                    throw ProblemError(problemFile, "experience." + k,
+                                       "unknown key (expected queries, training_time, library)");
             }
             if (const YAML::Node t = e["training_time"])
             {
@@ -136,6 +138,15 @@ namespace michi
                 }
                 if (!(out.trainingTime > 0.))
                     throw ProblemError(problemFile, "experience.training_time", "expected a positive number of seconds");
+            }
+            if (const YAML::Node l = e["library"])
+            {
+                const fs::path lp(l.IsScalar() ? l.Scalar() : std::string());
+                const fs::path lfull = lp.is_absolute() ? lp : fs::path(problemFile).parent_path() / lp;
+                if (!l.IsScalar() || !fs::is_regular_file(lfull))
+                    throw ProblemError(problemFile, "experience.library",
+                                       "expected an existing experience file, got '" + lfull.string() + "'");
+                out.library = lfull.lexically_normal().string();
             }
             if (!e["queries"] || !e["queries"].IsScalar())
                 throw ProblemError(problemFile, "experience.queries", "expected the name of a queries file");
@@ -260,6 +271,31 @@ namespace michi
             return report.str();
         }
 
+        std::string writePathSeedLibrary(const Problem &problem, const std::string &variant, unsigned int seed,
+                                         const std::string &file)
+        {
+            ompl::RNG::setSeed(seed);
+            const PlanningContext ctx = makePlanningContext(problem, 0);
+            planners::PathSeedLibrary library(planners::seedVariantFromName(variant));
+            const auto paths = solveTrainingQueries(problem, ctx, nullptr);
+            std::vector<double> reals;
+            for (const auto &path : paths)
+            {
+                std::vector<Eigen::VectorXd> states;
+                for (const auto *s : const_cast<og::PathGeometric &>(path).getStates())
+                {
+                    ctx.setup->getStateSpace()->copyToReals(reals, s);
+                    states.push_back(Eigen::Map<const Eigen::VectorXd>(reals.data(), reals.size()));
+                }
+                library.add(states);
+            }
+            library.save(file);
+            std::ostringstream report;
+            report << "michi path-seed-library: wrote " << file << " (" << library.size() << " " << variant
+                   << " seeds from " << problem.experience.training.size() << " training queries)";
+            return report.str();
+        }
+
         std::vector<og::PathGeometric> solveTrainingQueries(const Problem &problem, const PlanningContext &ctx,
                                                             std::ostream *progress)
         {
@@ -309,6 +345,12 @@ namespace michi
             for (const auto &planner : planners)
                 if (auto *learner = dynamic_cast<planners::ExperiencePlanner *>(planner.get()))
                     learners.push_back(learner);
+            if (!problem.experience.library.empty())
+                for (auto *learner : learners)
+                    if (!learner->loadExperience(problem.experience.library) && progress)
+                        *progress << "michi bench: experience.library: "
+                                  << dynamic_cast<ob::Planner *>(learner)->getName() << " cannot read "
+                                  << problem.experience.library << " (not its format); it starts empty" << std::endl;
             if (learners.empty() || problem.experience.training.empty())
                 return 0;
             const auto paths = solveTrainingQueries(problem, ctx, progress);

@@ -12,7 +12,6 @@ namespace ompl
     namespace tools
     {
         class LightningDB;
-        class ThunderDB;
     }  // namespace tools
 }  // namespace ompl
 
@@ -23,16 +22,16 @@ namespace michi
         /**
            @anchor michiExperienceRace
            @par Short description
-           OMPL's experience frameworks as planners, so that OMPL's Benchmark can run them next to others and
-           tools can train them (michi registers them as "experience::Lightning" and "experience::Thunder"). As
-           ompl::tools::Lightning and ompl::tools::Thunder do, solve() runs the framework's retrieve-repair planner
+           OMPL's Lightning experience framework as a planner, so that OMPL's Benchmark can run it next to others
+           and tools can train it (michi registers it as "experience::Lightning"). As ompl::tools::Lightning
+           does, solve() runs the framework's retrieve-repair planner
            and RRT-Connect from scratch in parallel (ompl::tools::ParallelPlan) and stops at the first solution.
            The experience database is filled by addExperience() (training) and, with parameter learn, with
            solutions RRT-Connect found; clear() keeps it.
            @par External documentation
            D. Berenson, P. Abbeel, K. Goldberg, "A robot path planning framework that learns from experience",
-           ICRA 2012 (Lightning). D. Coleman, I. A. Sucan, M. Moll, K. Okada, N. Correll, "Experience-based
-           planning with sparse roadmap spanners", ICRA 2015 (Thunder).
+           ICRA 2012 (Lightning). (Thunder, OMPL's other framework, was wrapped the same way but its
+           retrieve-repair planner crashed michi bench on xarm6_ring with OMPL 1.5.2; see docs/path-seed.md.)
         */
         class ExperienceRace : public ompl::base::Planner, public ExperiencePlanner
         {
@@ -71,19 +70,6 @@ namespace michi
             std::shared_ptr<ompl::tools::LightningDB> db_;
         };
 
-        /** \brief OMPL's Thunder (ThunderDB on a SPARSdb roadmap + ThunderRetrieveRepair) racing RRT-Connect,
-            with Thunder's default roadmap settings (stretch factor 1.2, sparse delta 0.05, dense delta 0.001). */
-        class ThunderPlanner : public ExperienceRace
-        {
-        public:
-            explicit ThunderPlanner(const ompl::base::SpaceInformationPtr &si);
-            void addExperience(const ompl::geometric::PathGeometric &path) override;
-            std::size_t experienceCount() const override;
-
-        private:
-            std::shared_ptr<ompl::tools::ThunderDB> db_;
-            std::size_t inserted_{0};
-        };
     }  // namespace planners
 }  // namespace michi
 

@@ -3,6 +3,8 @@
 
 #include <ompl/geometric/PathGeometric.h>
 
+#include <string>
+
 namespace michi
 {
     namespace planners
@@ -18,6 +20,12 @@ namespace michi
             virtual void addExperience(const ompl::geometric::PathGeometric &path) = 0;
             /** \brief Number of experiences kept. */
             virtual std::size_t experienceCount() const = 0;
+            /** \brief Add the experiences of a file in the planner's own format; false when the planner has no
+                such format (the default). Throws for a file that cannot be read. */
+            virtual bool loadExperience(const std::string & /*file*/)
+            {
+                return false;
+            }
         };
     }  // namespace planners
 }  // namespace michi

@@ -48,6 +48,8 @@ namespace michi
 
             void addExperience(const ompl::geometric::PathGeometric &path) override;
             std::size_t experienceCount() const override;
+            /** \brief Same as setLibraryFile(): a path seed library file (PathSeedLibrary::save). */
+            bool loadExperience(const std::string &file) override;
 
             /** \brief Load a library file (PathSeedLibrary::load; throws PathSeedFileError for a bad file) and use
                 it; an empty name keeps the current library. */

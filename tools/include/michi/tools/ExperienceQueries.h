@@ -20,6 +20,7 @@ namespace michi
             experience:
               queries: xarm6_ring_queries.yaml   # {training: [{start, goal}, ...], held_out: [...]}
               training_time: 5                    # seconds of RRT-Connect per training query
+              library: xarm6_ring.seeds           # optional: experience file loaded before training
             \endcode
             Returns empty sets when the key is absent. Throws ProblemError naming the file and key for anything
             malformed: a missing file, a state of the wrong size, a value out of the joint bounds. Called by
@@ -48,6 +49,11 @@ namespace michi
         /** \brief `michi experience-queries`: generate the queries and write them to options.out (atomically,
             with a header saying how they were made). Returns a one-line report. */
         std::string writeExperienceQueriesFile(const Problem &problem, const ExperienceQueriesOptions &options);
+
+        /** \brief `michi path-seed-library`: solve the problem's training queries (solveTrainingQueries, RNG seed
+            \e seed), encode the paths as path seeds (\e variant) and save the library to \e file. */
+        std::string writePathSeedLibrary(const Problem &problem, const std::string &variant, unsigned int seed,
+                                         const std::string &file);
 
         /** \brief The queries as the YAML file readExperienceQueries() reads (\e header: comment lines). */
         std::string experienceQueriesYaml(const ExperienceQueries &queries, const std::string &header);

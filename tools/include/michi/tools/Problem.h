@@ -67,6 +67,7 @@ namespace michi
             std::vector<Query> training;  ///< solved from scratch before a benchmark to train experience planners
             std::vector<Query> heldOut;   ///< run i of each planner in a benchmark plans heldOut[i mod size]
             double trainingTime{5.};      ///< seconds of RRT-Connect per training query
+            std::string library;          ///< experience file given to experience planners before training
             std::string file;             ///< the file the queries came from
         };
 
