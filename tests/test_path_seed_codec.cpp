@@ -148,8 +148,8 @@ TEST(PathSeedCodec, DecodingKeepsRatioAndDeviation)
                         for (int b = 0; b < (n + 2) / 3; ++b)  // per block
                         {
                             double r0, t0, r1, t1;
-                            ratioDeviation(blockOf(path.front(), b), blockOf(path.back(), b), blockOf(path[m], b),
-                                           r0, t0);
+                            ratioDeviation(blockOf(path.front(), b), blockOf(path.back(), b), blockOf(path[m], b), r0,
+                                           t0);
                             ratioDeviation(blockOf(s, b), blockOf(g, b), blockOf(decoded[m], b), r1, t1);
                             EXPECT_NEAR(r0, r1, 1e-9) << "N " << n << " block " << b;
                             EXPECT_NEAR(t0, t1, 1e-9) << "N " << n << " block " << b;
@@ -189,7 +189,7 @@ TEST(PathSeedCodec, BehindTheStartKeepsItsSide)
 TEST(PathSeedCodec, DegenerateCasesGiveNoNaN)
 {
     Eigen::VectorXd z = Eigen::VectorXd::Zero(6), a(6), b(6), c(6);
-    a << 1, 2, 3, 0, 0, 0;  // joints 4-6 do not move from z to a
+    a << 1, 2, 3, 0, 0, 0;      // joints 4-6 do not move from z to a
     b << 0.5, 1, 1.5, 0, 0, 0;  // on the line z-a
     c << 0.3, -1, 2, 0.2, 0.1, -0.4;
     for (SeedVariant variant : VARIANTS)

@@ -16,7 +16,7 @@ namespace michi
     namespace planners
     {
         ExperienceRace::ExperienceRace(const ob::SpaceInformationPtr &si, const std::string &name)
-          : ob::Planner(si, name)
+            : ob::Planner(si, name)
         {
             specs_.approximateSolutions = false;
             specs_.multithreaded = true;
@@ -74,7 +74,7 @@ namespace michi
         }
 
         LightningPlanner::LightningPlanner(const ob::SpaceInformationPtr &si)
-          : ExperienceRace(si, "Lightning"), db_(std::make_shared<ompl::tools::LightningDB>(si->getStateSpace()))
+            : ExperienceRace(si, "Lightning"), db_(std::make_shared<ompl::tools::LightningDB>(si->getStateSpace()))
         {
             retrieveRepair_ = std::make_shared<og::LightningRetrieveRepair>(si, db_);
         }

@@ -31,7 +31,7 @@ namespace michi
         }
 
         PathSeed::PathSeed(const ob::SpaceInformationPtr &si)
-          : ob::Planner(si, "PathSeed"), library_(std::make_shared<PathSeedLibrary>())
+            : ob::Planner(si, "PathSeed"), library_(std::make_shared<PathSeedLibrary>())
         {
             specs_.approximateSolutions = false;
             specs_.optimizingPaths = false;
@@ -52,8 +52,8 @@ namespace michi
             declareParam<bool>("anchored", this, &PathSeed::setAnchored, &PathSeed::getAnchored, "0,1");
             declareParam<unsigned int>("stitch_neighbours", this, &PathSeed::setStitchNeighbours,
                                        &PathSeed::getStitchNeighbours, "1:1:20");
-            declareParam<unsigned int>("shortcut_steps", this, &PathSeed::setShortcutSteps,
-                                       &PathSeed::getShortcutSteps, "0:1:1000");
+            declareParam<unsigned int>("shortcut_steps", this, &PathSeed::setShortcutSteps, &PathSeed::getShortcutSteps,
+                                       "0:1:1000");
             addPlannerProgressProperty("library seeds INTEGER",
                                        [this]
                                        {
@@ -93,8 +93,7 @@ namespace michi
         void PathSeed::setRepair(const std::string &method)
         {
             if (method != "rrtconnect" && method != "stomp" && method != "none")
-                throw std::invalid_argument("PathSeed: repair must be rrtconnect, stomp or none, got '" + method +
-                                            "'");
+                throw std::invalid_argument("PathSeed: repair must be rrtconnect, stomp or none, got '" + method + "'");
             repair_ = method;
         }
 
@@ -253,7 +252,8 @@ namespace michi
             std::vector<og::PathGeometric> all(decoded_);
             all.insert(all.end(), anchoredPaths_.begin(), anchoredPaths_.end());
             unsigned long checks = 0;
-            const bool found = stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
+            const bool found =
+                stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
             if (found)
                 lastSource_ = STITCH;
             lastChecks_ += checks;
@@ -331,12 +331,12 @@ namespace michi
             }
 
             std::atomic<bool> done{false};
-            const ob::PlannerTerminationCondition inner = ob::plannerOrTerminationCondition(
-                ptc, ob::PlannerTerminationCondition(
-                         [&done]
-                         {
-                             return done.load();
-                         }));
+            const ob::PlannerTerminationCondition inner =
+                ob::plannerOrTerminationCondition(ptc, ob::PlannerTerminationCondition(
+                                                           [&done]
+                                                           {
+                                                               return done.load();
+                                                           }));
             // recall first, alone: decoding, the fail-fast checks of the candidates and stitching are cheap, and a
             // racer would only halve the CPU they get; if they give no valid path, repair races RRT-Connect
             og::PathGeometric recalled(si_), scratch(si_);
@@ -389,7 +389,8 @@ namespace michi
                 scratch_->getPlannerData(data);
             auto addPath = [&](const og::PathGeometric &path)
             {
-                const auto &states = const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
+                const auto &states =
+                    const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
                 for (std::size_t i = 0; i + 1 < states.size(); ++i)
                     data.addEdge(ob::PlannerDataVertex(states[i]), ob::PlannerDataVertex(states[i + 1]));
                 if (!states.empty())

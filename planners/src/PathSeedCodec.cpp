@@ -264,8 +264,8 @@ namespace michi
                         std::vector<Eigen::VectorXd> &out)
         {
             if (start.size() != seed.dimension || goal.size() != seed.dimension)
-                throw std::invalid_argument("decodePath: start/goal dimension " + std::to_string(start.size()) +
-                                            "/" + std::to_string(goal.size()) + ", the seed has " +
+                throw std::invalid_argument("decodePath: start/goal dimension " + std::to_string(start.size()) + "/" +
+                                            std::to_string(goal.size()) + ", the seed has " +
                                             std::to_string(seed.dimension));
             const std::size_t M = seed.waypoints();
             out.resize(M + 2);

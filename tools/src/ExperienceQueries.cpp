@@ -33,11 +33,12 @@ namespace michi
                                           const Problem &problem)
             {
                 if (!n || !n.IsSequence())
-                    throw ProblemError(file, key, "expected a list of " + std::to_string(problem.dimension()) +
-                                                      " numbers");
+                    throw ProblemError(file, key,
+                                       "expected a list of " + std::to_string(problem.dimension()) + " numbers");
                 if (n.size() != problem.dimension())
-                    throw ProblemError(file, key, "expected " + std::to_string(problem.dimension()) +
-                                                      " numbers, got " + std::to_string(n.size()));
+                    throw ProblemError(file, key,
+                                       "expected " + std::to_string(problem.dimension()) + " numbers, got " +
+                                           std::to_string(n.size()));
                 std::vector<double> v;
                 for (std::size_t i = 0; i < n.size(); ++i)
                 {
@@ -137,7 +138,8 @@ namespace michi
                     out.trainingTime = -1.;
                 }
                 if (!(out.trainingTime > 0.))
-                    throw ProblemError(problemFile, "experience.training_time", "expected a positive number of seconds");
+                    throw ProblemError(problemFile, "experience.training_time",
+                                       "expected a positive number of seconds");
             }
             if (const YAML::Node l = e["library"])
             {
@@ -164,8 +166,8 @@ namespace michi
             }
             catch (const YAML::Exception &ex)
             {
-                throw ProblemError(out.file, "", "not valid YAML (line " + std::to_string(ex.mark.line + 1) + "): " +
-                                                     ex.msg);
+                throw ProblemError(out.file, "",
+                                   "not valid YAML (line " + std::to_string(ex.mark.line + 1) + "): " + ex.msg);
             }
             if (!q.IsMap())
                 throw ProblemError(out.file, "", "expected a mapping with training and held_out");

@@ -24,13 +24,13 @@ namespace michi
         {
             const auto &exp = problem.experience;
             if (training >= exp.training.size())
-                throw ProblemError(problem.file, "experience", "training query " + std::to_string(training) +
-                                                                   " requested, there are " +
-                                                                   std::to_string(exp.training.size()));
+                throw ProblemError(problem.file, "experience",
+                                   "training query " + std::to_string(training) + " requested, there are " +
+                                       std::to_string(exp.training.size()));
             if (heldOut >= exp.heldOut.size())
-                throw ProblemError(problem.file, "experience", "held-out query " + std::to_string(heldOut) +
-                                                                   " requested, there are " +
-                                                                   std::to_string(exp.heldOut.size()));
+                throw ProblemError(problem.file, "experience",
+                                   "held-out query " + std::to_string(heldOut) + " requested, there are " +
+                                       std::to_string(exp.heldOut.size()));
             const planners::SeedVariant v = planners::seedVariantFromName(variant);
             ompl::RNG::setSeed(seed);
             // the training query alone
@@ -86,8 +86,8 @@ namespace michi
             std::ostringstream report;
             report << "michi path-seed-figure: wrote " << file << ": training query " << training << " ("
                    << states.size() - 2 << " waypoints, length " << original.length() << "), " << variant
-                   << " seed; reproduction error " << error << "; decoded for held-out query " << heldOut
-                   << ": length " << decodedPath.length() << ", " << (valid ? "valid" : "invalid (needs stitching or repair)");
+                   << " seed; reproduction error " << error << "; decoded for held-out query " << heldOut << ": length "
+                   << decodedPath.length() << ", " << (valid ? "valid" : "invalid (needs stitching or repair)");
             return report.str();
         }
     }  // namespace tools

@@ -132,7 +132,8 @@ namespace michi
             {
                 return neighbours_;
             }
-            /** \brief Threads that share the state checks of recall and stitching (default 1: none; on a loaded machine more threads were slower). */
+            /** \brief Threads that share the state checks of recall and stitching (default 1: none; on a loaded machine
+             * more threads were slower). */
             void setCheckThreads(unsigned int threads)
             {
                 threads_ = std::max(1u, threads);

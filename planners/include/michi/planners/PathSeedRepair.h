@@ -21,8 +21,8 @@ namespace michi
             \e threads > 1 the motions' states (in the same order) are shared out among that many threads, which stop
             at the first invalid state (the validity checker must be thread-safe, as michi's FCL checker is). */
         bool checkPathFailFast(const ompl::base::SpaceInformationPtr &si, const ompl::geometric::PathGeometric &path,
-                               const ompl::base::PlannerTerminationCondition &ptc,
-                               unsigned long *checks = nullptr, unsigned int threads = 1);
+                               const ompl::base::PlannerTerminationCondition &ptc, unsigned long *checks = nullptr,
+                               unsigned int threads = 1);
 
         /** \brief Where a path is invalid: state i (bounds or collision), segment i (from state i to i + 1). */
         struct PathValidity
@@ -34,7 +34,8 @@ namespace michi
         };
 
         /** \brief Every state and every segment checked (segments only where both ends are valid). */
-        PathValidity checkPathFull(const ompl::base::SpaceInformationPtr &si, const ompl::geometric::PathGeometric &path,
+        PathValidity checkPathFull(const ompl::base::SpaceInformationPtr &si,
+                                   const ompl::geometric::PathGeometric &path,
                                    const ompl::base::PlannerTerminationCondition &ptc);
 
         /** \brief Repair the invalid stretches of \e path: between the nearest valid waypoints around each
@@ -53,7 +54,8 @@ namespace michi
             its unchecked edges (checkPathFailFast order); what is invalid leaves the graph and the search repeats,
             until a path checks valid (true, in \e out) or start and goal are disconnected or \e ptc fires
             (false). A valid path costs its own check; an invalid one usually a few state checks. */
-        bool stitchPaths(const ompl::base::SpaceInformationPtr &si, const std::vector<ompl::geometric::PathGeometric> &paths,
+        bool stitchPaths(const ompl::base::SpaceInformationPtr &si,
+                         const std::vector<ompl::geometric::PathGeometric> &paths,
                          const ompl::base::PlannerTerminationCondition &ptc, ompl::geometric::PathGeometric &out,
                          unsigned int neighbours = 3, unsigned long *checks = nullptr, unsigned int threads = 1);
 
