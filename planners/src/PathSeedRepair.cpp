@@ -216,12 +216,24 @@ namespace michi
                 addEdge(previous, 1);
             }
             const std::size_t V = states.size();
+            // neighbours and edge weights by the Euclidean distance of the states' reals (a heuristic for the
+            // search only; every edge used is checked by the motion validator): far cheaper than
+            // StateSpace::distance on a compound joint space, and the graph is rebuilt in every iteration
+            std::vector<Eigen::VectorXd> reals(V);
+            {
+                std::vector<double> r;
+                for (std::size_t v = 0; v < V; ++v)
+                {
+                    si->getStateSpace()->copyToReals(r, states[v]);
+                    reals[v] = Eigen::Map<const Eigen::VectorXd>(r.data(), r.size());
+                }
+            }
             for (std::size_t a = 2; a < V; ++a)  // each interior state to its nearest states of other paths
             {
                 std::vector<std::pair<double, std::size_t>> near;
                 for (std::size_t b = 2; b < V; ++b)
                     if (owner[b] != owner[a])
-                        near.emplace_back(si->distance(states[a], states[b]), b);
+                        near.emplace_back((reals[a] - reals[b]).norm(), b);
                 const std::size_t k = std::min<std::size_t>(neighbours, near.size());
                 std::partial_sort(near.begin(), near.begin() + k, near.end());
                 for (std::size_t i = 0; i < k; ++i)
@@ -239,7 +251,7 @@ namespace michi
                 for (const auto &e : edges)
                     if (e.second != 2 && vertex[e.first.first] != 2 && vertex[e.first.second] != 2)
                         boost::add_edge(e.first.first, e.first.second,
-                                        si->distance(states[e.first.first], states[e.first.second]), graph);
+                                        (reals[e.first.first] - reals[e.first.second]).norm(), graph);
                 std::vector<Graph::vertex_descriptor> parent(V);
                 std::vector<double> distance(V);
                 boost::dijkstra_shortest_paths(graph, 0,

@@ -74,7 +74,7 @@ namespace michi
             {
                 std::vector<Query> out;
                 const YAML::Node list = root[name];
-                if (!list)
+                if (!list || list.IsNull())
                     return out;
                 if (!list.IsSequence())
                     throw ProblemError(file, name, "expected a list of {start, goal}");
@@ -229,7 +229,7 @@ namespace michi
             out << std::setprecision(6) << std::fixed;
             auto list = [&](const char *name, const std::vector<Query> &qs)
             {
-                out << name << ":\n";
+                out << name << ":" << (qs.empty() ? " []" : "") << "\n";
                 auto values = [&](const std::vector<double> &v)
                 {
                     out << "[";

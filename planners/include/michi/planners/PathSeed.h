@@ -24,12 +24,13 @@ namespace michi
            goal or link lengths (per waypoint: the ratio r of its foot of perpendicular on the start-goal line,
            its deviation norm tau and its direction delta). For a new query the seeds of the nearest stored
            queries are decoded for the new start and goal and checked (states first, then motions round-robin in
-           bisection order, to fail fast); the first valid one is the solution. When none is valid, the invalid
-           stretches of the decoded paths are repaired (RRT-Connect between the nearest valid waypoints, then
-           shortcutting; or a STOMP-style optimizer, as the paper does). Recall and repair race RRT-Connect from
-           scratch in a second thread, as OMPL's Lightning does: the first valid path wins. Solutions that did not
-           come from a valid recall are learned as new seeds (parameter learn). clear() forgets the query, never
-           the library.
+           bisection order, to fail fast); the first valid one is the solution. When none is valid, the decoded
+           paths and the seeds' own paths moved to the new goal or start are stitched lazily into one valid path
+           where they allow it. Failing that, the decoded paths are repaired (RRT-Connect between the nearest valid
+           waypoints, then shortcutting; or a STOMP-style optimizer, as the paper does) while RRT-Connect from
+           scratch races in a second thread, as in OMPL's Lightning: the first valid path wins. Solutions that did
+           not come from recall or stitching are learned as new seeds (parameter learn). clear() forgets the query,
+           never the library.
            @par External documentation
            T. Watanabe and T. Nishida, "Implementation and evaluation of information extraction methods for paths
            of articulated robots" (path seeds; in Japanese). See docs/path-seed.md for the decisions michi took
