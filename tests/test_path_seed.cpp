@@ -4,6 +4,7 @@
 #include <michi/planners/PathSeed.h>
 #include <michi/planners/PathSeedLibrary.h>
 #include <michi/planners/PathSeedRepair.h>
+#include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/PlanningContext.h>
 #include <michi/tools/Problem.h>
 
@@ -15,6 +16,8 @@
 #include <boost/filesystem.hpp>
 
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 
 namespace fs = boost::filesystem;
 namespace ob = ompl::base;
@@ -247,4 +250,79 @@ TEST(PathSeedPlanner, RecallsALearnedPathForANearbyQuery)
     auto other = std::make_shared<PathSeed>(si);
     ASSERT_TRUE(other->params().setParam("library_file", file));
     EXPECT_EQ(other->experienceCount(), planner->experienceCount());
+}
+
+TEST(ExperienceQueries, BadFilesAreNamedWithTheirKey)
+{
+    // xarm6_ring.yaml with absolute paths, written elsewhere, pointing at experience files we break on purpose
+    const fs::path source = fs::path(MICHI_SOURCE_DIR) / "problems";
+    std::ifstream in((source / "xarm6_ring.yaml").string());
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const std::string key : {"urdf: ", "file: "})  // the robot's URDF and the ring's mesh
+    {
+        const std::size_t at = text.find(key + (key == "urdf: " ? "robots/" : "meshes/")) + key.size();
+        text.insert(at, source.string() + "/");
+    }
+    const std::string problemFile = tempFile("ring.yaml");
+    const fs::path dir = fs::path(problemFile).parent_path();
+    auto withQueries = [&](const std::string &queries)
+    {
+        std::string t = text;
+        const std::string key = "experience/xarm6_ring_queries.yaml";
+        t.replace(t.find(key), key.size(), "queries.yaml");
+        writeText(problemFile, t);
+        writeText((dir / "queries.yaml").string(), queries);
+    };
+    auto error = [&]() -> std::string
+    {
+        try
+        {
+            michi::tools::loadProblem(problemFile);
+        }
+        catch (const michi::tools::ProblemError &e)
+        {
+            return e.what();
+        }
+        return "";
+    };
+    withQueries(
+        "training: []\nheld_out:\n  - {start: [0, 0, 0, 0, 0, 0], goal: [0, 0.6842, -1.4954, 0, -0.7596, 0]}\n");
+    ASSERT_EQ(error(), "");
+    const auto problem = michi::tools::loadProblem(problemFile);
+    EXPECT_EQ(problem.experience.training.size(), 0u);
+    ASSERT_EQ(problem.experience.heldOut.size(), 1u);
+    withQueries("held_out:\n  - {start: [0, 0, 0], goal: [0, 0, 0, 0, 0, 0]}\n");
+    EXPECT_NE(error().find("held_out[0].start: expected 6 numbers, got 3"), std::string::npos) << error();
+    withQueries("held_out:\n  - {start: [9, 0, 0, 0, 0, 0], goal: [0, 0, 0, 0, 0, 0]}\n");
+    EXPECT_NE(error().find("held_out[0].start[0]: value 9 outside the limits"), std::string::npos) << error();
+    withQueries("trainig: []\n");
+    EXPECT_NE(error().find("trainig: unknown key"), std::string::npos) << error();
+    fs::remove(dir / "queries.yaml");
+    EXPECT_NE(error().find("experience.queries: file"), std::string::npos) << error();
+    // a held-out goal in collision is found before a benchmark: find a colliding state, then use it
+    withQueries("held_out:\n  - {start: [0, 0, 0, 0, 0, 0], goal: [0, 0, 0, 0, 0, 0]}\n");
+    const auto p2 = michi::tools::loadProblem(problemFile);
+    const auto ctx = michi::tools::makePlanningContext(p2);
+    ompl::RNG rng(9);
+    std::vector<double> colliding(6);
+    do
+        for (int k = 0; k < 6; ++k)
+            colliding[k] = rng.uniformReal(-1., 1.);
+    while (ctx.checker->describeCollision(colliding.data()).empty());
+    std::ostringstream q;
+    q << "held_out:\n  - {start: [0, 0, 0, 0, 0, 0], goal: [";
+    for (int k = 0; k < 6; ++k)
+        q << (k ? ", " : "") << std::setprecision(17) << colliding[k];
+    q << "]}\n";
+    withQueries(q.str());
+    const auto p3 = michi::tools::loadProblem(problemFile);
+    try
+    {
+        michi::tools::checkHeldOutQueries(p3, ctx);
+        ADD_FAILURE() << "a colliding held-out goal was accepted";
+    }
+    catch (const michi::tools::ProblemError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("held_out[0].goal: in collision"), std::string::npos) << e.what();
+    }
 }
