@@ -3,8 +3,10 @@
 #include <michi/tools/HeadingLatticeReport.h>
 #include <michi/tools/DualArmCommand.h>
 #include <michi/tools/CircleCommand.h>
+#include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/JMapReport.h>
 #include <michi/tools/PathFile.h>
+#include <michi/tools/PathSeedFigure.h>
 #include <michi/tools/PlannerRegistry.h>
 #include <michi/tools/PlanningContext.h>
 #include <michi/tools/ReplanCommand.h>
@@ -49,6 +51,12 @@ namespace
         "  michi replan PROBLEM.yaml --out DIR [--episodes N] [--seed S] [--methods dual,rrtconnect,...]\n"
         "      non-stop replanning among moving obstacles (paper 002): N randomized episodes per method; writes\n"
         "      DIR/replan.json and DIR/episode/frame_*.svg\n"
+        "  michi experience-queries PROBLEM.yaml --out FILE [--count N] [--training N] [--start-spread RAD]\n"
+        "      [--goal-spread RAD] [--seed S]   training and held-out start/goal pairs (docs/path-seed.md)\n"
+        "  michi path-seed-figure PROBLEM.yaml --out FILE.svg [--training I] [--held-out J]\n"
+        "      [--variant blocks|rotation] [--seed S]   a training path and its seed decoded for a held-out query\n"
+        "  michi path-seed-library PROBLEM.yaml --out FILE [--variant blocks|rotation] [--seed S]\n"
+        "      learn path seeds from the problem's training queries and save them (experience.library)\n"
         "  michi list-planners\n"
         "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
         "options: --verbose shows OMPL's log messages\n";
@@ -177,6 +185,7 @@ namespace
         options.runs = static_cast<unsigned int>(args.number("runs", 0, true));
         options.timeLimit = args.number("time", 0.);
         options.query = args.index("query");
+        options.heldOut = !args.has("query");  // --query: that query in every run, not the held-out ones
         options.progress = &std::cerr;
         const BenchResult result = runBenchmark(problem, options);
         std::ifstream summary(result.summary);
@@ -332,6 +341,47 @@ namespace
         return 0;
     }
 
+    int experienceQueries(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "count", "training", "start-spread", "goal-spread", "seed"});
+        if (args.positional.size() != 1 || !args.has("out"))
+            throw UsageError("experience-queries takes one problem file and --out FILE");
+        ExperienceQueriesOptions options;
+        options.out = args.get("out");
+        options.count = static_cast<std::size_t>(args.number("count", options.count, true));
+        options.training = args.has("training") ? args.index("training") : options.training;
+        options.startSpread = args.number("start-spread", options.startSpread);
+        options.goalSpread = args.number("goal-spread", options.goalSpread);
+        options.seed = static_cast<unsigned int>(args.number("seed", options.seed, true));
+        std::cerr << writeExperienceQueriesFile(loadProblem(args.positional[0]), options) << std::endl;
+        return 0;
+    }
+
+    int pathSeedFigure(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "training", "held-out", "variant", "seed"});
+        if (args.positional.size() != 1 || !args.has("out"))
+            throw UsageError("path-seed-figure takes one problem file and --out FILE.svg");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        std::cerr << writePathSeedFigure(loadProblem(args.positional[0]), args.index("training"),
+                                         args.index("held-out"), args.get("variant", "blocks"),
+                                         static_cast<unsigned int>(args.number("seed", 1, true)), args.get("out"))
+                  << std::endl;
+        return 0;
+    }
+
+    int pathSeedLibrary(int argc, char **argv)
+    {
+        Args args(argc, argv, {"out", "variant", "seed"});
+        if (args.positional.size() != 1 || !args.has("out"))
+            throw UsageError("path-seed-library takes one problem file and --out FILE");
+        ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        std::cerr << writePathSeedLibrary(loadProblem(args.positional[0]), args.get("variant", "blocks"),
+                                          static_cast<unsigned int>(args.number("seed", 1, true)), args.get("out"))
+                  << std::endl;
+        return 0;
+    }
+
     int listPlanners()
     {
         for (const auto &name : plannerNames())
@@ -364,6 +414,12 @@ int main(int argc, char **argv)
             return michi::tools::circlesCommand(argc, argv);
         if (command == "replan")
             return replan(argc, argv);
+        if (command == "experience-queries")
+            return experienceQueries(argc, argv);
+        if (command == "path-seed-figure")
+            return pathSeedFigure(argc, argv);
+        if (command == "path-seed-library")
+            return pathSeedLibrary(argc, argv);
         if (command == "list-planners")
             return listPlanners();
         throw UsageError("unknown command '" + command + "'");

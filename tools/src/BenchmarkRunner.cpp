@@ -1,4 +1,5 @@
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/FileOutput.h>
 
 #include <michi/tools/PlannerRegistry.h>
@@ -163,6 +164,21 @@ namespace michi
                 planners.push_back(planner);
             }
             benchmark.addExperimentParameter("query", "INTEGER", std::to_string(options.query));
+            // experience planners learn the training queries' solutions before the runs (not timed); run i of every
+            // planner plans held-out query i mod n (docs/path-seed.md, ExperienceQueries.h)
+            const auto &heldOut = problem.experience.heldOut;
+            std::map<std::string, std::size_t> heldOutRun;
+            if (options.heldOut && !heldOut.empty())
+            {
+                checkHeldOutQueries(problem, ctx);
+                benchmark.setPreRunEvent(
+                    [&](const ob::PlannerPtr &planner)
+                    {
+                        setQuery(ctx, heldOut[heldOutRun[planner->getName()]++ % heldOut.size()]);
+                    });
+                benchmark.addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
+            }
+            trainExperiencePlanners(problem, ctx, planners, options.progress);
             benchmark.addExperimentParameter("seed", "INTEGER", std::to_string(problem.benchmark.seed));
 
             BenchResult result;

@@ -3,6 +3,8 @@
 #include <michi/planners/HeadingLattice.h>
 #include <michi/planners/ConcentricCircle.h>
 #include <michi/planners/DualRoadmap.h>
+#include <michi/planners/ExperiencePeers.h>
+#include <michi/planners/PathSeed.h>
 
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
@@ -111,6 +113,8 @@ namespace michi
                 {"michi::HeadingLattice", allocator<michi::planners::HeadingLattice>()},
                 {"michi::ConcentricCircle", allocator<michi::planners::ConcentricCircle>()},
                 {"michi::DualRoadmap", allocator<michi::planners::DualRoadmap>()},
+                {"michi::PathSeed", allocator<michi::planners::PathSeed>()},
+                {"experience::Lightning", allocator<michi::planners::LightningPlanner>()},
             };
             return registry;
         }

@@ -1,5 +1,6 @@
 #include <michi/tools/Problem.h>
 
+#include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/MoveItImport.h>
 #include <michi/tools/MovingAiMap.h>
 
@@ -901,10 +902,10 @@ namespace michi
             }
             if (!root.IsMap())
                 r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
-            static const std::set<std::string> known{"name",     "description", "robot",     "scene",
-                                                     "start",    "goal",        "request",   "queries",
-                                                     "planners", "benchmark",   "collision", "extras",
-                                                     "dual_arm"};  // dual_arm: read by DualArmProblem.cpp
+            // dual_arm: read by DualArmProblem.cpp; experience: by ExperienceQueries.cpp
+            static const std::set<std::string> known{"name",      "description", "robot",     "scene",    "start",
+                                                     "goal",      "request",     "queries",   "planners", "benchmark",
+                                                     "collision", "extras",      "dual_arm",  "experience"};
             for (const auto &kv : root)
                 if (!known.count(kv.first.as<std::string>()))
                     r.fail(kv.first.as<std::string>(), "unknown top-level key");
@@ -1034,6 +1035,7 @@ namespace michi
                                "valid_segment_fraction)");
                 }
             }
+            problem.experience = readExperienceQueries(path, problem);  // ExperienceQueries.cpp
             return problem;
         }
     }  // namespace tools

@@ -20,6 +20,7 @@ namespace michi
             unsigned int runs{0};
             double timeLimit{0.};
             std::size_t query{0};
+            bool heldOut{true};  ///< cycle the problem's held-out experience queries (if any) instead of \e query
             std::string outDir;
             std::ostream *progress{nullptr};  ///< progress lines (stderr in the command), or none
         };

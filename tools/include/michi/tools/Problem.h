@@ -70,6 +70,17 @@ namespace michi
             bool backward{true};    ///< turn_move_turn: the robot may drive backwards
         };
 
+        /** \brief Start/goal sets for experience planners (docs/path-seed.md), from the problem's `experience` key
+            (read by readExperienceQueries(), ExperienceQueries.cpp). */
+        struct ExperienceQueries
+        {
+            std::vector<Query> training;  ///< solved from scratch before a benchmark to train experience planners
+            std::vector<Query> heldOut;   ///< run i of each planner in a benchmark plans heldOut[i mod size]
+            double trainingTime{5.};      ///< seconds of RRT-Connect per training query
+            std::string library;          ///< experience file given to experience planners before training
+            std::string file;             ///< the file the queries came from
+        };
+
         /** \brief Everything a problem file says: robot, scene, queries, planners and benchmark settings.
             Robots are either a URDF arm (kind ARM, joints of one group planned, the others fixed) or a planar
             rigid body (kind SE2, a footprint polygon on a map). See docs/problem-format.md. */
@@ -112,6 +123,7 @@ namespace michi
                 (validity::JMapValidityChecker over the first two planned joints, paper 000). */
             std::string checker{"fcl"};
             validity::JMapCheckerSettings jmap;  ///< for checker "jmap" (collision.jmap)
+            ExperienceQueries experience;        ///< training and held-out queries (experience), may be empty
 
             /** \brief Collision bodies of the planned robot (RobotGroupBodies or PlanarRigidBody). */
             validity::CollisionBodiesPtr bodies() const;
