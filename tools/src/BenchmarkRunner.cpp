@@ -18,7 +18,6 @@
 #include <iomanip>
 #include <mutex>
 #include <sstream>
-#include <unistd.h>
 
 namespace fs = boost::filesystem;
 namespace ob = ompl::base;
@@ -54,44 +53,6 @@ namespace michi
                     return std::nan("");
                 }
             }
-
-            /** A staging folder beside the output folder, removed unless committed. */
-            class Staging
-            {
-            public:
-                explicit Staging(const fs::path &out)
-                    : out_(fs::absolute(out))
-                    , dir_(out_.parent_path() /
-                           ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
-                {
-                    fs::remove_all(dir_);
-                    fs::create_directories(dir_);
-                }
-                ~Staging()
-                {
-                    boost::system::error_code ec;
-                    fs::remove_all(dir_, ec);
-                }
-                fs::path path(const std::string &name) const
-                {
-                    return dir_ / name;
-                }
-                /** Move every staged file into the output folder. */
-                void commit()
-                {
-                    fs::create_directories(out_);
-                    for (const auto &entry : fs::directory_iterator(dir_))
-                        fs::rename(entry.path(), out_ / entry.path().filename());
-                }
-                const fs::path &out() const
-                {
-                    return out_;
-                }
-
-            private:
-                fs::path out_;
-                fs::path dir_;
-            };
         }  // namespace
 
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
@@ -214,7 +175,7 @@ namespace michi
                     firstPaths[planner->getName()] = plot;
                 });
 
-            Staging staging(options.outDir);
+            StagedDirectory staging(options.outDir);
             if (progress)
                 *progress << "michi bench: " << problem.name << ": " << planners.size() << " planners x " << runs
                           << " runs, " << timeLimit << " s each" << std::endl;

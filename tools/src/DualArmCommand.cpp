@@ -21,7 +21,6 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
-#include <unistd.h>
 
 namespace fs = boost::filesystem;
 

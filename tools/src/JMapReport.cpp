@@ -13,7 +13,6 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-#include <unistd.h>
 
 namespace fs = boost::filesystem;
 
