@@ -109,6 +109,7 @@ namespace michi
                 {"geometric::TRRT", allocator<og::TRRT>()},
                 {"michi::PathSeed", allocator<michi::planners::PathSeed>()},
                 {"experience::Lightning", allocator<michi::planners::LightningPlanner>()},
+                {"experience::Thunder", allocator<michi::planners::ThunderPlanner>()},
             };
             return registry;
         }
