@@ -4,9 +4,12 @@
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/experience/LightningRetrieveRepair.h>
+#include <ompl/geometric/planners/experience/ThunderRetrieveRepair.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/tools/lightning/LightningDB.h>
 #include <ompl/tools/multiplan/ParallelPlan.h>
+#include <ompl/tools/thunder/SPARSdb.h>
+#include <ompl/tools/thunder/ThunderDB.h>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -91,5 +94,50 @@ namespace michi
             return db_->getExperiencesCount();
         }
 
+        ThunderPlanner::ThunderPlanner(const ob::SpaceInformationPtr &si)
+            : ExperienceRace(si, "Thunder"), db_(std::make_shared<ompl::tools::ThunderDB>(si->getStateSpace()))
+        {
+            retrieveRepair_ = std::make_shared<og::ThunderRetrieveRepair>(si, db_);
+        }
+
+        void ThunderPlanner::addExperience(const og::PathGeometric &path)
+        {
+            if (path.getStateCount() < 2)
+                return;
+            if (!db_->getSPARSdb())
+            {
+                // as ompl::tools::Thunder::setup() does
+                auto spars = std::make_shared<og::SPARSdb>(si_);
+                spars->setProblemDefinition(std::make_shared<ob::ProblemDefinition>(si_));
+                spars->setup();
+                spars->setStretchFactor(1.2);
+                spars->setSparseDeltaFraction(0.05);
+                spars->setDenseDeltaFraction(0.001);
+                db_->setSPARSdb(spars);
+            }
+            // SPARSdb's roadmap search (lazyCollisionSearch) reads the goal of its own problem definition: with
+            // none it dereferences a null goal (the crash under michi bench); give it the path's own query
+            auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
+            pdef->setStartAndGoalStates(path.getState(0), path.getState(path.getStateCount() - 1));
+            db_->getSPARSdb()->setProblemDefinition(pdef);
+            og::PathGeometric copy(path);
+            double insertionTime = 0.;
+            if (db_->addPath(copy, insertionTime))
+                ++connected_;
+        }
+
+        ob::PlannerStatus ThunderPlanner::solve(const ob::PlannerTerminationCondition &ptc)
+        {
+            // as ompl::tools::Thunder::setup() does: the roadmap searches with the query's problem definition
+            if (db_->getSPARSdb() && pdef_)
+                db_->getSPARSdb()->setProblemDefinition(pdef_);
+            return ExperienceRace::solve(ptc);
+        }
+
+        std::size_t ThunderPlanner::experienceCount() const
+        {
+            // every path given to the roadmap (ThunderDB counts them whether or not they connected)
+            return static_cast<std::size_t>(db_->getNumPathsInserted());
+        }
     }  // namespace planners
 }  // namespace michi

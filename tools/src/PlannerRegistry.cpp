@@ -115,6 +115,7 @@ namespace michi
                 {"michi::DualRoadmap", allocator<michi::planners::DualRoadmap>()},
                 {"michi::PathSeed", allocator<michi::planners::PathSeed>()},
                 {"experience::Lightning", allocator<michi::planners::LightningPlanner>()},
+                {"experience::Thunder", allocator<michi::planners::ThunderPlanner>()},
             };
             return registry;
         }

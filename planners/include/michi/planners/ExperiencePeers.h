@@ -12,6 +12,7 @@ namespace ompl
     namespace tools
     {
         class LightningDB;
+        class ThunderDB;
     }  // namespace tools
 }  // namespace ompl
 
@@ -22,16 +23,16 @@ namespace michi
         /**
            @anchor michiExperienceRace
            @par Short description
-           OMPL's Lightning experience framework as a planner, so that OMPL's Benchmark can run it next to others
-           and tools can train it (michi registers it as "experience::Lightning"). As ompl::tools::Lightning
-           does, solve() runs the framework's retrieve-repair planner
+           OMPL's experience frameworks as planners, so that OMPL's Benchmark can run them next to others and
+           tools can train them (michi registers them as "experience::Lightning" and "experience::Thunder"). As
+           ompl::tools::Lightning and ompl::tools::Thunder do, solve() runs the framework's retrieve-repair planner
            and RRT-Connect from scratch in parallel (ompl::tools::ParallelPlan) and stops at the first solution.
            The experience database is filled by addExperience() (training) and, with parameter learn, with
            solutions RRT-Connect found; clear() keeps it.
            @par External documentation
            D. Berenson, P. Abbeel, K. Goldberg, "A robot path planning framework that learns from experience",
-           ICRA 2012 (Lightning). (Thunder, OMPL's other framework, was wrapped the same way but its
-           retrieve-repair planner crashed michi bench on xarm6_ring with OMPL 1.5.2; see docs/path-seed.md.)
+           ICRA 2012 (Lightning). D. Coleman, I. A. Sucan, M. Moll, K. Okada, N. Correll, "Experience-based
+           planning with sparse roadmap spanners", ICRA 2015 (Thunder).
         */
         class ExperienceRace : public ompl::base::Planner, public ExperiencePlanner
         {
@@ -70,6 +71,28 @@ namespace michi
             std::shared_ptr<ompl::tools::LightningDB> db_;
         };
 
+        /** \brief OMPL's Thunder (ThunderDB on a SPARSdb roadmap + ThunderRetrieveRepair) racing RRT-Connect,
+            with Thunder's default roadmap settings (stretch factor 1.2, sparse delta 0.05, dense delta 0.001 of the
+            space's maximum extent). The SPARSdb roadmap searches with its own problem definition and dereferences
+            its goal: training gives it each path's query, solve() the planner's (without, OMPL 1.5.2 crashes). */
+        class ThunderPlanner : public ExperienceRace
+        {
+        public:
+            explicit ThunderPlanner(const ompl::base::SpaceInformationPtr &si);
+            ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
+            void addExperience(const ompl::geometric::PathGeometric &path) override;
+            std::size_t experienceCount() const override;
+            /** \brief Number of added paths whose start and goal the roadmap connected afterwards (SPARSdb's
+                addPathToRoadmap succeeded); the others still added their states where the roadmap needed them. */
+            std::size_t connectedExperienceCount() const
+            {
+                return connected_;
+            }
+
+        private:
+            std::shared_ptr<ompl::tools::ThunderDB> db_;
+            std::size_t connected_{0};
+        };
     }  // namespace planners
 }  // namespace michi
 
