@@ -61,6 +61,11 @@ namespace michi
                 double timingJitter{1.};       ///< moving obstacles start up to this many seconds earlier / later
                 double speedJitter{0.3};       ///< and move up to this fraction faster / slower
                 double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
+                /** real_time 0: reproducible runs. Every query is charged planning_delay simulated seconds, the
+                    simulation waits for the planner (in wall time) before it steps on, and the planner stops after
+                    planning_work evaluations of its termination condition (a work count, not wall time). */
+                double planningDelay{0.1};
+                double planningWork{200000.};
                 double escapeHorizon{0.};      ///< escapes avoid the obstacles' true shapes over this many seconds
                 double crossTime{0.6};  ///< s: a robot inside a predicted region keeps going if it leaves it this fast
                 bool deformation{true};
@@ -108,6 +113,8 @@ namespace michi
                     {"timing_jitter", &s.timingJitter},
                     {"speed_jitter", &s.speedJitter},
                     {"real_time", &s.realTime},
+                    {"planning_delay", &s.planningDelay},
+                    {"planning_work", &s.planningWork},
                     {"escape_horizon", &s.escapeHorizon},
                     {"cross_time", &s.crossTime},
                     {"deformation_distance", &s.deform.startDistance},
@@ -158,7 +165,7 @@ namespace michi
                     const bool mayBeZero = key == "safety_distance" || key == "margin" || key == "timing_jitter" ||
                                            key == "speed_jitter" || key == "real_time" || key == "stop_margin" ||
                                            key == "prediction_horizon" || key == "frames" || key == "escape_horizon" ||
-                                           key == "cross_time";
+                                           key == "cross_time" || key == "planning_delay";
                     if (!std::isfinite(v) || v < 0. || (!mayBeZero && v == 0.))
                         fail(file, path, mayBeZero ? "expected a number >= 0" : "expected a number > 0");
                     *it->second = v;
@@ -289,6 +296,7 @@ namespace michi
                 std::vector<double> replanLatency;   ///< ms
                 std::vector<double> initialLatency;  ///< ms
                 std::vector<double> timeToGoal;      ///< simulated s
+                std::vector<double> episodeEnd;      ///< simulated s at which each episode ended
                 double wallSeconds{0.};
                 std::size_t learningEdges{0};
             };
@@ -413,8 +421,14 @@ namespace michi
                     double nextFrame = 0.;
                     while (t < settings_.episodeTime)
                     {
-                        if (exec.planState() == NonStopExecutor::PlanState::PLANNING && settings_.realTime > 0.)
-                            exec.waitForPlanner(settings_.dt * settings_.realTime);
+                        const bool reproducible = settings_.realTime <= 0.;
+                        if (exec.planState() == NonStopExecutor::PlanState::PLANNING)
+                        {
+                            if (reproducible)
+                                exec.waitForPlanner();  // the planner's time is charged on the simulated clock
+                            else
+                                exec.waitForPlanner(settings_.dt * settings_.realTime);
+                        }
                         t += settings_.dt;
                         world_->setTime(t);
                         exec.step(settings_.dt);
@@ -480,6 +494,7 @@ namespace michi
                         (i == 0 ? results.initialLatency : results.replanLatency).push_back(1000. * st.latencies[i]);
                     if (reached)
                         results.timeToGoal.push_back(t);
+                    results.episodeEnd.push_back(t);
                     if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
                         results.learningEdges = dual->learningEdgeCount();
                 }
@@ -531,6 +546,11 @@ namespace michi
                     s.deceleration = settings_.deceleration;
                     s.safetyDistance = settings_.safetyDistance;
                     s.stopMargin = settings_.stopMargin;
+                    if (settings_.realTime <= 0.)
+                    {
+                        s.planningDelay = settings_.planningDelay;
+                        s.synchronous = true;
+                    }
                     return s;
                 }
 
@@ -761,14 +781,28 @@ namespace michi
                         planner_->setProblemDefinition(pdef);
                         if (!planner_->isSetup())
                             planner_->setup();
+                        // reproducible runs: a work count (evaluations of the condition) instead of wall time;
+                        // planning_time stays as a wall-clock backstop
+                        const unsigned long work = settings_.realTime <= 0. ?
+                                                       static_cast<unsigned long>(settings_.planningWork) :
+                                                       std::numeric_limits<unsigned long>::max();
+                        std::atomic<unsigned long> evaluations{0};  // PRM evaluates it in two threads
                         const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
                             ob::timedPlannerTerminationCondition(settings_.planningTime),
                             ob::PlannerTerminationCondition(
-                                [&cancel]
+                                [&cancel, &evaluations, work]
                                 {
-                                    return cancel.load();
+                                    return cancel.load() || ++evaluations > work;
                                 }));
-                        if (planner_->solve(ptc) != ob::PlannerStatus::EXACT_SOLUTION || cancel)
+                        const auto solveBegin = std::chrono::steady_clock::now();
+                        const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;
+                        if (!solved && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
+                            std::cerr << "\nno path: " << evaluations.load() << " evaluations of the termination "
+                                      << "condition in "
+                                      << std::chrono::duration<double>(std::chrono::steady_clock::now() - solveBegin)
+                                             .count()
+                                      << " s\n";
+                        if (!solved || cancel)
                             return false;
                         auto solution = std::dynamic_pointer_cast<og::PathGeometric>(pdef->getSolutionPath());
                         if (!solution)
@@ -850,6 +884,10 @@ namespace michi
                     << indent << "\"initial_plan_ms_median\": " << num(percentile(r.initialLatency, 50.)) << ",\n"
                     << indent << "\"time_to_goal_s_median\": " << num(percentile(r.timeToGoal, 50.)) << ",\n"
                     << indent << "\"learning_edges\": " << r.learningEdges << ",\n"
+                    << indent << "\"episode_end_s\": [";
+                for (std::size_t i = 0; i < r.episodeEnd.size(); ++i)
+                    out << (i > 0 ? ", " : "") << num(r.episodeEnd[i]);
+                out << "],\n"
                     << indent << "\"wall_seconds\": " << num(r.wallSeconds);
             }
         }  // namespace
@@ -858,6 +896,9 @@ namespace michi
         {
             if (options.episodes == 0)
                 throw std::invalid_argument("--episodes must be a positive integer");
+            // before anything draws a seed from OMPL's seed generator: then every planner's and sampler's random
+            // numbers follow from --seed (reproducible runs, extras.replan.real_time 0)
+            ompl::RNG::setSeed(options.seed);
             const Problem problem = loadProblem(options.problemFile);
             const ReplanSettings settings = readSettings(options.problemFile);
 
@@ -927,7 +968,6 @@ namespace michi
                 }
             }
 
-            ompl::RNG::setSeed(options.seed);
             std::vector<Results> results(methods.size());
             std::vector<Frame> frames;
             for (std::size_t mi = 0; mi < methods.size(); ++mi)
@@ -958,6 +998,9 @@ namespace michi
                  << ", \"margin\": " << num(settings.margin)
                  << ", \"prediction_horizon\": " << num(settings.predictionHorizon)
                  << ", \"planning_time\": " << num(settings.planningTime)
+                 << ", \"real_time\": " << num(settings.realTime)
+                 << ", \"planning_delay\": " << num(settings.planningDelay)
+                 << ", \"planning_work\": " << num(settings.planningWork)
                  << ", \"episode_time\": " << num(settings.episodeTime)
                  << ", \"timing_jitter\": " << num(settings.timingJitter)
                  << ", \"speed_jitter\": " << num(settings.speedJitter)
