@@ -66,9 +66,12 @@ namespace michi
                     planning_work evaluations of its termination condition (a work count, not wall time). */
                 double planningDelay{0.1};
                 double planningWork{200000.};
-                double escapeHorizon{0.};      ///< escapes avoid the obstacles' true shapes over this many seconds
+                double escapeHorizon{0.};  ///< escapes avoid the obstacles' true shapes over this many seconds
                 double crossTime{0.6};  ///< s: a robot inside a predicted region keeps going if it leaves it this fast
                 bool deformation{true};
+                /** obstacles_yield: a moving obstacle that would move into the robot waits (its key frames are
+                    delayed by a step) instead; a robot that moves into an obstacle still collides. */
+                bool obstaclesYield{false};
                 DeformationSettings deform;
                 double frames{8.};
                 std::map<std::string, std::string> dualParams;  ///< dual_roadmap_params: set on both DualRoadmap runs
@@ -125,7 +128,7 @@ namespace michi
                 std::string expected;
                 for (const auto &kv : numbers)
                     expected += kv.first + ", ";
-                expected += "deformation, dual_roadmap_params";
+                expected += "deformation, obstacles_yield, dual_roadmap_params";
                 for (const auto &kv : r)
                 {
                     const std::string key = kv.first.as<std::string>();
@@ -138,11 +141,11 @@ namespace michi
                             s.dualParams[p.first.as<std::string>()] = p.second.as<std::string>();
                         continue;
                     }
-                    if (key == "deformation")
+                    if (key == "deformation" || key == "obstacles_yield")
                     {
                         try
                         {
-                            s.deformation = kv.second.as<bool>();
+                            (key == "deformation" ? s.deformation : s.obstaclesYield) = kv.second.as<bool>();
                         }
                         catch (const std::exception &)
                         {
@@ -292,7 +295,7 @@ namespace michi
             struct Results
             {
                 unsigned int episodes{0}, reached{0}, collisions{0}, collisionSteps{0}, stops{0}, deformations{0},
-                    replans{0}, cancelled{0}, failures{0};
+                    replans{0}, cancelled{0}, failures{0}, obstacleWaits{0};
                 std::vector<double> replanLatency;   ///< ms
                 std::vector<double> initialLatency;  ///< ms
                 std::vector<double> timeToGoal;      ///< simulated s
@@ -364,6 +367,18 @@ namespace michi
                         o.trajectory = m.trajectory;
                         world_->add(o);
                     }
+                    for (const auto &m : movers)
+                    {
+                        // one scene per mover (true shape), to ask whether it would move into a standing robot
+                        auto scene = std::make_shared<validity::Scene>();
+                        validity::Obstacle o;
+                        o.name = m.name;
+                        o.shape = m.shape;
+                        o.pose = validity::Scene::poseAt(m.trajectory, 0.);
+                        scene->add(o);
+                        yieldScenes_.push_back(scene);
+                        yieldCtx_.push_back(context(scene));
+                    }
                     planCtx_ = context(planSensed_.scene);
                     planNowCtx_ = context(planNow_.scene);
                     execCtx_ = context(execSensed_.scene);
@@ -430,6 +445,28 @@ namespace michi
                                 exec.waitForPlanner(settings_.dt * settings_.realTime);
                         }
                         t += settings_.dt;
+                        if (settings_.obstaclesYield)
+                            for (std::size_t k = 0; k < movers_.size(); ++k)
+                            {
+                                // a mover that would move into the robot (where it is, at prev) waits this step; the
+                                // robot's own motion is checked below against the movers where they then are
+                                const auto &ysi = yieldCtx_[k].setup->getSpaceInformation();
+                                yieldScenes_[k]->setPose(movers_[k].name,
+                                                         validity::Scene::poseAt(trajectories_[k], t - settings_.dt));
+                                const bool before = ysi->isValid(prev.get());
+                                yieldScenes_[k]->setPose(movers_[k].name, validity::Scene::poseAt(trajectories_[k], t));
+                                if (!before || ysi->isValid(prev.get()))
+                                    continue;
+                                for (auto &key : trajectories_[k])
+                                    key.time += settings_.dt;
+                                world_->remove(movers_[k].name);
+                                validity::Obstacle o;
+                                o.name = movers_[k].name;
+                                o.shape = movers_[k].shape;
+                                o.trajectory = trajectories_[k];
+                                world_->add(o);
+                                ++results.obstacleWaits;
+                            }
                         world_->setTime(t);
                         exec.step(settings_.dt);
                         toState(worldSi, exec.configuration(), cur.get());
@@ -781,14 +818,16 @@ namespace michi
                         planner_->setProblemDefinition(pdef);
                         if (!planner_->isSetup())
                             planner_->setup();
-                        // reproducible runs: a work count (evaluations of the condition) instead of wall time;
-                        // planning_time stays as a wall-clock backstop
-                        const unsigned long work = settings_.realTime <= 0. ?
-                                                       static_cast<unsigned long>(settings_.planningWork) :
-                                                       std::numeric_limits<unsigned long>::max();
+                        // reproducible runs: DualRoadmap stops after a work count (evaluations of the condition:
+                        // one per search, lazy edge check and sample) instead of wall time, with 10 x planning_time
+                        // as a wall-clock backstop; the baselines keep planning_time (their work per evaluation
+                        // differs too much for one count to be fair)
+                        const bool counted = settings_.realTime <= 0. && method_.reuse == Method::Reuse::DUAL;
+                        const unsigned long work = counted ? static_cast<unsigned long>(settings_.planningWork)
+                                                           : std::numeric_limits<unsigned long>::max();
                         std::atomic<unsigned long> evaluations{0};  // PRM evaluates it in two threads
                         const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
-                            ob::timedPlannerTerminationCondition(settings_.planningTime),
+                            ob::timedPlannerTerminationCondition(settings_.planningTime * (counted ? 10. : 1.)),
                             ob::PlannerTerminationCondition(
                                 [&cancel, &evaluations, work]
                                 {
@@ -797,11 +836,11 @@ namespace michi
                         const auto solveBegin = std::chrono::steady_clock::now();
                         const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;
                         if (!solved && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
-                            std::cerr << "\nno path: " << evaluations.load() << " evaluations of the termination "
-                                      << "condition in "
-                                      << std::chrono::duration<double>(std::chrono::steady_clock::now() - solveBegin)
-                                             .count()
-                                      << " s\n";
+                            std::cerr
+                                << "\nno path: " << evaluations.load() << " evaluations of the termination "
+                                << "condition in "
+                                << std::chrono::duration<double>(std::chrono::steady_clock::now() - solveBegin).count()
+                                << " s\n";
                         if (!solved || cancel)
                             return false;
                         auto solution = std::dynamic_pointer_cast<og::PathGeometric>(pdef->getSolutionPath());
@@ -860,6 +899,8 @@ namespace michi
                 PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_;
                 ob::PlannerPtr planner_;
                 std::vector<std::vector<validity::TimedPose>> trajectories_;
+                std::vector<validity::ScenePtr> yieldScenes_;
+                std::vector<PlanningContext> yieldCtx_;
                 std::vector<Eigen::Isometry3d> lastPoses_;
                 double lastSenseTime_{0.};
                 std::mutex snapshotMutex_;
@@ -879,6 +920,7 @@ namespace michi
                     << indent << "\"replans_found\": " << r.replanLatency.size() << ",\n"
                     << indent << "\"cancelled_queries\": " << r.cancelled << ",\n"
                     << indent << "\"planning_failures\": " << r.failures << ",\n"
+                    << indent << "\"obstacle_waits\": " << r.obstacleWaits << ",\n"
                     << indent << "\"replan_latency_ms_median\": " << num(percentile(r.replanLatency, 50.)) << ",\n"
                     << indent << "\"replan_latency_ms_p95\": " << num(percentile(r.replanLatency, 95.)) << ",\n"
                     << indent << "\"initial_plan_ms_median\": " << num(percentile(r.initialLatency, 50.)) << ",\n"
@@ -887,8 +929,7 @@ namespace michi
                     << indent << "\"episode_end_s\": [";
                 for (std::size_t i = 0; i < r.episodeEnd.size(); ++i)
                     out << (i > 0 ? ", " : "") << num(r.episodeEnd[i]);
-                out << "],\n"
-                    << indent << "\"wall_seconds\": " << num(r.wallSeconds);
+                out << "],\n" << indent << "\"wall_seconds\": " << num(r.wallSeconds);
             }
         }  // namespace
 
@@ -1004,7 +1045,8 @@ namespace michi
                  << ", \"episode_time\": " << num(settings.episodeTime)
                  << ", \"timing_jitter\": " << num(settings.timingJitter)
                  << ", \"speed_jitter\": " << num(settings.speedJitter)
-                 << ", \"deformation\": " << (settings.deformation ? "true" : "false") << "},\n";
+                 << ", \"deformation\": " << (settings.deformation ? "true" : "false")
+                 << ", \"obstacles_yield\": " << (settings.obstaclesYield ? "true" : "false") << "},\n";
             json << "  \"baselines\": {";
             for (std::size_t mi = 1; mi < methods.size(); ++mi)
             {
