@@ -64,7 +64,7 @@ namespace
         bool deformOk{false};
         int deformCalls{0};
 
-        explicit Harness(double safety = 0.)
+        explicit Harness(double safety = 0., double planningDelay = 0., bool synchronous = false)
         {
             michi::tools::NonStopHooks hooks;
             hooks.distance = [](const Configuration &a, const Configuration &b)
@@ -137,6 +137,8 @@ namespace
             settings.deceleration = 2.;  // braking distance at full speed: 0.25
             settings.safetyDistance = safety;
             settings.stopMargin = 0.1;
+            settings.planningDelay = planningDelay;
+            settings.synchronous = synchronous;
             exec = std::make_unique<NonStopExecutor>(hooks, settings);
         }
 
@@ -414,4 +416,23 @@ TEST(NonStopExecutor, FailedQueryIsRetriedAndStopCancels)
     ASSERT_EQ(h.exec->execState(), Exec::EXECUTE);
     h.exec->stop();
     EXPECT_TRUE(h.saw(Exec::EXECUTE, Sig::STOP, Exec::IDLE));
+}
+
+TEST(NonStopExecutor, PlanningDelayIsChargedOnTheSimulatedClockAndSynchronousQueriesRunToTheEnd)
+{
+    Harness h(0., 0.5, true);
+    {
+        std::lock_guard<std::mutex> lock(h.gate.mutex);
+        h.gate.released = 1;  // the planner may answer the first query at once
+    }
+    h.exec->start({0., 0.}, {10., 0.});
+    // synchronous: the query has been planned when start() returns
+    EXPECT_EQ(h.exec->planState(), NonStopExecutor::PlanState::WAIT_QUERY);
+    EXPECT_EQ(h.gate.started, 1);
+    h.steps(49);  // 0.49 s of simulated time: the answer is not due yet
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_EQ(h.exec->configuration(), (Configuration{0., 0.}));
+    h.steps(1);  // 0.5 s: due
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::PATH_FOUND, Exec::EXECUTE));
 }

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <sys/wait.h>
 
 namespace fs = boost::filesystem;
@@ -94,4 +96,31 @@ TEST(ReplanCli, BadInputIsRejectedAndWritesNothing)
                    " --episodes 0 --out " + out);
     EXPECT_NE(run.exitCode, 0);
     EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(ReplanCli, SameSeedGivesTheSameEpisodes)
+{
+    // extras.replan.real_time 0 (the scenario's setting): planning is charged on the simulated clock and limited by
+    // a work count, so two runs with the same --seed have the same outcomes (wall-clock latencies aside)
+    michi::test::TempDir dir;
+    std::vector<std::string> outcomes;
+    for (const char *name : {"/a", "/b"})
+    {
+        const auto run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_mobile_passage.yaml") +
+                                  " --episodes 3 --seed 5 --methods dual --out " + dir.path() + name);
+        ASSERT_EQ(run.exitCode, 0) << run.output;
+        const std::string json = readFile(dir.path() + name + "/replan.json");
+        std::string outcome;
+        for (const char *key : {"\"reached_goal\"", "\"collisions\"", "\"stops\"", "\"deformations\"", "\"replans\"",
+                                "\"replans_found\"", "\"cancelled_queries\"", "\"planning_failures\"",
+                                "\"time_to_goal_s_median\"", "\"learning_edges\"", "\"episode_end_s\""})
+        {
+            const auto at = json.find(key);
+            ASSERT_NE(at, std::string::npos) << key;
+            outcome += json.substr(at, json.find('\n', at) - at) + "\n";
+        }
+        outcomes.push_back(outcome);
+    }
+    EXPECT_EQ(outcomes[0], outcomes[1]);
+    EXPECT_NE(outcomes[0].find("\"replans\": "), std::string::npos);
 }

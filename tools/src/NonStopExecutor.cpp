@@ -24,6 +24,8 @@ namespace michi
                     "clearance hooks are required");
             if (!(settings_.speed > 0.) || !(settings_.deceleration > 0.))
                 throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive");
+            if (!(settings_.planningDelay >= 0.))
+                throw std::invalid_argument("NonStopExecutor: planningDelay must not be negative");
             thread_ = std::thread(
                 [this]
                 {
@@ -169,9 +171,12 @@ namespace michi
                 std::lock_guard<std::mutex> lock(mutex_);
                 query.id = ++nextId_;
                 activeQuery_ = query.id;
+                activeSentAt_ = time_;
                 queries_.push_back(std::move(query));
             }
             cv_.notify_all();
+            if (settings_.synchronous)
+                waitForPlanner();
             planStartArc_ = planStartArc;
             pendingPath_ = false;
             ++stats_.queries;
@@ -361,6 +366,13 @@ namespace michi
             {
                 if (reply.id != activeQuery_)
                     continue;  // a cancelled query's answer
+                if (time_ < activeSentAt_ + settings_.planningDelay - EPS)
+                {
+                    // not yet due on the simulated clock: keep it for a later step
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    replies_.push_front(std::move(reply));
+                    continue;
+                }
                 activeQuery_ = 0;
                 if (!reply.found)
                 {

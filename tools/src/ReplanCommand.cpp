@@ -61,9 +61,17 @@ namespace michi
                 double timingJitter{1.};       ///< moving obstacles start up to this many seconds earlier / later
                 double speedJitter{0.3};       ///< and move up to this fraction faster / slower
                 double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
-                double escapeHorizon{0.};      ///< escapes avoid the obstacles' true shapes over this many seconds
+                /** real_time 0: reproducible runs. Every query is charged planning_delay simulated seconds, the
+                    simulation waits for the planner (in wall time) before it steps on, and the planner stops after
+                    planning_work evaluations of its termination condition (a work count, not wall time). */
+                double planningDelay{0.1};
+                double planningWork{200000.};
+                double escapeHorizon{0.};  ///< escapes avoid the obstacles' true shapes over this many seconds
                 double crossTime{0.6};  ///< s: a robot inside a predicted region keeps going if it leaves it this fast
                 bool deformation{true};
+                /** obstacles_yield: a moving obstacle that would move into the robot waits (its key frames are
+                    delayed by a step) instead; a robot that moves into an obstacle still collides. */
+                bool obstaclesYield{false};
                 DeformationSettings deform;
                 double frames{8.};
                 std::map<std::string, std::string> dualParams;  ///< dual_roadmap_params: set on both DualRoadmap runs
@@ -108,6 +116,8 @@ namespace michi
                     {"timing_jitter", &s.timingJitter},
                     {"speed_jitter", &s.speedJitter},
                     {"real_time", &s.realTime},
+                    {"planning_delay", &s.planningDelay},
+                    {"planning_work", &s.planningWork},
                     {"escape_horizon", &s.escapeHorizon},
                     {"cross_time", &s.crossTime},
                     {"deformation_distance", &s.deform.startDistance},
@@ -118,7 +128,7 @@ namespace michi
                 std::string expected;
                 for (const auto &kv : numbers)
                     expected += kv.first + ", ";
-                expected += "deformation, dual_roadmap_params";
+                expected += "deformation, obstacles_yield, dual_roadmap_params";
                 for (const auto &kv : r)
                 {
                     const std::string key = kv.first.as<std::string>();
@@ -131,11 +141,11 @@ namespace michi
                             s.dualParams[p.first.as<std::string>()] = p.second.as<std::string>();
                         continue;
                     }
-                    if (key == "deformation")
+                    if (key == "deformation" || key == "obstacles_yield")
                     {
                         try
                         {
-                            s.deformation = kv.second.as<bool>();
+                            (key == "deformation" ? s.deformation : s.obstaclesYield) = kv.second.as<bool>();
                         }
                         catch (const std::exception &)
                         {
@@ -158,7 +168,7 @@ namespace michi
                     const bool mayBeZero = key == "safety_distance" || key == "margin" || key == "timing_jitter" ||
                                            key == "speed_jitter" || key == "real_time" || key == "stop_margin" ||
                                            key == "prediction_horizon" || key == "frames" || key == "escape_horizon" ||
-                                           key == "cross_time";
+                                           key == "cross_time" || key == "planning_delay";
                     if (!std::isfinite(v) || v < 0. || (!mayBeZero && v == 0.))
                         fail(file, path, mayBeZero ? "expected a number >= 0" : "expected a number > 0");
                     *it->second = v;
@@ -285,10 +295,11 @@ namespace michi
             struct Results
             {
                 unsigned int episodes{0}, reached{0}, collisions{0}, collisionSteps{0}, stops{0}, deformations{0},
-                    replans{0}, cancelled{0}, failures{0};
+                    replans{0}, cancelled{0}, failures{0}, obstacleWaits{0};
                 std::vector<double> replanLatency;   ///< ms
                 std::vector<double> initialLatency;  ///< ms
                 std::vector<double> timeToGoal;      ///< simulated s
+                std::vector<double> episodeEnd;      ///< simulated s at which each episode ended
                 double wallSeconds{0.};
                 std::size_t learningEdges{0};
             };
@@ -356,6 +367,18 @@ namespace michi
                         o.trajectory = m.trajectory;
                         world_->add(o);
                     }
+                    for (const auto &m : movers)
+                    {
+                        // one scene per mover (true shape), to ask whether it would move into a standing robot
+                        auto scene = std::make_shared<validity::Scene>();
+                        validity::Obstacle o;
+                        o.name = m.name;
+                        o.shape = m.shape;
+                        o.pose = validity::Scene::poseAt(m.trajectory, 0.);
+                        scene->add(o);
+                        yieldScenes_.push_back(scene);
+                        yieldCtx_.push_back(context(scene));
+                    }
                     planCtx_ = context(planSensed_.scene);
                     planNowCtx_ = context(planNow_.scene);
                     execCtx_ = context(execSensed_.scene);
@@ -413,9 +436,37 @@ namespace michi
                     double nextFrame = 0.;
                     while (t < settings_.episodeTime)
                     {
-                        if (exec.planState() == NonStopExecutor::PlanState::PLANNING && settings_.realTime > 0.)
-                            exec.waitForPlanner(settings_.dt * settings_.realTime);
+                        const bool reproducible = settings_.realTime <= 0.;
+                        if (exec.planState() == NonStopExecutor::PlanState::PLANNING)
+                        {
+                            if (reproducible)
+                                exec.waitForPlanner();  // the planner's time is charged on the simulated clock
+                            else
+                                exec.waitForPlanner(settings_.dt * settings_.realTime);
+                        }
                         t += settings_.dt;
+                        if (settings_.obstaclesYield)
+                            for (std::size_t k = 0; k < movers_.size(); ++k)
+                            {
+                                // a mover that would move into the robot (where it is, at prev) waits this step; the
+                                // robot's own motion is checked below against the movers where they then are
+                                const auto &ysi = yieldCtx_[k].setup->getSpaceInformation();
+                                yieldScenes_[k]->setPose(movers_[k].name,
+                                                         validity::Scene::poseAt(trajectories_[k], t - settings_.dt));
+                                const bool before = ysi->isValid(prev.get());
+                                yieldScenes_[k]->setPose(movers_[k].name, validity::Scene::poseAt(trajectories_[k], t));
+                                if (!before || ysi->isValid(prev.get()))
+                                    continue;
+                                for (auto &key : trajectories_[k])
+                                    key.time += settings_.dt;
+                                world_->remove(movers_[k].name);
+                                validity::Obstacle o;
+                                o.name = movers_[k].name;
+                                o.shape = movers_[k].shape;
+                                o.trajectory = trajectories_[k];
+                                world_->add(o);
+                                ++results.obstacleWaits;
+                            }
                         world_->setTime(t);
                         exec.step(settings_.dt);
                         toState(worldSi, exec.configuration(), cur.get());
@@ -480,6 +531,7 @@ namespace michi
                         (i == 0 ? results.initialLatency : results.replanLatency).push_back(1000. * st.latencies[i]);
                     if (reached)
                         results.timeToGoal.push_back(t);
+                    results.episodeEnd.push_back(t);
                     if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
                         results.learningEdges = dual->learningEdgeCount();
                 }
@@ -531,6 +583,11 @@ namespace michi
                     s.deceleration = settings_.deceleration;
                     s.safetyDistance = settings_.safetyDistance;
                     s.stopMargin = settings_.stopMargin;
+                    if (settings_.realTime <= 0.)
+                    {
+                        s.planningDelay = settings_.planningDelay;
+                        s.synchronous = true;
+                    }
                     return s;
                 }
 
@@ -761,14 +818,30 @@ namespace michi
                         planner_->setProblemDefinition(pdef);
                         if (!planner_->isSetup())
                             planner_->setup();
+                        // reproducible runs: DualRoadmap stops after a work count (evaluations of the condition:
+                        // one per search, lazy edge check and sample) instead of wall time, with 10 x planning_time
+                        // as a wall-clock backstop; the baselines keep planning_time (their work per evaluation
+                        // differs too much for one count to be fair)
+                        const bool counted = settings_.realTime <= 0. && method_.reuse == Method::Reuse::DUAL;
+                        const unsigned long work = counted ? static_cast<unsigned long>(settings_.planningWork)
+                                                           : std::numeric_limits<unsigned long>::max();
+                        std::atomic<unsigned long> evaluations{0};  // PRM evaluates it in two threads
                         const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
-                            ob::timedPlannerTerminationCondition(settings_.planningTime),
+                            ob::timedPlannerTerminationCondition(settings_.planningTime * (counted ? 10. : 1.)),
                             ob::PlannerTerminationCondition(
-                                [&cancel]
+                                [&cancel, &evaluations, work]
                                 {
-                                    return cancel.load();
+                                    return cancel.load() || ++evaluations > work;
                                 }));
-                        if (planner_->solve(ptc) != ob::PlannerStatus::EXACT_SOLUTION || cancel)
+                        const auto solveBegin = std::chrono::steady_clock::now();
+                        const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;
+                        if (!solved && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
+                            std::cerr
+                                << "\nno path: " << evaluations.load() << " evaluations of the termination "
+                                << "condition in "
+                                << std::chrono::duration<double>(std::chrono::steady_clock::now() - solveBegin).count()
+                                << " s\n";
+                        if (!solved || cancel)
                             return false;
                         auto solution = std::dynamic_pointer_cast<og::PathGeometric>(pdef->getSolutionPath());
                         if (!solution)
@@ -826,6 +899,8 @@ namespace michi
                 PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_;
                 ob::PlannerPtr planner_;
                 std::vector<std::vector<validity::TimedPose>> trajectories_;
+                std::vector<validity::ScenePtr> yieldScenes_;
+                std::vector<PlanningContext> yieldCtx_;
                 std::vector<Eigen::Isometry3d> lastPoses_;
                 double lastSenseTime_{0.};
                 std::mutex snapshotMutex_;
@@ -845,12 +920,16 @@ namespace michi
                     << indent << "\"replans_found\": " << r.replanLatency.size() << ",\n"
                     << indent << "\"cancelled_queries\": " << r.cancelled << ",\n"
                     << indent << "\"planning_failures\": " << r.failures << ",\n"
+                    << indent << "\"obstacle_waits\": " << r.obstacleWaits << ",\n"
                     << indent << "\"replan_latency_ms_median\": " << num(percentile(r.replanLatency, 50.)) << ",\n"
                     << indent << "\"replan_latency_ms_p95\": " << num(percentile(r.replanLatency, 95.)) << ",\n"
                     << indent << "\"initial_plan_ms_median\": " << num(percentile(r.initialLatency, 50.)) << ",\n"
                     << indent << "\"time_to_goal_s_median\": " << num(percentile(r.timeToGoal, 50.)) << ",\n"
                     << indent << "\"learning_edges\": " << r.learningEdges << ",\n"
-                    << indent << "\"wall_seconds\": " << num(r.wallSeconds);
+                    << indent << "\"episode_end_s\": [";
+                for (std::size_t i = 0; i < r.episodeEnd.size(); ++i)
+                    out << (i > 0 ? ", " : "") << num(r.episodeEnd[i]);
+                out << "],\n" << indent << "\"wall_seconds\": " << num(r.wallSeconds);
             }
         }  // namespace
 
@@ -858,6 +937,9 @@ namespace michi
         {
             if (options.episodes == 0)
                 throw std::invalid_argument("--episodes must be a positive integer");
+            // before anything draws a seed from OMPL's seed generator: then every planner's and sampler's random
+            // numbers follow from --seed (reproducible runs, extras.replan.real_time 0)
+            ompl::RNG::setSeed(options.seed);
             const Problem problem = loadProblem(options.problemFile);
             const ReplanSettings settings = readSettings(options.problemFile);
 
@@ -927,7 +1009,6 @@ namespace michi
                 }
             }
 
-            ompl::RNG::setSeed(options.seed);
             std::vector<Results> results(methods.size());
             std::vector<Frame> frames;
             for (std::size_t mi = 0; mi < methods.size(); ++mi)
@@ -958,10 +1039,14 @@ namespace michi
                  << ", \"margin\": " << num(settings.margin)
                  << ", \"prediction_horizon\": " << num(settings.predictionHorizon)
                  << ", \"planning_time\": " << num(settings.planningTime)
+                 << ", \"real_time\": " << num(settings.realTime)
+                 << ", \"planning_delay\": " << num(settings.planningDelay)
+                 << ", \"planning_work\": " << num(settings.planningWork)
                  << ", \"episode_time\": " << num(settings.episodeTime)
                  << ", \"timing_jitter\": " << num(settings.timingJitter)
                  << ", \"speed_jitter\": " << num(settings.speedJitter)
-                 << ", \"deformation\": " << (settings.deformation ? "true" : "false") << "},\n";
+                 << ", \"deformation\": " << (settings.deformation ? "true" : "false")
+                 << ", \"obstacles_yield\": " << (settings.obstaclesYield ? "true" : "false") << "},\n";
             json << "  \"baselines\": {";
             for (std::size_t mi = 1; mi < methods.size(); ++mi)
             {

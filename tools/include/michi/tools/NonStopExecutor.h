@@ -52,6 +52,14 @@ namespace michi
             double deceleration{2.};    ///< also the acceleration (units per second squared)
             double safetyDistance{0.};  ///< metres: closer than this while no new path exists -> decelerate, stop
             double stopMargin{0.};      ///< path length kept between the stop point and the interference
+            /** \brief Simulated seconds charged for every query: a planner's answer is taken only once the
+                simulated clock has advanced this far past the Query (0: as soon as it arrives). With a caller that
+                waits for the planner before every step, this makes runs independent of the wall clock. */
+            double planningDelay{0.};
+            /** \brief Every Query is planned to its end before it returns (the execution thread waits), so a later
+                cancel never interrupts a planner halfway, at a wall-clock dependent point: with planningDelay > 0
+                and a planner whose work does not depend on wall time, runs are reproducible. */
+            bool synchronous{false};
         };
 
         /** \brief Non-stop planning and execution (paper 002, Fig. 1): a planning thread and an execution thread
@@ -214,6 +222,7 @@ namespace michi
             double stopArc_{0.};       ///< REPLANNING: where the safe stop begins
             double planStartArc_{0.};  ///< arc of path_ the outstanding query plans from
             std::uint64_t activeQuery_{0};
+            double activeSentAt_{0.};  ///< simulated time the outstanding query was sent
             bool pendingPath_{false};
             ConfigurationPath pending_;
             std::vector<Transition> transitions_;
