@@ -19,7 +19,6 @@
 #include <boost/filesystem.hpp>
 #include <yaml-cpp/yaml.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -320,18 +319,6 @@ namespace michi
                 std::ostringstream s;
                 s << std::setprecision(6) << v;
                 return s.str();
-            }
-
-            std::string quote(const std::string &s)
-            {
-                std::string out = "\"";
-                for (char c : s)
-                {
-                    if (c == '"' || c == '\\')
-                        out += '\\';
-                    out += c;
-                }
-                return out + "\"";
             }
 
             /** One frame of the picture: time, robot trajectory so far, remaining plan, obstacle poses. */
@@ -1029,8 +1016,8 @@ namespace michi
             }
 
             std::ostringstream json;
-            json << "{\n  \"scenario\": " << quote(problem.name) << ",\n  \"problem\": " << quote(problem.file)
-                 << ",\n  \"seed\": " << options.seed << ",\n  \"method\": " << quote(methods[0].label) << ",\n";
+            json << "{\n  \"scenario\": " << jsonString(problem.name) << ",\n  \"problem\": " << jsonString(problem.file)
+                 << ",\n  \"seed\": " << options.seed << ",\n  \"method\": " << jsonString(methods[0].label) << ",\n";
             writeResults(json, results[0], "  ");
             json << ",\n  \"settings\": {\"dt\": " << num(settings.dt)
                  << ", \"sense_period\": " << num(settings.sensePeriod) << ", \"speed\": " << num(settings.speed)
@@ -1050,7 +1037,7 @@ namespace michi
             json << "  \"baselines\": {";
             for (std::size_t mi = 1; mi < methods.size(); ++mi)
             {
-                json << (mi > 1 ? "," : "") << "\n    " << quote(methods[mi].label) << ": {\n";
+                json << (mi > 1 ? "," : "") << "\n    " << jsonString(methods[mi].label) << ": {\n";
                 writeResults(json, results[mi], "      ");
                 const double ratio =
                     percentile(results[mi].replanLatency, 50.) / percentile(results[0].replanLatency, 50.);
@@ -1058,57 +1045,42 @@ namespace michi
             }
             json << "\n  }\n}\n";
 
-            // staged output: the frames first, replan.json last, nothing half-written
-            const fs::path out = fs::absolute(options.outDir);
-            const fs::path stage =
-                out.parent_path() / ("." + out.filename().string() + ".partial-" + std::to_string(getpid()));
-            fs::remove_all(stage);
-            fs::create_directories(stage / "episode");
-            try
+            // staged output: nothing in DIR unless everything was written (an old episode/ folder is replaced)
+            StagedDirectory stage(options.outDir);
+            fs::create_directories(stage.path("episode"));
+            const std::size_t want = std::max<std::size_t>(1, static_cast<std::size_t>(settings.frames));
+            std::vector<std::size_t> chosen;
+            for (std::size_t i = 0; i < want && !frames.empty(); ++i)
+                chosen.push_back(frames.size() == 1 ? 0
+                                                    : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
+            chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+            int n = 0;
+            for (std::size_t idx : chosen)
             {
-                const std::size_t want = std::max<std::size_t>(1, static_cast<std::size_t>(settings.frames));
-                std::vector<std::size_t> chosen;
-                for (std::size_t i = 0; i < want && !frames.empty(); ++i)
-                    chosen.push_back(frames.size() == 1 ? 0
-                                                        : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
-                chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-                int n = 0;
-                for (std::size_t idx : chosen)
+                const Frame &f = frames[idx];
+                Problem p = problem;
+                p.scene = std::make_shared<validity::Scene>();
+                for (const auto &o : statics)
+                    p.scene->add(o);
+                for (std::size_t k = 0; k < movers.size(); ++k)
                 {
-                    const Frame &f = frames[idx];
-                    Problem p = problem;
-                    p.scene = std::make_shared<validity::Scene>();
-                    for (const auto &o : statics)
-                        p.scene->add(o);
-                    for (std::size_t k = 0; k < movers.size(); ++k)
-                    {
-                        validity::Obstacle o;
-                        o.name = movers[k].name;
-                        o.shape = movers[k].shape;
-                        o.pose = k < f.poses.size() ? f.poses[k] : validity::Scene::poseAt(movers[k].trajectory, 0.);
-                        p.scene->add(o);
-                    }
-                    std::ostringstream name;
-                    name << "frame_" << std::setw(2) << std::setfill('0') << n++ << ".svg";
-                    std::ostringstream label;
-                    label << std::fixed << std::setprecision(1) << "t = " << f.time << " s: executed";
-                    std::vector<PlotPath> paths{PlotPath{label.str(), f.executed}};
-                    if (f.plan.size() > 1)
-                        paths.push_back(PlotPath{"current plan", f.plan});
-                    writeProblemSvg(p, paths, (stage / "episode" / name.str()).string());
+                    validity::Obstacle o;
+                    o.name = movers[k].name;
+                    o.shape = movers[k].shape;
+                    o.pose = k < f.poses.size() ? f.poses[k] : validity::Scene::poseAt(movers[k].trajectory, 0.);
+                    p.scene->add(o);
                 }
-                fs::create_directories(out);
-                fs::remove_all(out / "episode");
-                fs::rename(stage / "episode", out / "episode");
-                fs::remove_all(stage);
-                writeAtomically(json.str(), (out / "replan.json").string());
+                std::ostringstream name;
+                name << "frame_" << std::setw(2) << std::setfill('0') << n++ << ".svg";
+                std::ostringstream label;
+                label << std::fixed << std::setprecision(1) << "t = " << f.time << " s: executed";
+                std::vector<PlotPath> paths{PlotPath{label.str(), f.executed}};
+                if (f.plan.size() > 1)
+                    paths.push_back(PlotPath{"current plan", f.plan});
+                writeProblemSvg(p, paths, (stage.path("episode") / name.str()).string());
             }
-            catch (...)
-            {
-                boost::system::error_code ec;
-                fs::remove_all(stage, ec);
-                throw;
-            }
+            writeAtomically(json.str(), stage.path("replan.json").string());
+            stage.commit();
             return json.str();
         }
     }  // namespace tools
