@@ -1,6 +1,7 @@
 // The `michi` command as a user runs it: bench writes the OMPL log, the Planner Arena database, the summary and
 // a picture; plan writes a path that an independent re-check accepts; bad input gives a one-line error naming the
 // file, a non-zero exit and no output.
+#include "support/MichiCommand.h"
 #include <michi/tools/PathFile.h>
 #include <michi/tools/PlanningContext.h>
 #include <michi/tools/Problem.h>
@@ -18,27 +19,8 @@ namespace fs = boost::filesystem;
 
 namespace
 {
-    struct CommandRun
-    {
-        int exitCode;
-        std::string output;  // stdout and stderr
-    };
-
-    CommandRun runMichi(const std::string &args)
-    {
-        const std::string command = std::string(MICHI_BINARY_DIR) + "/bin/michi " + args + " 2>&1";
-        CommandRun run{-1, ""};
-        FILE *pipe = popen(command.c_str(), "r");
-        if (pipe == nullptr)
-            return run;
-        std::array<char, 4096> buffer{};
-        std::size_t n;
-        while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-            run.output.append(buffer.data(), n);
-        const int status = pclose(pipe);
-        run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        return run;
-    }
+    using michi::test::CommandRun;
+    using michi::test::runMichi;
 
     std::string problemFile(const std::string &name)
     {

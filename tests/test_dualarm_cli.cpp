@@ -1,6 +1,7 @@
 // `michi dualarm` as a user runs it (on a coarse grid so it takes a few seconds): it writes dualarm.json with the
 // work positions and the stirring motion's manipulability, and the pictures; a problem without a dual_arm section
 // or with a misspelt key gives a one-line error naming the file and key, a non-zero exit and no output folder.
+#include "support/MichiCommand.h"
 #include "support/TestScenes.h"
 
 #include <boost/filesystem.hpp>
@@ -16,27 +17,8 @@ namespace fs = boost::filesystem;
 
 namespace
 {
-    struct CommandRun
-    {
-        int exitCode;
-        std::string output;
-    };
-
-    CommandRun runMichi(const std::string &args)
-    {
-        const std::string command = std::string(MICHI_BINARY_DIR) + "/bin/michi " + args + " 2>&1";
-        CommandRun run{-1, ""};
-        FILE *pipe = popen(command.c_str(), "r");
-        if (pipe == nullptr)
-            return run;
-        std::array<char, 4096> buffer{};
-        std::size_t n;
-        while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-            run.output.append(buffer.data(), n);
-        const int status = pclose(pipe);
-        run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        return run;
-    }
+    using michi::test::CommandRun;
+    using michi::test::runMichi;
 
     std::string slurp(const fs::path &p)
     {

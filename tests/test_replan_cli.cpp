@@ -1,6 +1,7 @@
 // Tests of `michi replan` (paper 002): a short run writes replan.json with the required fields (also per baseline)
 // and the episode's frames; bad input (no moving obstacle, bad extras.replan key, unknown method, bad --episodes)
 // gives a clear error, a non-zero exit and no output directory.
+#include "support/MichiCommand.h"
 #include "support/TestScenes.h"
 
 #include <boost/filesystem.hpp>
@@ -19,27 +20,8 @@ namespace fs = boost::filesystem;
 
 namespace
 {
-    struct CommandRun
-    {
-        int exitCode;
-        std::string output;
-    };
-
-    CommandRun runMichi(const std::string &args)
-    {
-        const std::string command = std::string(MICHI_BINARY_DIR) + "/bin/michi " + args + " 2>&1";
-        CommandRun run{-1, ""};
-        FILE *pipe = popen(command.c_str(), "r");
-        if (pipe == nullptr)
-            return run;
-        std::array<char, 4096> buffer{};
-        std::size_t n;
-        while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-            run.output.append(buffer.data(), n);
-        const int status = pclose(pipe);
-        run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        return run;
-    }
+    using michi::test::CommandRun;
+    using michi::test::runMichi;
 
     std::string readFile(const std::string &path)
     {
