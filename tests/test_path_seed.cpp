@@ -268,7 +268,7 @@ TEST(ExperienceQueries, BadFilesAreNamedWithTheirKey)
     auto withQueries = [&](const std::string &queries)
     {
         std::string t = text;
-        const std::string key = "experience/xarm6_ring_queries.yaml";
+        const std::string key = "experience/ring_task_queries.yaml";
         t.replace(t.find(key), key.size(), "queries.yaml");
         writeText(problemFile, t);
         writeText((dir / "queries.yaml").string(), queries);

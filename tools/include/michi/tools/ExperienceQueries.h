@@ -18,7 +18,7 @@ namespace michi
         /** \brief The problem's `experience` key (docs/path-seed.md):
             \code
             experience:
-              queries: xarm6_ring_queries.yaml   # {training: [{start, goal}, ...], held_out: [...]}
+              queries: ring_task_queries.yaml   # {training: [{start, goal}, ...], held_out: [...]}
               training_time: 5                    # seconds of RRT-Connect per training query
               library: xarm6_ring.seeds           # optional: experience file loaded before training
             \endcode
