@@ -65,8 +65,8 @@ namespace michi
         }
 
         StagedDirectory::StagedDirectory(const std::string &outDir)
-          : out_(boost::filesystem::absolute(outDir))
-          , dir_(out_.parent_path() / ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
+            : out_(boost::filesystem::absolute(outDir))
+            , dir_(out_.parent_path() / ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
         {
             boost::filesystem::remove_all(dir_);
             boost::filesystem::create_directories(dir_);

@@ -80,8 +80,7 @@ namespace michi
             PlanningContext ctx;
             ctx.bodies = problem.bodies();
             ctx.setup = std::make_shared<ompl::geometric::SimpleSetup>(makeStateSpace(problem));
-            if (auto tmt =
-                    std::dynamic_pointer_cast<state_spaces::TurnMoveTurnStateSpace>(ctx.setup->getStateSpace()))
+            if (auto tmt = std::dynamic_pointer_cast<state_spaces::TurnMoveTurnStateSpace>(ctx.setup->getStateSpace()))
                 if (auto body = std::dynamic_pointer_cast<const validity::PlanarRigidBody>(ctx.bodies))
                     ctx.bodies = std::make_shared<TurnMoveTurnBodies>(body, tmt);  // bounds of turn-move-turn motions
             auto si = ctx.setup->getSpaceInformation();

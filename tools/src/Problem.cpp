@@ -903,9 +903,9 @@ namespace michi
             if (!root.IsMap())
                 r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
             // dual_arm: read by DualArmProblem.cpp; experience: by ExperienceQueries.cpp
-            static const std::set<std::string> known{"name",      "description", "robot",     "scene",    "start",
-                                                     "goal",      "request",     "queries",   "planners", "benchmark",
-                                                     "collision", "extras",      "dual_arm",  "experience"};
+            static const std::set<std::string> known{"name",      "description", "robot",    "scene",     "start",
+                                                     "goal",      "request",     "queries",  "planners",  "benchmark",
+                                                     "collision", "extras",      "dual_arm", "experience"};
             for (const auto &kv : root)
                 if (!known.count(kv.first.as<std::string>()))
                     r.fail(kv.first.as<std::string>(), "unknown top-level key");

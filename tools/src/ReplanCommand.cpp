@@ -19,7 +19,6 @@
 #include <boost/filesystem.hpp>
 #include <yaml-cpp/yaml.h>
 
-
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -1016,8 +1015,9 @@ namespace michi
             }
 
             std::ostringstream json;
-            json << "{\n  \"scenario\": " << jsonString(problem.name) << ",\n  \"problem\": " << jsonString(problem.file)
-                 << ",\n  \"seed\": " << options.seed << ",\n  \"method\": " << jsonString(methods[0].label) << ",\n";
+            json << "{\n  \"scenario\": " << jsonString(problem.name)
+                 << ",\n  \"problem\": " << jsonString(problem.file) << ",\n  \"seed\": " << options.seed
+                 << ",\n  \"method\": " << jsonString(methods[0].label) << ",\n";
             writeResults(json, results[0], "  ");
             json << ",\n  \"settings\": {\"dt\": " << num(settings.dt)
                  << ", \"sense_period\": " << num(settings.sensePeriod) << ", \"speed\": " << num(settings.speed)
@@ -1051,8 +1051,7 @@ namespace michi
             const std::size_t want = std::max<std::size_t>(1, static_cast<std::size_t>(settings.frames));
             std::vector<std::size_t> chosen;
             for (std::size_t i = 0; i < want && !frames.empty(); ++i)
-                chosen.push_back(frames.size() == 1 ? 0
-                                                    : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
+                chosen.push_back(frames.size() == 1 ? 0 : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
             chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
             int n = 0;
             for (std::size_t idx : chosen)

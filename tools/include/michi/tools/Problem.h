@@ -107,7 +107,7 @@ namespace michi
             std::vector<Eigen::Vector2d> footprint;
             double footprintHeight{1.};
             std::array<double, 4> se2Bounds{{0., 1., 0., 1.}};  ///< x min, x max, y min, y max
-            Se2Motion se2Motion;  ///< robot.motion
+            Se2Motion se2Motion;                                ///< robot.motion
 
             validity::ScenePtr scene;
             std::vector<Query> queries;  ///< at least one
