@@ -119,17 +119,22 @@ namespace michi
             return std::make_shared<BoundedJointStateSpace>(joints);
         }
 
-        ob::StateSpacePtr makeSe2StateSpace(double xMin, double xMax, double yMin, double yMax)
+        void setSe2Bounds(ob::SE2StateSpace &space, double xMin, double xMax, double yMin, double yMax)
         {
             if (!(xMin < xMax) || !(yMin < yMax))
                 throw std::invalid_argument("SE(2) bounds must have min < max");
-            auto space = std::make_shared<ob::SE2StateSpace>();
             ob::RealVectorBounds bounds(2);
             bounds.setLow(0, xMin);
             bounds.setHigh(0, xMax);
             bounds.setLow(1, yMin);
             bounds.setHigh(1, yMax);
-            space->setBounds(bounds);
+            space.setBounds(bounds);
+        }
+
+        ob::StateSpacePtr makeSe2StateSpace(double xMin, double xMax, double yMin, double yMax)
+        {
+            auto space = std::make_shared<ob::SE2StateSpace>();
+            setSe2Bounds(*space, xMin, xMax, yMin, yMax);
             return space;
         }
     }  // namespace state_spaces

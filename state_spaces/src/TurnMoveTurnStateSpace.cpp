@@ -1,4 +1,5 @@
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
+#include <michi/state_spaces/JointStateSpace.h>
 
 #include <boost/math/constants/constants.hpp>
 
@@ -162,15 +163,8 @@ namespace michi
         TurnMoveTurnStateSpacePtr makeTurnMoveTurnStateSpace(double xMin, double xMax, double yMin, double yMax,
                                                              double turnWeight, bool allowBackward)
         {
-            if (!(xMin < xMax) || !(yMin < yMax))
-                throw std::invalid_argument("SE(2) bounds must have min < max");
             auto space = std::make_shared<TurnMoveTurnStateSpace>(turnWeight, allowBackward);
-            ob::RealVectorBounds bounds(2);
-            bounds.setLow(0, xMin);
-            bounds.setHigh(0, xMax);
-            bounds.setLow(1, yMin);
-            bounds.setHigh(1, yMax);
-            space->setBounds(bounds);
+            setSe2Bounds(*space, xMin, xMax, yMin, yMax);
             return space;
         }
     }  // namespace state_spaces

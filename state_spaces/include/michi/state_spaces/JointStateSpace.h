@@ -1,6 +1,7 @@
 #ifndef MICHI_STATE_SPACES_JOINT_STATE_SPACE_
 #define MICHI_STATE_SPACES_JOINT_STATE_SPACE_
 
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/StateSpace.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
@@ -57,6 +58,9 @@ namespace michi
         private:
             unsigned int dims_;
         };
+
+        /** \brief Bound x and y of an SE(2) space (yaw wraps); throws std::invalid_argument unless min < max. */
+        void setSe2Bounds(ompl::base::SE2StateSpace &space, double xMin, double xMax, double yMin, double yMax);
 
         /** \brief SE(2) space whose default projection (x, y) works on Debian's OMPL 1.5.2. */
         ompl::base::StateSpacePtr makeSe2StateSpace(double xMin, double xMax, double yMin, double yMax);
