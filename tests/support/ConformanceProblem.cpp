@@ -2,6 +2,7 @@
 
 #include <michi/state_spaces/JointStateSpace.h>
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/JMapMotionValidator.h>
 #include <michi/validity/JMapValidityChecker.h>
 #include <michi/validity/PlanarArm.h>
 #include <michi/validity/Polygon2.h>
@@ -88,7 +89,11 @@ namespace michi
             else if (checker != "fcl")
                 throw std::invalid_argument("conformance checker must be fcl or jmap");
             problem.setup->setStateValidityChecker(problem.used);
-            si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, problem.checker));
+            auto motions = std::make_shared<validity::ConservativeMotionValidator>(si, problem.checker);
+            if (auto jmap = std::dynamic_pointer_cast<validity::JMapValidityChecker>(problem.used))
+                si->setMotionValidator(std::make_shared<validity::JMapMotionValidator>(si, jmap, motions));
+            else
+                si->setMotionValidator(motions);
             ompl::base::ScopedState<> start(space), goal(space);
             start = std::vector<double>{0.2, 0.3};  // arm pointing right, below the upper-right box
             goal = std::vector<double>{1.2, -0.4};  // arm pointing up-left, past the box

@@ -63,8 +63,10 @@ namespace michi
             if (!problem.description.empty())
                 md << problem.description << "\n\n";
             md << "OMPL Benchmark, " << runs << " runs per planner, time limit " << timeLimit << " s per run, "
-               << (problem.checker == "jmap" ? "J-map" : "FCL") << " validity checker, " << problem.motionValidator
-               << " motion validator. Median time over all runs (failures count at the time they gave up); length"
+               << (problem.checker == "jmap" ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
+                                                    " for what the map cannot decide)" :
+                                                "FCL validity checker, " + problem.motionValidator + " motion validator")
+               << ". Median time over all runs (failures count at the time they gave up); length"
                   " and clearance over solved runs.\n\n";
             md << "| planner | runs | success | median time (s) | median length | median clearance |\n";
             md << "|---|---:|---:|---:|---:|---:|\n";

@@ -5,6 +5,7 @@
 #include <michi/tools/TurnMoveTurnBodies.h>
 #include <michi/tools/JMapSetup.h>
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/JMapMotionValidator.h>
 #include <michi/validity/WorkspaceMotionValidator.h>
 
 #include <ompl/base/ScopedState.h>
@@ -108,6 +109,9 @@ namespace michi
             {
                 ctx.jmap = makeJMapChecker(problem, ctx, problem.jmap);
                 ctx.setup->setStateValidityChecker(ctx.jmap);
+                // motions too: a segment on the map; what the map cannot decide goes to the FCL-based validator
+                si->setMotionValidator(
+                    std::make_shared<validity::JMapMotionValidator>(si, ctx.jmap, si->getMotionValidator()));
             }
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);

@@ -138,6 +138,76 @@ namespace michi
                 return best;
             }
 
+            /** \brief The smallest t in [0, 1] at which the segment (x0, y0) + t (x1 - x0, y1 - y0) touches a
+                polygon, or +infinity. In a slab no two edges cross, so a line segment crosses the edges whose
+                rank lies between its ranks at the slab's two sides, all in the same direction: two binary searches
+                per slab, and intersections only where the ranks differ. Vertical edges are tested directly. */
+            double firstHit(double x0, double y0, double x1, double y1) const
+            {
+                const double none = std::numeric_limits<double>::infinity();
+                if (xs_.empty())
+                    return none;
+                if (inside(x0, y0))
+                    return 0.;
+                const double xmin = std::min(x0, x1), xmax = std::max(x0, x1);
+                if (xmax < xs_.front() || xmin > xs_.back())
+                    return none;
+                const double dx = x1 - x0, dy = y1 - y0;
+                double best = none;
+                auto v = std::lower_bound(verticals_.begin(), verticals_.end(), xmin,
+                                          [](const Vertical &a, double value)
+                                          {
+                                              return a.x < value;
+                                          });
+                for (; v != verticals_.end() && v->x <= xmax; ++v)
+                {
+                    if (dx != 0.)
+                    {
+                        const double t = (v->x - x0) / dx, y = y0 + t * dy;
+                        if (y >= v->y0 && y <= v->y1)
+                            best = std::min(best, t);
+                    }
+                    else if (std::max(y0, y1) >= v->y0 && std::min(y0, y1) <= v->y1 && dy != 0.)
+                        best = std::min(best, std::clamp(((dy > 0. ? v->y0 : v->y1) - y0) / dy, 0., 1.));
+                }
+                const std::size_t slabs = xs_.size() - 1;
+                for (std::size_t k = xmin <= xs_.front() ? 0 : slabOf(xmin); k < slabs && xs_[k] <= xmax; ++k)
+                {
+                    const double xa = std::max(xs_[k], xmin), xb = std::min(xs_[k + 1], xmax);
+                    if (xb < xa)
+                        continue;
+                    // the segment's heights at the two sides of its part in this slab
+                    double ya = y0, yb = y1;
+                    if (dx != 0.)
+                    {
+                        ya = y0 + (xa - x0) / dx * dy;
+                        yb = y0 + (xb - x0) / dx * dy;
+                    }
+                    const std::uint32_t ra = rankBelow(k, xa, ya), rb = rankBelow(k, xb, yb);
+                    // the edges between the two ranks are crossed; one more on each side may be touched
+                    const std::uint32_t lo = std::max(std::min(ra, rb), start_[k] + 1) - 1,
+                                        hi = std::min(std::max(ra, rb) + 1, start_[k + 1]);
+                    for (std::uint32_t e = lo; e < hi; ++e)
+                    {
+                        const Line &l = lines_[e];
+                        // f = segment height - edge height; a crossing or a touch where f changes sign or is ~0
+                        const double eps = 1e-12, fa = ya - l.at(xa), fb = yb - l.at(xb);
+                        if ((fa > eps && fb > eps) || (fa < -eps && fb < -eps))
+                            continue;
+                        double x = xa;
+                        if (std::abs(fa - fb) > 0. && xb > xa)
+                            x = xa + std::clamp(fa / (fa - fb), 0., 1.) * (xb - xa);
+                        double t = 0.;
+                        if (dx != 0.)
+                            t = (x - x0) / dx;
+                        else if (dy != 0.)
+                            t = (l.at(x0) - y0) / dy;
+                        best = std::min(best, std::clamp(t, 0., 1.));
+                    }
+                }
+                return best;
+            }
+
         private:
             struct Line
             {
@@ -164,11 +234,10 @@ namespace michi
                 return k;
             }
 
-            bool insideSlab(std::size_t k, double x, double y) const
+            /** \brief Index (into lines_) of the first edge of slab k that is not below y at x. */
+            std::uint32_t rankBelow(std::size_t k, double x, double y) const
             {
-                // number of edges below y: binary search over the slab's sorted edges
                 std::uint32_t lo = start_[k], hi = start_[k + 1];
-                const std::uint32_t first = lo;
                 while (lo < hi)
                 {
                     const std::uint32_t mid = (lo + hi) / 2;
@@ -177,6 +246,13 @@ namespace michi
                     else
                         hi = mid;
                 }
+                return lo;
+            }
+
+            bool insideSlab(std::size_t k, double x, double y) const
+            {
+                // number of edges below y: binary search over the slab's sorted edges
+                const std::uint32_t first = start_[k], lo = rankBelow(k, x, y);
                 if ((lo - first) % 2 == 1)
                     return true;
                 // on an edge (up to rounding): the boundary belongs to the collision region
@@ -272,6 +348,11 @@ namespace michi
         bool JMap::collides(double theta1, double theta2) const
         {
             return index_->inside(theta1, theta2);
+        }
+
+        double JMap::firstContact(double theta1a, double theta2a, double theta1b, double theta2b) const
+        {
+            return index_->firstHit(theta1a, theta2a, theta1b, theta2b);
         }
 
         double JMap::distanceToBoundary(double theta1, double theta2, double maxDistance) const

@@ -111,6 +111,7 @@ namespace michi
 
         const JMap &JMapValidityChecker::tile(double theta1) const
         {
+            dropIfSceneChanged();
             const std::size_t k = tileIndex(theta1);
             if (const JMap *map = tiles_[k].load(std::memory_order_acquire))
                 return *map;
@@ -157,7 +158,6 @@ namespace michi
 
         bool JMapValidityChecker::isValidConfiguration(const double *values) const
         {
-            dropIfSceneChanged();
             const double t1 = values[value1_], t2 = values[value2_];
             const JMap &map = tile(t1);
             if (map.collides(t1, t2))

@@ -260,6 +260,10 @@ namespace michi
             /** \brief True when (theta1, theta2) lies inside (or on the boundary of) a polygon. Points outside
                 the map's ranges (beyond borderMargin) are reported free. */
             bool collides(double theta1, double theta2) const;
+            /** \brief The first contact of the straight segment from (theta1a, theta2a) to (theta1b, theta2b) with
+                a polygon, as a fraction t in [0, 1] of the segment (0 when it starts inside), or +infinity when the
+                whole segment is free. Exact up to rounding; a slab walk of two binary searches per slab crossed. */
+            double firstContact(double theta1a, double theta2a, double theta1b, double theta2b) const;
             /** \brief Euclidean distance in the map plane (radians) from the point to the nearest polygon
                 boundary, capped at \e maxDistance (returned when nothing is closer). */
             double distanceToBoundary(double theta1, double theta2, double maxDistance) const;

@@ -77,6 +77,15 @@ namespace michi
             {
                 return axes_;
             }
+            /** \brief Where the two axes are in the state's values (copyToReals order). */
+            int valueIndex1() const
+            {
+                return value1_;
+            }
+            int valueIndex2() const
+            {
+                return value2_;
+            }
             const FclValidityCheckerPtr &fcl() const
             {
                 return fcl_;
