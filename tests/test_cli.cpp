@@ -76,6 +76,26 @@ TEST_F(Cli, BenchWritesLogDatabaseSummaryAndPicture)
         EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();
 }
 
+TEST_F(Cli, BenchComparesBothCheckersInOneRun)
+{
+    const fs::path out = dir_ / "both";
+    const CommandRun run = runMichi("bench " + problemFile("planar_2link") +
+                                    " --planners geometric::RRTConnect --runs 2 --time 1 --checker fcl,jmap --out " +
+                                    out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string summary = slurp(out / "summary.md");
+    EXPECT_NE(summary.find("| geometric_RRTConnect | 2 | 100 % |"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("| geometric_RRTConnect_jmap | 2 | 100 % |"), std::string::npos) << summary;
+    EXPECT_NE(slurp(out / "planar_2link.log").find("geometric_RRTConnect_jmap"), std::string::npos);
+    // an SE(2) problem has no J-map: a clear error, nothing written
+    const fs::path se2 = dir_ / "se2";
+    const CommandRun bad = runMichi("bench " + problemFile("se2_corridor") + " --runs 1 --time 1 --checker fcl,jmap --out " +
+                                    se2.string());
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_LT(bad.exitCode, 128) << bad.output;
+    EXPECT_FALSE(fs::exists(se2));
+}
+
 TEST_F(Cli, BadProblemAndBadUrdfWriteNothing)
 {
     std::ofstream(dir_ / "broken.yaml") << "name: broken\nrobot: {urdf: nowhere.urdf}\nstart: [0, 0\n";

@@ -58,7 +58,8 @@ namespace
         "  michi path-seed-library PROBLEM.yaml --out FILE [--variant blocks|rotation] [--seed S]\n"
         "      learn path seeds from the problem's training queries and save them (experience.library)\n"
         "  michi list-planners\n"
-        "bench and plan take --checker fcl|jmap (default: the problem's collision.checker)\n"
+        "bench and plan take --checker fcl|jmap (default: the problem's collision.checker); bench --checker fcl,jmap runs\n"
+        "  every planner with both (J-map runs named <planner>_jmap)\n"
         "options: --verbose shows OMPL's log messages\n";
 
     struct UsageError : std::runtime_error
@@ -178,8 +179,13 @@ namespace
         if (!args.has("out"))
             throw UsageError("bench needs --out DIR");
         ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-        const Problem problem = withChecker(loadProblem(args.positional[0]), args);
+        // --checker fcl,jmap: both checkers side by side in one benchmark
+        const bool compare = args.has("checker") && (args.get("checker") == "fcl,jmap" || args.get("checker") == "jmap,fcl");
+        Problem problem = loadProblem(args.positional[0]);
+        if (!compare)
+            problem = withChecker(problem, args);
         BenchOptions options;
+        options.compareCheckers = compare;
         options.outDir = args.get("out");
         options.planners = splitComma(args.get("planners"));
         options.runs = static_cast<unsigned int>(args.number("runs", 0, true));

@@ -1,4 +1,5 @@
 #include <michi/tools/BenchmarkRunner.h>
+#include <michi/validity/JMapMotionValidator.h>
 #include <michi/tools/ExperienceQueries.h>
 #include <michi/tools/FileOutput.h>
 
@@ -56,16 +57,19 @@ namespace michi
         }  // namespace
 
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
-                                    double timeLimit, unsigned int runs)
+                                    double timeLimit, unsigned int runs, bool compareCheckers)
         {
             std::ostringstream md;
             md << "# " << problem.name << "\n\n";
             if (!problem.description.empty())
                 md << problem.description << "\n\n";
             md << "OMPL Benchmark, " << runs << " runs per planner, time limit " << timeLimit << " s per run, "
-               << (problem.checker == "jmap" ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
-                                                    " for what the map cannot decide)" :
-                                                "FCL validity checker, " + problem.motionValidator + " motion validator")
+               << (compareCheckers ? "FCL validity checker and " + problem.motionValidator +
+                                         " motion validator; planners suffixed _jmap: J-map validity checker and J-map "
+                                         "motion validator (" + problem.motionValidator + " where the map cannot decide)" :
+                   problem.checker == "jmap" ? "J-map validity checker, J-map motion validator (" +
+                                                   problem.motionValidator + " for what the map cannot decide)" :
+                                               "FCL validity checker, " + problem.motionValidator + " motion validator")
                << ". Median time over all runs (failures count at the time they gave up); length"
                   " and clearance over solved runs.\n\n";
             md << "| planner | runs | success | median time (s) | median length | median clearance |\n";
@@ -106,8 +110,23 @@ namespace michi
                 }
 
             ompl::RNG::setSeed(problem.benchmark.seed);
-            PlanningContext ctx = makePlanningContext(problem, options.query);  // checks start and goal
+            Problem planned = problem;
+            if (options.compareCheckers)
+                planned.checker = "jmap";  // the context then holds both checkers and both motion validators
+            PlanningContext ctx = makePlanningContext(planned, options.query);  // checks start and goal
             auto si = ctx.setup->getSpaceInformation();
+            // checker and motion validator of each planner instance (compareCheckers: FCL ones, then J-map ones)
+            std::map<const ob::Planner *, std::pair<ob::StateValidityCheckerPtr, ob::MotionValidatorPtr>> checking;
+            const ob::StateValidityCheckerPtr jmapChecker = si->getStateValidityChecker();
+            const ob::MotionValidatorPtr jmapMotions = si->getMotionValidator();
+            ob::MotionValidatorPtr fclMotions;
+            if (options.compareCheckers)
+            {
+                auto mv = std::dynamic_pointer_cast<validity::JMapMotionValidator>(jmapMotions);
+                if (!mv)
+                    throw std::logic_error("the J-map context has no J-map motion validator");
+                fclMotions = mv->fallback();
+            }
 
             ot::Benchmark benchmark(*ctx.setup, problem.name);
             std::vector<ob::PlannerPtr> planners;
@@ -125,22 +144,43 @@ namespace michi
                 applyPlannerParams(*planner, spec, problem.file);
                 benchmark.addPlanner(planner);
                 planners.push_back(planner);
+                if (!options.compareCheckers)
+                    continue;
+                checking[planner.get()] = {ctx.checker, fclMotions};
+                auto withJMap = allocatePlanner(spec.name, si);
+                applyPlannerParams(*withJMap, spec, problem.file);
+                withJMap->setName(withJMap->getName() + "_jmap");
+                benchmark.addPlanner(withJMap);
+                planners.push_back(withJMap);
+                checking[withJMap.get()] = {jmapChecker, jmapMotions};
             }
             benchmark.addExperimentParameter("query", "INTEGER", std::to_string(options.query));
             // experience planners learn the training queries' solutions before the runs (not timed); run i of every
             // planner plans held-out query i mod n (docs/path-seed.md, ExperienceQueries.h)
             const auto &heldOut = problem.experience.heldOut;
             std::map<std::string, std::size_t> heldOutRun;
-            if (options.heldOut && !heldOut.empty())
+            const bool cycleHeldOut = options.heldOut && !heldOut.empty();
+            if (cycleHeldOut)
             {
                 checkHeldOutQueries(problem, ctx);
+                benchmark.addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
+            }
+            if (cycleHeldOut || options.compareCheckers)
                 benchmark.setPreRunEvent(
                     [&](const ob::PlannerPtr &planner)
                     {
-                        setQuery(ctx, heldOut[heldOutRun[planner->getName()]++ % heldOut.size()]);
+                        if (cycleHeldOut)
+                            setQuery(ctx, heldOut[heldOutRun[planner->getName()]++ % heldOut.size()]);
+                        const auto it = checking.find(planner.get());
+                        if (it != checking.end())
+                        {
+                            // SimpleSetup::setup() sets the space information up again before the run
+                            si->setStateValidityChecker(it->second.first);
+                            si->setMotionValidator(it->second.second);
+                        }
                     });
-                benchmark.addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
-            }
+            if (options.compareCheckers)
+                benchmark.addExperimentParameter("checkers", "VARCHAR(32)", "fcl,jmap");
             trainExperiencePlanners(problem, ctx, planners, options.progress);
             benchmark.addExperimentParameter("seed", "INTEGER", std::to_string(problem.benchmark.seed));
 
@@ -231,7 +271,7 @@ namespace michi
             const fs::path summary = staging.path("summary.md");
             {
                 std::ofstream out(summary.string());
-                out << summaryMarkdown(problem, result.planners, timeLimit, runs);
+                out << summaryMarkdown(problem, result.planners, timeLimit, runs, options.compareCheckers);
                 if (!out)
                     throw std::runtime_error(summary.string() + ": cannot write");
             }

@@ -21,6 +21,10 @@ namespace michi
             double timeLimit{0.};
             std::size_t query{0};
             bool heldOut{true};  ///< cycle the problem's held-out experience queries (if any) instead of \e query
+            /** \brief Run every planner twice in the same Benchmark: with the FCL checker and the problem's motion
+                validator, and with the J-map checker and JMapMotionValidator (planner names suffixed "_jmap"), so
+                the two are compared under the same conditions. For arms only. */
+            bool compareCheckers{false};
             std::string outDir;
             std::ostream *progress{nullptr};  ///< progress lines (stderr in the command), or none
         };
@@ -56,7 +60,7 @@ namespace michi
 
         /** \brief Markdown table of planner summaries. */
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
-                                    double timeLimit, unsigned int runs);
+                                    double timeLimit, unsigned int runs, bool compareCheckers = false);
     }  // namespace tools
 }  // namespace michi
 
