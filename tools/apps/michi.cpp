@@ -282,7 +282,7 @@ namespace
         options.seed = static_cast<unsigned int>(args.number("seed", problem.benchmark.seed, true));
         options.progress = &std::cerr;
         std::cout << runJMapReport(problem, options);
-        std::cerr << "michi jmap: wrote " << (fs::path(options.outDir) / "jmap.json").string() << " and jmap.svg"
+        std::cerr << "michi jmap: wrote " << (fs::path(options.outDir) / "jmap.json").string() << " and jmap.svg (and .png)"
                   << std::endl;
         return 0;
     }

@@ -2,6 +2,7 @@
 #include <michi/tools/FileOutput.h>
 
 #include <michi/tools/JMapPicture.h>
+#include <michi/tools/SvgPlot.h>
 #include <michi/tools/JMapSetup.h>
 #include <michi/tools/PlanningContext.h>
 
@@ -166,6 +167,7 @@ namespace michi
             picture.start = {problem.queries[0].start[0], problem.queries[0].start[1]};
             picture.goal = {problem.queries[0].goal[0], problem.queries[0].goal[1]};
             writeJMapSvg(*map, stage.path("jmap.svg").string(), picture);
+            svgToPng(stage.path("jmap.svg").string(), stage.path("jmap.png").string());  // none without rsvg-convert
             writeAtomically(json.str(), stage.path("jmap.json").string());
             stage.commit();
             return json.str();
