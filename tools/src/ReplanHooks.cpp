@@ -1,0 +1,329 @@
+#include "ReplanMethodRun.h"
+
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace replan
+        {
+            void MethodRun::toState(const ob::SpaceInformationPtr &si, const Configuration &q, ob::State *s)
+            {
+                si->getStateSpace()->copyFromReals(s, q);
+                si->getStateSpace()->enforceBounds(s);
+            }
+            Configuration MethodRun::toReals(const ob::SpaceInformationPtr &si, const ob::State *s)
+            {
+                Configuration q;
+                si->getStateSpace()->copyToReals(q, s);
+                return q;
+            }
+
+            double MethodRun::firstInterferenceFree(const ob::SpaceInformationPtr &esi, const ConfigurationPath &path,
+                                                    double lookahead)
+            {
+                ob::ScopedState<> a(esi), b(esi);
+                toState(esi, path[0], a.get());
+                double arc = 0.;
+                for (std::size_t i = 1; i < path.size() && arc < lookahead; ++i)
+                {
+                    toState(esi, path[i], b.get());
+                    const double len = esi->distance(a.get(), b.get());
+                    std::pair<ob::State *, double> last(nullptr, 0.);
+                    if (!esi->satisfiesBounds(b.get()) || !esi->checkMotion(a.get(), b.get(), last))
+                        return arc + last.second * len;
+                    arc += len;
+                    esi->copyState(a.get(), b.get());
+                }
+                return std::numeric_limits<double>::infinity();
+            }
+
+            NonStopHooks MethodRun::hooks()
+            {
+                NonStopHooks h;
+                const auto esi = execCtx_.setup->getSpaceInformation();
+                h.sensedWorld = [this]
+                {
+                    std::lock_guard<std::mutex> lock(snapshotMutex_);
+                    return snapshotId_;
+                };
+                h.distance = [esi](const Configuration &a, const Configuration &b)
+                {
+                    ob::ScopedState<> sa(esi), sb(esi);
+                    toState(esi, a, sa.get());
+                    toState(esi, b, sb.get());
+                    return esi->distance(sa.get(), sb.get());
+                };
+                h.interpolate = [esi](const Configuration &a, const Configuration &b, double f, Configuration &out)
+                {
+                    ob::ScopedState<> sa(esi), sb(esi), so(esi);
+                    toState(esi, a, sa.get());
+                    toState(esi, b, sb.get());
+                    esi->getStateSpace()->interpolate(sa.get(), sb.get(), f, so.get());
+                    out = toReals(esi, so.get());
+                };
+                const double lookahead = settings_.lookahead;
+                const auto msi = movingCtx_.setup->getSpaceInformation();
+                const double crossDistance = settings_.speed * settings_.crossTime;
+                h.firstInterference = [this, esi, msi, lookahead, crossDistance](const ConfigurationPath &path)
+                {
+                    const double inf = std::numeric_limits<double>::infinity();
+                    if (path.empty())
+                        return inf;
+                    ob::ScopedState<> a(esi), b(esi);
+                    toState(esi, path[0], a.get());
+                    double arc = 0.;
+                    std::size_t first = 1;
+                    if (!esi->isValid(a.get()))
+                    {
+                        // the robot is already within the margin of a (predicted) obstacle: only an escape the
+                        // planner made (its target within the next waypoints), reached without touching the
+                        // obstacles as they are, is acceptable
+                        std::size_t target = 0;
+                        {
+                            std::lock_guard<std::mutex> lock(escapeMutex_);
+                            for (std::size_t k = 1; k < std::min<std::size_t>(path.size(), 3) && target == 0; ++k)
+                                for (const auto &e : escapeTargets_)
+                                    if (e == path[k])
+                                        target = k;
+                        }
+                        if (target == 0)
+                        {
+                            // not an escape: the robot may still be crossing the (predicted) way of an obstacle
+                            // that is not there yet; keep going if the path leaves the predicted region within
+                            // crossDistance, free of the obstacles as they are (braking there would be worse)
+                            double along = 0.;
+                            ob::ScopedState<> c(esi);
+                            esi->copyState(c.get(), a.get());
+                            for (std::size_t k = 1; k < path.size() && along <= crossDistance; ++k)
+                            {
+                                toState(esi, path[k], b.get());
+                                const double len = esi->distance(c.get(), b.get());
+                                const int n = std::max(1, static_cast<int>(std::ceil(len / 0.02)));
+                                ob::ScopedState<> x(esi), y(esi);
+                                esi->copyState(y.get(), c.get());
+                                for (int i = 1; i <= n; ++i)
+                                {
+                                    esi->getStateSpace()->interpolate(c.get(), b.get(), static_cast<double>(i) / n,
+                                                                      x.get());
+                                    if (!msi->checkMotion(y.get(), x.get()))
+                                        return 0.;
+                                    along += len / n;
+                                    esi->copyState(y.get(), x.get());
+                                    if (esi->isValid(x.get()))
+                                    {
+                                        // out of the predicted region: check the rest of the path from here
+                                        ConfigurationPath rest{toReals(esi, x.get())};
+                                        for (std::size_t r = k; r < path.size(); ++r)
+                                            rest.push_back(path[r]);
+                                        const double more = firstInterferenceFree(esi, rest, lookahead - along);
+                                        return std::isinf(more) ? more : along + more;
+                                    }
+                                    if (along > crossDistance)
+                                        return 0.;
+                                }
+                                esi->copyState(c.get(), b.get());
+                            }
+                            return 0.;
+                        }
+                        for (std::size_t k = 1; k <= target; ++k)
+                        {
+                            toState(esi, path[k], b.get());
+                            if (!msi->checkMotion(a.get(), b.get()))
+                                return 0.;
+                            arc += esi->distance(a.get(), b.get());
+                            esi->copyState(a.get(), b.get());
+                        }
+                        if (!esi->isValid(a.get()))
+                            return 0.;
+                        first = target + 1;
+                    }
+                    for (std::size_t i = first; i < path.size() && arc < lookahead; ++i)
+                    {
+                        toState(esi, path[i], b.get());
+                        const double len = esi->distance(a.get(), b.get());
+                        std::pair<ob::State *, double> last(nullptr, 0.);
+                        if (!esi->satisfiesBounds(b.get()) || !esi->checkMotion(a.get(), b.get(), last))
+                            return arc + last.second * len;
+                        arc += len;
+                        esi->copyState(a.get(), b.get());
+                    }
+                    return inf;
+                };
+                auto movingChecker = movingCtx_.checker;
+                h.clearance = [movingChecker](const Configuration &q)
+                {
+                    return movingChecker->clearanceConfiguration(q.data());
+                };
+                if (settings_.deformation)
+                {
+                    auto distance = h.distance;
+                    auto interpolate = h.interpolate;
+                    auto interference = h.firstInterference;
+                    const DeformationSettings ds = settings_.deform;
+                    h.deform = [=](ConfigurationPath &path)
+                    {
+                        auto accept = [&](const ConfigurationPath &p)
+                        {
+                            ConfigurationPath norm = p;
+                            ob::ScopedState<> s(esi);
+                            for (auto &q : norm)
+                            {
+                                toState(esi, q, s.get());
+                                q = toReals(esi, s.get());
+                            }
+                            return std::isinf(interference(norm));
+                        };
+                        if (!deformPath(path, *movingChecker, distance, interpolate, accept, ds))
+                            return false;
+                        ob::ScopedState<> s(esi);
+                        for (auto &q : path)
+                        {
+                            toState(esi, q, s.get());
+                            q = toReals(esi, s.get());
+                        }
+                        return true;
+                    };
+                }
+                const auto psi = planCtx_.setup->getSpaceInformation();
+                h.plan = [this, psi](const Configuration &from, const Configuration &goal, std::uint64_t id,
+                                     const std::atomic<bool> &cancel, ConfigurationPath &path)
+                {
+                    Snapshot snap;
+                    {
+                        std::lock_guard<std::mutex> lock(snapshotMutex_);
+                        snap = snapshots_.at(id);
+                    }
+                    planSensed_.update(movers_, snap.poses, snap.velocities);
+                    planNow_.update(movers_, snap.poses, snap.velocities);
+                    ob::ScopedState<> s(psi), g(psi);
+                    toState(psi, from, s.get());
+                    toState(psi, goal, g.get());
+                    ConfigurationPath prefix;
+                    if (!psi->isValid(s.get()))
+                    {
+                        // escape: the start is within the margin of a (predicted) obstacle; move first, along
+                        // a straight motion free of the obstacles as they are, to a nearby state outside it
+                        if (!escape(s.get(), cancel))
+                            return false;
+                        prefix.push_back(from);
+                        {
+                            std::lock_guard<std::mutex> lock(escapeMutex_);
+                            escapeTargets_.push_back(toReals(psi, s.get()));
+                            if (escapeTargets_.size() > 8)
+                                escapeTargets_.erase(escapeTargets_.begin());
+                        }
+                        if (!psi->isValid(g.get()))
+                        {
+                            // the goal is taken for now: just get out of the way and wait there
+                            path = prefix;
+                            path.push_back(toReals(psi, s.get()));
+                            return true;
+                        }
+                    }
+                    if (!psi->isValid(g.get()))
+                        return false;
+                    auto pdef = std::make_shared<ob::ProblemDefinition>(psi);
+                    pdef->setStartAndGoalStates(s, g);
+                    switch (method_.reuse)
+                    {
+                        case Method::Reuse::SCRATCH:
+                            planner_->clear();
+                            break;
+                        case Method::Reuse::KEEP_ROADMAP:
+                            if (auto lazy = std::dynamic_pointer_cast<og::LazyPRM>(planner_))
+                            {
+                                lazy->clearQuery();
+                                lazy->clearValidity();
+                            }
+                            break;
+                        case Method::Reuse::DUAL:
+                            planner_->clear();
+                            break;
+                    }
+                    planner_->setProblemDefinition(pdef);
+                    if (!planner_->isSetup())
+                        planner_->setup();
+                    // reproducible runs: DualRoadmap stops after a work count (evaluations of the condition:
+                    // one per search, lazy edge check and sample) instead of wall time, with 10 x planning_time
+                    // as a wall-clock backstop; the baselines keep planning_time (their work per evaluation
+                    // differs too much for one count to be fair)
+                    const bool counted = settings_.realTime <= 0. && method_.reuse == Method::Reuse::DUAL;
+                    const unsigned long work = counted ? static_cast<unsigned long>(settings_.planningWork)
+                                                       : std::numeric_limits<unsigned long>::max();
+                    std::atomic<unsigned long> evaluations{0};  // PRM evaluates it in two threads
+                    const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
+                        ob::timedPlannerTerminationCondition(settings_.planningTime * (counted ? 10. : 1.)),
+                        ob::PlannerTerminationCondition(
+                            [&cancel, &evaluations, work]
+                            {
+                                return cancel.load() || ++evaluations > work;
+                            }));
+                    const auto solveBegin = std::chrono::steady_clock::now();
+                    const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;
+                    if (!solved && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
+                        std::cerr
+                            << "\nno path: " << evaluations.load() << " evaluations of the termination "
+                            << "condition in "
+                            << std::chrono::duration<double>(std::chrono::steady_clock::now() - solveBegin).count()
+                            << " s\n";
+                    if (!solved || cancel)
+                        return false;
+                    auto solution = std::dynamic_pointer_cast<og::PathGeometric>(pdef->getSolutionPath());
+                    if (!solution)
+                        return false;
+                    og::PathGeometric p(*solution);
+                    if (method_.simplify && p.getStateCount() > 2)
+                    {
+                        og::PathSimplifier simplifier(psi);
+                        simplifier.reduceVertices(p);
+                        simplifier.shortcutPath(p);
+                    }
+                    path = prefix;
+                    for (std::size_t i = 0; i < p.getStateCount(); ++i)
+                        path.push_back(toReals(psi, p.getState(i)));
+                    return true;
+                };
+                return h;
+            }
+
+            bool MethodRun::escape(ob::State *s, const std::atomic<bool> &cancel)
+            {
+                const auto psi = planCtx_.setup->getSpaceInformation();
+                const auto nsi = planNowCtx_.setup->getSpaceInformation();
+                if (!nsi->isValid(s))
+                    return false;
+                if (!escapeSampler_)
+                    escapeSampler_ = psi->allocStateSampler();
+                ob::ScopedState<> near(psi);
+                const double extent = psi->getMaximumExtent();
+                for (int i = 0; i < 400 && !cancel; ++i)
+                {
+                    const double radius = extent * 0.01 * (1. + i / 40);
+                    escapeSampler_->sampleUniformNear(near.get(), s, radius);
+                    if (psi->isValid(near.get()) && nsi->checkMotion(s, near.get()))
+                    {
+                        psi->copyState(s, near.get());
+                        return true;
+                    }
+                }
+                return false;
+            }
+        }  // namespace replan
+    }      // namespace tools
+}  // namespace michi

@@ -1,0 +1,31 @@
+#include "ReplanTypes.h"
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace replan
+        {
+            std::vector<Method> allMethods()
+            {
+                return {
+                    {"dual", "michi::DualRoadmap", "michi::DualRoadmap", {}, Method::Reuse::DUAL, false},
+                    {"rrtconnect", "geometric::RRTConnect", "geometric::RRTConnect", {}, Method::Reuse::SCRATCH, true},
+                    {"prm", "geometric::PRM", "geometric::PRM", {}, Method::Reuse::SCRATCH, true},
+                    {"lazyprm",
+                     "geometric::LazyPRM (roadmap kept)",
+                     "geometric::LazyPRM",
+                     {},
+                     Method::Reuse::KEEP_ROADMAP,
+                     true},
+                    {"dual-no-learning",
+                     "michi::DualRoadmap (no learning roadmap)",
+                     "michi::DualRoadmap",
+                     {{"use_learning", "0"}},
+                     Method::Reuse::DUAL,
+                     false},
+                };
+            }
+        }  // namespace replan
+    }      // namespace tools
+}  // namespace michi
