@@ -5,7 +5,9 @@
 #include "support/MichiCommand.h"
 #include "support/TestScenes.h"
 
+#include <michi/tools/GridReachability.h>
 #include <michi/tools/PlanningContext.h>
+#include <michi/validity/ConservativeMotionValidator.h>
 #include <michi/tools/RandomPlanarScene.h>
 
 #include <gtest/gtest.h>
@@ -79,6 +81,23 @@ TEST(RandomPolygons, ReproducibleAndClearOfTheBase)
     EXPECT_THROW(tools::randomPolygons(5, options), std::invalid_argument);
 }
 
+TEST(GridComponents, SplitsAtAWallAndLinksFreeSpace)
+{
+    // a thin wall along the positive x axis: link 1 cannot pass theta1 = 0, and the joint limits do not wrap, so
+    // theta1 > 0 and theta1 < 0 are two separate regions
+    const auto setup = test::planarArmSetup({0.5, 0.4}, {test::boxOutline({0.15, -0.02}, {1.0, 0.02})});
+    setup.si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(setup.si, setup.checker));
+    const tools::GridComponents grid(setup.si, 0.05);
+    EXPECT_TRUE(grid.reachable({1., 0.}, {2., 0.5}));
+    EXPECT_TRUE(grid.reachable({-1., 0.}, {-2.5, -1.}));
+    EXPECT_FALSE(grid.reachable({1., 0.}, {-1., 0.}));
+    EXPECT_FALSE(tools::gridReachable(setup.si, {2., 0.}, {-2., 0.}, 0.05));
+    EXPECT_TRUE(grid.attach({0., 0.}).empty()) << "a colliding state attaches to nothing";
+    EXPECT_GE(grid.components(), 2);
+    const auto arm3 = test::planarArmSetup({0.5, 0.4, 0.3}, {});
+    EXPECT_THROW(tools::GridComponents(arm3.si, 0.05), std::invalid_argument);
+}
+
 TEST(RandomPlanarScene, KeepsTheTemplateAndGetsAValidQuery)
 {
     const tools::Problem arm = tools::loadProblem(problemFile("planar_2link"));
@@ -112,7 +131,10 @@ TEST(RandomPlanarScene, KeepsTheTemplateAndGetsAValidQuery)
     options.count = 6;
     options.keepClearRadius = 0.1;
     EXPECT_EQ(tools::randomPolygons(7, options), random.polygons);
-    EXPECT_NE(tools::randomPlanarScene(arm, 8).polygons, random.polygons);
+    EXPECT_NE(tools::randomPolygons(8, options), random.polygons);
+    // a two-joint arm: the start and goal are linked through the grid with the problem's motion validator
+    const tools::PlanningContext linked = tools::makePlanningContext(p);
+    EXPECT_TRUE(tools::gridReachable(linked.setup->getSpaceInformation(), q.start, q.goal, 0.05));
 
     // a 3-joint planar arm works too; an SE(2) robot is refused
     const auto hand = tools::randomPlanarScene(tools::loadProblem(problemFile("planar_3dof_hand")), 3);
@@ -161,7 +183,8 @@ TEST(RandomScenesCommand, WritesScenesThatLoadAndPassTheJMapCheck)
     }
 
     // the same command writes the same file; a trailing slash on DIR changes nothing
-    const auto rerun = test::runMichi(args + "/");
+    const auto rerun = test::runMichi("random-scenes --count 1 --seed 11 --arm " + problemFile("planar_2link") +
+                                      " --out " + out.string() + "/");
     ASSERT_EQ(rerun.exitCode, 0) << rerun.output;
     EXPECT_EQ(slurp(out / "scene_11.yaml"), first);
     EXPECT_EQ(entries(tmp.path()).size(), 3u) << "scenes and the two jmap folders, no staging folder";

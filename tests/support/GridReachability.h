@@ -5,6 +5,8 @@
 
 #include "support/TestScenes.h"
 
+#include <michi/tools/GridReachability.h>
+
 #include <ompl/base/SpaceInformation.h>
 
 #include <cstdint>
@@ -14,11 +16,8 @@ namespace michi
 {
     namespace test
     {
-        /** \brief True when a breadth-first search over a grid of cell \e step on a 2-D bounded real vector space
-            links \e start to \e goal: grid points must be valid, grid neighbours (4-connected) and the start
-            and goal with their nearest grid points are joined by motions the space's motion validator accepts. */
-        bool gridReachable(const ompl::base::SpaceInformationPtr &si, const std::vector<double> &start,
-                           const std::vector<double> &goal, double step);
+        /** \brief Grid search over a 2-D joint space (michi/tools/GridReachability.h). */
+        using tools::gridReachable;
 
         /** \brief A random planar scene (6 random polygons, a 0.5 m + 0.4 m arm) with a start and a goal at
             least 1 rad apart whose straight motion collides and that gridReachable() links at \e step. The space's

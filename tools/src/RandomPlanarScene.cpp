@@ -2,12 +2,14 @@
 
 #include <michi/validity/FclValidityChecker.h>
 #include <michi/validity/PlanarArm.h>
+#include <michi/tools/GridReachability.h>
 #include <michi/tools/PlanningContext.h>
 
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace michi
@@ -115,37 +117,62 @@ namespace michi
             }
             scene.experience = ExperienceQueries{};
 
-            // start and goal: uniform states in the joint limits that FCL calls valid
+            // start and goal: uniform states in the joint limits that FCL calls valid; for two joints, also linked
+            // by the grid search with the problem's motion validator
             auto si = std::make_shared<ompl::base::SpaceInformation>(makeStateSpace(scene));
             validity::FclValidityChecker checker(si, scene.bodies(), scene.scene);
             const std::size_t dim = scene.dimension();
-            auto sample = [&](const std::vector<double> *awayFrom, const char *what)
+            const bool linked = dim == 2 && options.reachabilityStep > 0.;
+            std::unique_ptr<GridComponents> grid;
+            PlanningContext ctx;  // keeps the grid's space information alive
+            std::vector<int> startComponents;
+            int samples = 0;
+            auto draw = [&](const char *what)
             {
+                if (samples++ >= options.maxSamples)
+                    throw std::runtime_error(scene.name + ": no " + what + " found in " +
+                                             std::to_string(options.maxSamples) + " random states");
                 std::vector<double> q(dim);
-                for (int n = 0; n < options.maxSamples; ++n)
+                for (std::size_t i = 0; i < dim; ++i)
                 {
-                    for (std::size_t i = 0; i < dim; ++i)
-                    {
-                        const auto &joint = arm.model->variableJoint(arm.groupVariables[i]);
-                        q[i] = rng.uniformReal(joint.lower, joint.upper);
-                    }
-                    if (awayFrom != nullptr)
-                    {
-                        double d = 0.;
-                        for (std::size_t i = 0; i < dim; ++i)
-                            d += (q[i] - (*awayFrom)[i]) * (q[i] - (*awayFrom)[i]);
-                        if (std::sqrt(d) < options.minQueryDistance)
-                            continue;
-                    }
-                    if (checker.isValidConfiguration(q.data()))
-                        return q;
+                    const auto &joint = arm.model->variableJoint(arm.groupVariables[i]);
+                    q[i] = rng.uniformReal(joint.lower, joint.upper);
                 }
-                throw std::runtime_error(scene.name + ": no valid " + what + " state in " +
-                                         std::to_string(options.maxSamples) + " random states");
+                return q;
             };
             Query query;
-            query.start = sample(nullptr, "start");
-            query.goal = sample(&query.start, "goal");
+            for (;;)
+            {
+                query.start = draw("valid start");
+                if (!checker.isValidConfiguration(query.start.data()))
+                    continue;
+                if (!linked)
+                    break;
+                if (!grid)
+                {
+                    scene.queries = {Query{query.start, query.start}};
+                    ctx = makePlanningContext(scene);
+                    grid = std::make_unique<GridComponents>(ctx.setup->getSpaceInformation(), options.reachabilityStep);
+                }
+                startComponents = grid->attach(query.start);
+                if (!startComponents.empty())
+                    break;
+            }
+            for (;;)
+            {
+                query.goal = draw(linked ? "valid goal linked to the start" : "valid goal");
+                double d = 0.;
+                for (std::size_t i = 0; i < dim; ++i)
+                    d += (query.goal[i] - query.start[i]) * (query.goal[i] - query.start[i]);
+                if (std::sqrt(d) < options.minQueryDistance || !checker.isValidConfiguration(query.goal.data()))
+                    continue;
+                if (!linked)
+                    break;
+                const auto goalComponents = grid->attach(query.goal);
+                if (std::find_first_of(goalComponents.begin(), goalComponents.end(), startComponents.begin(),
+                                       startComponents.end()) != goalComponents.end())
+                    break;
+            }
             scene.queries = {query};
             return result;
         }

@@ -65,8 +65,11 @@ namespace michi
                     << number(options.keepClear) << " m around the base kept free), extruded over z in ["
                     << number(options.zMin) << ", " << number(options.zMax) << "].\n"
                     << "# Start and goal are random states that FCL calls valid, at least "
-                    << number(options.minQueryDistance) << " rad apart; they are not\n"
-                    << "# proved to be connected.\n"
+                    << number(options.minQueryDistance) << " rad apart"
+                    << (p.dimension() == 2 && options.reachabilityStep > 0.
+                            ? ",\n# linked by a grid search (step " + number(options.reachabilityStep) +
+                                  " rad) with the problem's motion validator, so a path exists.\n"
+                            : ";\n# they are not proved to be connected.\n")
                     << "# Where the data come from: generated (a local ompl::RNG seeded with " << seed
                     << "; michi::tools::randomPlanarScene); the\n"
                     << "# robot, planners, benchmark and collision blocks are copied from " << armFile << ".\n";

@@ -51,7 +51,10 @@ namespace michi
             double zMin{-0.5};      ///< the polygons are extruded over [zMin, zMax] around the arm's plane
             double zMax{0.5};
             double minQueryDistance{1.};  ///< joint-space distance between start and goal (radians)
-            int maxSamples{100000};       ///< random states tried for the start, then for the goal
+            /** \brief For a two-joint group, the goal must be linked to the start by tools::GridComponents at this
+                step (radians) with the problem's motion validator; 0: not checked. */
+            double reachabilityStep{0.05};
+            int maxSamples{100000};  ///< random states drawn for the start and the goal together
         };
 
         /** \brief What randomPlanarScene() makes: the problem and its obstacle outlines (problem.scene's prisms). */
@@ -65,9 +68,10 @@ namespace michi
             collision settings; as scene, \e options.polygons random star-shaped polygons (randomPolygons(), centres
             within \e extent of the base of the arm, \e keepClear kept free around it) extruded over [zMin, zMax];
             one query whose start and goal are random states that the FCL checker calls valid, at least
-            \e minQueryDistance apart. Everything comes from one local ompl::RNG seeded with \e seed (the polygons
-            first, so they equal randomPolygons(seed, ...)). The scene is named scene_<seed>; start and goal are
-            not proved connected. Throws ProblemError (key "robot") unless \e arm is an arm whose every movable
+            \e minQueryDistance apart and, for a two-joint group, linked through the grid of GridComponents (so a
+            path exists); for more joints they are not proved connected. Everything comes from one local ompl::RNG
+            seeded with \e seed (the polygons first, so they equal randomPolygons(seed, ...)). The scene is named
+            scene_<seed>. Throws ProblemError (key "robot") unless \e arm is an arm whose every movable
             joint rotates about z, and std::runtime_error when no start or goal is found. */
         RandomPlanarScene randomPlanarScene(const Problem &arm, std::uint_fast32_t seed,
                                             const RandomPlanarSceneOptions &options = {});
