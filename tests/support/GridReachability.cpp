@@ -3,6 +3,7 @@
 #include <michi/tools/GridReachability.h>
 #include <michi/validity/ConservativeMotionValidator.h>
 
+#include <ompl/base/ScopedState.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <cmath>
@@ -45,6 +46,17 @@ namespace michi
             si->freeState(a);
             si->freeState(b);
             return q;
+        }
+
+        ompl::geometric::SimpleSetupPtr armQuerySetup(const ArmQuery &query)
+        {
+            const auto &si = query.setup.si;
+            auto ss = std::make_shared<ompl::geometric::SimpleSetup>(si);
+            ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
+            si->getStateSpace()->copyFromReals(start.get(), query.start);
+            si->getStateSpace()->copyFromReals(goal.get(), query.goal);
+            ss->setStartAndGoalStates(start, goal);
+            return ss;
         }
     }  // namespace test
 }  // namespace michi

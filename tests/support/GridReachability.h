@@ -8,6 +8,7 @@
 #include <michi/tools/GridReachability.h>
 
 #include <ompl/base/SpaceInformation.h>
+#include <ompl/geometric/SimpleSetup.h>
 
 #include <cstdint>
 #include <vector>
@@ -30,6 +31,9 @@ namespace michi
             bool found{false};  ///< false when no such query was found in 200 tries
         };
         ArmQuery reachableArmQuery(std::uint_fast32_t seed, double step = 0.05);
+
+        /** \brief A SimpleSetup on the query's space information with its start and goal (no planner set yet). */
+        ompl::geometric::SimpleSetupPtr armQuerySetup(const ArmQuery &query);
     }  // namespace test
 }  // namespace michi
 
