@@ -6,6 +6,7 @@
 #include <michi/tools/PlanningContext.h>
 
 #include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <algorithm>
 #include <cmath>
@@ -79,10 +80,12 @@ namespace michi
                                        e.what());
             }
             if (options.polygons < 0 || !(options.extent > 0.) || !(options.keepClear >= 0.) ||
-                !(options.zMax > options.zMin) || !(options.minQueryDistance >= 0.) || options.maxSamples < 1)
+                !(options.zMax > options.zMin) || !(options.minQueryDistance >= 0.) || options.maxSamples < 1 ||
+                !(options.reachabilityStep >= 0.))
                 throw std::invalid_argument(
-                    "randomPlanarScene: bad options (polygons >= 0, extent > 0, keepClear "
-                    ">= 0, zMin < zMax, minQueryDistance >= 0, maxSamples >= 1)");
+                    "randomPlanarScene: bad options (polygons >= 0, extent > 0, keepClear >= "
+                    "0, zMin < zMax, minQueryDistance >= 0, reachabilityStep >= 0, "
+                    "maxSamples >= 1)");
 
             // the base of the arm: joint 1's axis in the plane at q = 0
             const std::vector<double> zero(arm.model->variableCount(), 0.);
@@ -122,7 +125,8 @@ namespace michi
             auto si = std::make_shared<ompl::base::SpaceInformation>(makeStateSpace(scene));
             validity::FclValidityChecker checker(si, scene.bodies(), scene.scene);
             const std::size_t dim = scene.dimension();
-            const bool linked = dim == 2 && options.reachabilityStep > 0.;
+            const bool linked = dim == 2 && options.reachabilityStep > 0. &&
+                                dynamic_cast<const ompl::base::RealVectorStateSpace *>(si->getStateSpace().get());
             std::unique_ptr<GridComponents> grid;
             PlanningContext ctx;  // keeps the grid's space information alive
             std::vector<int> startComponents;
@@ -140,38 +144,47 @@ namespace michi
                 }
                 return q;
             };
+            // a start that attaches to the grid, then a goal in one of its components; a start whose components
+            // give no goal in GOALS_PER_START valid, distant candidates (a small pocket) is replaced
+            const int GOALS_PER_START = 200;
             Query query;
-            for (;;)
+            for (bool found = false; !found;)
             {
                 query.start = draw("valid start");
                 if (!checker.isValidConfiguration(query.start.data()))
                     continue;
-                if (!linked)
-                    break;
-                if (!grid)
+                if (linked)
                 {
-                    scene.queries = {Query{query.start, query.start}};
-                    ctx = makePlanningContext(scene);
-                    grid = std::make_unique<GridComponents>(ctx.setup->getSpaceInformation(), options.reachabilityStep);
+                    if (!grid)
+                    {
+                        scene.queries = {Query{query.start, query.start}};
+                        ctx = makePlanningContext(scene);
+                        grid = std::make_unique<GridComponents>(ctx.setup->getSpaceInformation(),
+                                                                options.reachabilityStep);
+                    }
+                    startComponents = grid->attach(query.start);
+                    if (startComponents.empty())
+                        continue;
                 }
-                startComponents = grid->attach(query.start);
-                if (!startComponents.empty())
-                    break;
-            }
-            for (;;)
-            {
-                query.goal = draw(linked ? "valid goal linked to the start" : "valid goal");
-                double d = 0.;
-                for (std::size_t i = 0; i < dim; ++i)
-                    d += (query.goal[i] - query.start[i]) * (query.goal[i] - query.start[i]);
-                if (std::sqrt(d) < options.minQueryDistance || !checker.isValidConfiguration(query.goal.data()))
-                    continue;
-                if (!linked)
-                    break;
-                const auto goalComponents = grid->attach(query.goal);
-                if (std::find_first_of(goalComponents.begin(), goalComponents.end(), startComponents.begin(),
-                                       startComponents.end()) != goalComponents.end())
-                    break;
+                for (int candidates = 0; !found && (!linked || candidates < GOALS_PER_START);)
+                {
+                    query.goal = draw(linked ? "valid goal linked to the start" : "valid goal");
+                    double d = 0.;
+                    for (std::size_t i = 0; i < dim; ++i)
+                        d += (query.goal[i] - query.start[i]) * (query.goal[i] - query.start[i]);
+                    if (std::sqrt(d) < options.minQueryDistance || !checker.isValidConfiguration(query.goal.data()))
+                        continue;
+                    ++candidates;
+                    if (!linked)
+                        found = true;
+                    else
+                    {
+                        const auto goalComponents = grid->attach(query.goal);
+                        found =
+                            std::find_first_of(goalComponents.begin(), goalComponents.end(), startComponents.begin(),
+                                               startComponents.end()) != goalComponents.end();
+                    }
+                }
             }
             scene.queries = {query};
             return result;

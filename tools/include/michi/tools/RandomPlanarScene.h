@@ -51,8 +51,8 @@ namespace michi
             double zMin{-0.5};      ///< the polygons are extruded over [zMin, zMax] around the arm's plane
             double zMax{0.5};
             double minQueryDistance{1.};  ///< joint-space distance between start and goal (radians)
-            /** \brief For a two-joint group, the goal must be linked to the start by tools::GridComponents at this
-                step (radians) with the problem's motion validator; 0: not checked. */
+            /** \brief For a two-joint group with bounded joints, the goal must be linked to the start by
+                tools::GridComponents at this step (radians) with the problem's motion validator; 0: not checked. */
             double reachabilityStep{0.05};
             int maxSamples{100000};  ///< random states drawn for the start and the goal together
         };
