@@ -31,12 +31,8 @@ TEST(ConcentricCircleScenes, SolvesFiftyScenesTheGridSolves)
         if (!q.found)
             continue;
         ++scenes;
-        og::SimpleSetup ss(q.setup.si);
-        ob::ScopedState<> start(q.setup.si->getStateSpace()), goal(q.setup.si->getStateSpace());
-        q.setup.si->getStateSpace()->copyFromReals(start.get(), q.start);
-        q.setup.si->getStateSpace()->copyFromReals(goal.get(), q.goal);
-        ss.setStartAndGoalStates(start, goal);
-        auto planner = std::make_shared<planners::ConcentricCircle>(ss.getSpaceInformation());
+        const auto ss = test::armQuerySetup(q);
+        auto planner = std::make_shared<planners::ConcentricCircle>(ss->getSpaceInformation());
         if (const char *set = std::getenv("MICHI_CC_SET"))
         {
             std::stringstream in(set);
@@ -44,13 +40,13 @@ TEST(ConcentricCircleScenes, SolvesFiftyScenesTheGridSolves)
             while (std::getline(in, kv, ','))
                 ASSERT_TRUE(planner->params().setParam(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1))) << kv;
         }
-        ss.setPlanner(planner);
-        const auto status = ss.solve(60.);
-        seconds += ss.getLastPlanComputationTime();
+        ss->setPlanner(planner);
+        const auto status = ss->solve(60.);
+        seconds += ss->getLastPlanComputationTime();
         EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << "scene " << seed;
         if (status != ob::PlannerStatus::EXACT_SOLUTION)
             continue;
-        const auto &path = ss.getSolutionPath();
+        const auto &path = ss->getSolutionPath();
         bool ok = true;
         for (std::size_t i = 1; i < path.getStateCount(); ++i)
             ok = ok && q.setup.si->checkMotion(path.getState(i - 1), path.getState(i));

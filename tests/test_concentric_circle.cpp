@@ -218,14 +218,10 @@ TEST(ConcentricCircle, SolvesRandomScenesTheGridSolves)
         if (!q.found)
             continue;
         ++tried;
-        og::SimpleSetup ss(q.setup.si);
-        ob::ScopedState<> start(q.setup.si->getStateSpace()), goal(q.setup.si->getStateSpace());
-        q.setup.si->getStateSpace()->copyFromReals(start.get(), q.start);
-        q.setup.si->getStateSpace()->copyFromReals(goal.get(), q.goal);
-        ss.setStartAndGoalStates(start, goal);
-        auto planner = std::make_shared<planners::ConcentricCircle>(ss.getSpaceInformation());
-        ss.setPlanner(planner);
-        const auto status = ss.solve(30.);
+        const auto ss = test::armQuerySetup(q);
+        auto planner = std::make_shared<planners::ConcentricCircle>(ss->getSpaceInformation());
+        ss->setPlanner(planner);
+        const auto status = ss->solve(30.);
         if (status != ob::PlannerStatus::EXACT_SOLUTION && std::getenv("MICHI_CC_DEBUG"))
         {
             tools::CirclePictureOptions o;
@@ -236,7 +232,7 @@ TEST(ConcentricCircle, SolvesRandomScenesTheGridSolves)
                       << std::endl;
         }
         ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << "scene " << seed;
-        EXPECT_EQ(exactCheck(q.setup.si, *q.setup.checker, ss.getSolutionPath()), "") << "scene " << seed;
+        EXPECT_EQ(exactCheck(q.setup.si, *q.setup.checker, ss->getSolutionPath()), "") << "scene " << seed;
     }
     EXPECT_GE(tried, 4);
 }

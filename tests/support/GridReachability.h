@@ -5,7 +5,10 @@
 
 #include "support/TestScenes.h"
 
+#include <michi/tools/GridReachability.h>
+
 #include <ompl/base/SpaceInformation.h>
+#include <ompl/geometric/SimpleSetup.h>
 
 #include <cstdint>
 #include <vector>
@@ -14,11 +17,8 @@ namespace michi
 {
     namespace test
     {
-        /** \brief True when a breadth-first search over a grid of cell \e step on a 2-D bounded real vector space
-            links \e start to \e goal: grid points must be valid, grid neighbours (4-connected) and the start
-            and goal with their nearest grid points are joined by motions the space's motion validator accepts. */
-        bool gridReachable(const ompl::base::SpaceInformationPtr &si, const std::vector<double> &start,
-                           const std::vector<double> &goal, double step);
+        /** \brief Grid search over a 2-D joint space (michi/tools/GridReachability.h). */
+        using tools::gridReachable;
 
         /** \brief A random planar scene (6 random polygons, a 0.5 m + 0.4 m arm) with a start and a goal at
             least 1 rad apart whose straight motion collides and that gridReachable() links at \e step. The space's
@@ -31,6 +31,9 @@ namespace michi
             bool found{false};  ///< false when no such query was found in 200 tries
         };
         ArmQuery reachableArmQuery(std::uint_fast32_t seed, double step = 0.05);
+
+        /** \brief A SimpleSetup on the query's space information with its start and goal (no planner set yet). */
+        ompl::geometric::SimpleSetupPtr armQuerySetup(const ArmQuery &query);
     }  // namespace test
 }  // namespace michi
 

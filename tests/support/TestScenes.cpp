@@ -2,8 +2,6 @@
 
 #include <michi/state_spaces/JointStateSpace.h>
 
-#include <ompl/util/RandomNumbers.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -171,39 +169,6 @@ namespace michi
             setup.scene = polygonScene(obstacles);
             setup.bodies = std::make_shared<validity::PlanarRigidBody>(footprint, -0.5, 0.5);
             return finishSetup(setup, state_spaces::makeSe2StateSpace(lo.x(), hi.x(), lo.y(), hi.y()), resolution);
-        }
-
-        std::vector<Outline> randomPolygons(std::uint_fast32_t seed, const RandomPolygonOptions &options)
-        {
-            ompl::RNG rng(seed);
-            std::vector<Outline> polygons;
-            for (int p = 0; p < options.count; ++p)
-            {
-                Eigen::Vector2d centre;
-                for (int attempt = 0;; ++attempt)
-                {
-                    centre = Eigen::Vector2d(rng.uniformReal(options.lo.x(), options.hi.x()),
-                                             rng.uniformReal(options.lo.y(), options.hi.y()));
-                    if ((centre - options.keepClearCentre).norm() - options.maxRadius >= options.keepClearRadius)
-                        break;
-                    if (attempt > 10000)
-                        throw std::invalid_argument("randomPolygons: no room outside the keep-clear disk");
-                }
-                const int sides = rng.uniformInt(options.minSides, options.maxSides);
-                std::vector<double> angles;
-                for (int i = 0; i < sides; ++i)
-                    angles.push_back(rng.uniformReal(0., 2. * M_PI));
-                std::sort(angles.begin(), angles.end());
-                // spread the angles so that no two vertices nearly coincide
-                for (int i = 0; i < sides; ++i)
-                    angles[i] = 0.5 * angles[i] + 0.5 * (2. * M_PI * i / sides);
-                Outline outline;
-                for (double a : angles)
-                    outline.push_back(centre + rng.uniformReal(options.minRadius, options.maxRadius) *
-                                                   Eigen::Vector2d(std::cos(a), std::sin(a)));
-                polygons.push_back(std::move(outline));
-            }
-            return polygons;
         }
 
         std::string asciiStlBox(const Eigen::Vector3d &extents, const Eigen::Vector3d &centre, const std::string &name)

@@ -1,6 +1,7 @@
 #ifndef MICHI_TESTS_SUPPORT_TEST_SCENES_
 #define MICHI_TESTS_SUPPORT_TEST_SCENES_
 
+#include <michi/tools/RandomPlanarScene.h>
 #include <michi/validity/CollisionBodies.h>
 #include <michi/validity/FclValidityChecker.h>
 #include <michi/validity/RobotModel.h>
@@ -93,24 +94,10 @@ namespace michi
                                           const Eigen::Vector2d &lo, const Eigen::Vector2d &hi,
                                           double resolution = 0.01);
 
-        /** \brief Settings of randomPolygons(). */
-        struct RandomPolygonOptions
-        {
-            int count{8};
-            Eigen::Vector2d lo{-1., -1.};  ///< centres are drawn uniformly in [lo, hi]
-            Eigen::Vector2d hi{1., 1.};
-            double minRadius{0.05};  ///< vertices lie between minRadius and maxRadius from the centre
-            double maxRadius{0.2};
-            int minSides{3};
-            int maxSides{8};
-            /** \brief Keep every polygon at least this far from \e keepClearCentre (0: no constraint). */
-            double keepClearRadius{0.};
-            Eigen::Vector2d keepClearCentre{0., 0.};
-        };
-
-        /** \brief Random simple polygons (star-shaped about their centre, so often non-convex), the same for the
-            same seed: a local ompl::RNG, so the global seed is neither used nor changed. */
-        std::vector<Outline> randomPolygons(std::uint_fast32_t seed, const RandomPolygonOptions &options = {});
+        /** \brief Random star-shaped polygons: the generator of `michi random-scenes`
+            (michi/tools/RandomPlanarScene.h), the same for the same seed. */
+        using RandomPolygonOptions = tools::RandomPolygonOptions;
+        using tools::randomPolygons;
 
         /** \brief ASCII STL of an axis-aligned box with full \e extents centred at \e centre (12 triangles, outward
             normals). */

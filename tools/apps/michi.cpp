@@ -10,6 +10,7 @@
 #include <michi/tools/PlannerRegistry.h>
 #include <michi/tools/PlanningContext.h>
 #include <michi/tools/ReplanCommand.h>
+#include <michi/tools/RandomPlanarScene.h>
 #include <michi/tools/Problem.h>
 #include <michi/tools/SvgPlot.h>
 #include <michi/validity/RobotModel.h>
@@ -43,6 +44,9 @@ namespace
         "  michi jmap PROBLEM.yaml --out DIR [--verify N] [--seed S]\n"
         "      build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with\n"
         "      --verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query times)\n"
+        "  michi random-scenes --count N --seed S --out DIR [--arm PROBLEM.yaml] [--polygons K]\n"
+        "      random planar scenes (seeds S, S+1, ...) for the arm of PROBLEM.yaml (default\n"
+        "      problems/planar_2link.yaml): writes DIR/scene_<seed>.yaml with K polygons (default 6)\n"
         "  michi lattice PROBLEM.yaml --out DIR [--cell-sizes A,B,...] [--angle-steps A,B,...] [--time SECONDS]\n"
         "      build the heading-constrained lattice (paper 003) per setting: nodes, build and query times\n"
         "      (DIR/lattice.md) and pictures of the lattice, groups, path correction and path (DIR/*.svg)\n"
@@ -412,6 +416,8 @@ int main(int argc, char **argv)
             return plan(argc, argv);
         if (command == "jmap")
             return jmap(argc, argv);
+        if (command == "random-scenes")
+            return michi::tools::randomScenesCommand(argc, argv);
         if (command == "lattice")
             return lattice(argc, argv);
         if (command == "dualarm")
