@@ -79,9 +79,9 @@ TEST_F(Cli, BenchWritesLogDatabaseSummaryAndPicture)
 TEST_F(Cli, BenchComparesBothCheckersInOneRun)
 {
     const fs::path out = dir_ / "both";
-    const CommandRun run = runMichi("bench " + problemFile("planar_2link") +
-                                    " --planners geometric::RRTConnect --runs 2 --time 1 --checker fcl,jmap --out " +
-                                    out.string());
+    const CommandRun run =
+        runMichi("bench " + problemFile("planar_2link") +
+                 " --planners geometric::RRTConnect --runs 2 --time 1 --checker fcl,jmap --out " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const std::string summary = slurp(out / "summary.md");
     EXPECT_NE(summary.find("| geometric_RRTConnect | 2 | 100 % |"), std::string::npos) << summary;
@@ -89,8 +89,8 @@ TEST_F(Cli, BenchComparesBothCheckersInOneRun)
     EXPECT_NE(slurp(out / "planar_2link.log").find("geometric_RRTConnect_jmap"), std::string::npos);
     // an SE(2) problem has no J-map: a clear error, nothing written
     const fs::path se2 = dir_ / "se2";
-    const CommandRun bad = runMichi("bench " + problemFile("se2_corridor") + " --runs 1 --time 1 --checker fcl,jmap --out " +
-                                    se2.string());
+    const CommandRun bad = runMichi("bench " + problemFile("se2_corridor") +
+                                    " --runs 1 --time 1 --checker fcl,jmap --out " + se2.string());
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_LT(bad.exitCode, 128) << bad.output;
     EXPECT_FALSE(fs::exists(se2));

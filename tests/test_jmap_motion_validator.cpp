@@ -29,7 +29,7 @@ namespace
         tools::PlanningContext ctx;
 
         explicit JMapPlanning(const std::string &name, const std::string &mode = "conservative")
-          : problem(load(name, mode)), ctx(tools::makePlanningContext(problem))
+            : problem(load(name, mode)), ctx(tools::makePlanningContext(problem))
         {
         }
 
@@ -37,8 +37,8 @@ namespace
         {
             auto p = tools::loadProblem(test::sourcePath("problems/" + name + ".yaml"));
             p.checker = "jmap";
-            p.jmap.mode = mode == "conservative" ? validity::JMapCheckerSettings::Mode::CONSERVATIVE :
-                                                   validity::JMapCheckerSettings::Mode::EXACT_FALLBACK;
+            p.jmap.mode = mode == "conservative" ? validity::JMapCheckerSettings::Mode::CONSERVATIVE
+                                                 : validity::JMapCheckerSettings::Mode::EXACT_FALLBACK;
             return p;
         }
 
@@ -117,7 +117,8 @@ TEST(JMapFirstContact, IsTheFirstSampleInsideThePolygons)
             continue;
         }
         ++hits;
-        ASSERT_LE(t, static_cast<double>(first) / samples + 1e-12) << "segment " << n << " enters later than a sample inside";
+        ASSERT_LE(t, static_cast<double>(first) / samples + 1e-12)
+            << "segment " << n << " enters later than a sample inside";
         const double xc = x0 + t * (x1 - x0), yc = y0 + t * (y1 - y0);
         EXPECT_TRUE(map.collides(xc, yc) || map.distanceToBoundary(xc, yc, 1.) < 1e-9)
             << "segment " << n << ": contact " << t << " is not on a polygon";
@@ -214,8 +215,8 @@ TEST(JMapMotionValidator, FollowsContinuousJointsTheShortWayRound)
     options.continuous = true;
     for (const bool blockPi : {true, false})
     {
-        const auto obstacle = blockPi ? test::boxOutline({-0.85, -0.05}, {-0.7, 0.05}) :
-                                        test::boxOutline({0.7, -0.05}, {0.85, 0.05});
+        const auto obstacle =
+            blockPi ? test::boxOutline({-0.85, -0.05}, {-0.7, 0.05}) : test::boxOutline({0.7, -0.05}, {0.85, 0.05});
         auto setup = test::planarArmSetup({0.5, 0.4}, {obstacle}, options);
         auto arm = validity::PlanarArm::fromModel(*setup.model);
         auto polygons = setup.scene->polygons2d();

@@ -62,7 +62,8 @@ namespace
         "  michi path-seed-library PROBLEM.yaml --out FILE [--variant blocks|rotation] [--seed S]\n"
         "      learn path seeds from the problem's training queries and save them (experience.library)\n"
         "  michi list-planners\n"
-        "bench and plan take --checker fcl|jmap (default: the problem's collision.checker); bench --checker fcl,jmap runs\n"
+        "bench and plan take --checker fcl|jmap (default: the problem's collision.checker); bench --checker fcl,jmap "
+        "runs\n"
         "  every planner with both (J-map runs named <planner>_jmap)\n"
         "options: --verbose shows OMPL's log messages\n";
 
@@ -184,7 +185,8 @@ namespace
             throw UsageError("bench needs --out DIR");
         ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
         // --checker fcl,jmap: both checkers side by side in one benchmark
-        const bool compare = args.has("checker") && (args.get("checker") == "fcl,jmap" || args.get("checker") == "jmap,fcl");
+        const bool compare =
+            args.has("checker") && (args.get("checker") == "fcl,jmap" || args.get("checker") == "jmap,fcl");
         Problem problem = loadProblem(args.positional[0]);
         if (!compare)
             problem = withChecker(problem, args);
@@ -286,8 +288,8 @@ namespace
         options.seed = static_cast<unsigned int>(args.number("seed", problem.benchmark.seed, true));
         options.progress = &std::cerr;
         std::cout << runJMapReport(problem, options);
-        std::cerr << "michi jmap: wrote " << (fs::path(options.outDir) / "jmap.json").string() << " and jmap.svg (and .png)"
-                  << std::endl;
+        std::cerr << "michi jmap: wrote " << (fs::path(options.outDir) / "jmap.json").string()
+                  << " and jmap.svg (and .png)" << std::endl;
         return 0;
     }
 

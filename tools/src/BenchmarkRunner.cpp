@@ -66,10 +66,12 @@ namespace michi
             md << "OMPL Benchmark, " << runs << " runs per planner, time limit " << timeLimit << " s per run, "
                << (compareCheckers ? "FCL validity checker and " + problem.motionValidator +
                                          " motion validator; planners suffixed _jmap: J-map validity checker and J-map "
-                                         "motion validator (" + problem.motionValidator + " where the map cannot decide)" :
-                   problem.checker == "jmap" ? "J-map validity checker, J-map motion validator (" +
-                                                   problem.motionValidator + " for what the map cannot decide)" :
-                                               "FCL validity checker, " + problem.motionValidator + " motion validator")
+                                         "motion validator (" +
+                                         problem.motionValidator + " where the map cannot decide)"
+                   : problem.checker == "jmap"
+                       ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
+                             " for what the map cannot decide)"
+                       : "FCL validity checker, " + problem.motionValidator + " motion validator")
                << ". Median time over all runs (failures count at the time they gave up); length"
                   " and clearance over solved runs.\n\n";
             md << "| planner | runs | success | median time (s) | median length | median clearance |\n";

@@ -153,17 +153,12 @@ namespace michi
                             return 0.;
                         first = target + 1;
                     }
-                    for (std::size_t i = first; i < path.size() && arc < lookahead; ++i)
-                    {
-                        toState(esi, path[i], b.get());
-                        const double len = esi->distance(a.get(), b.get());
-                        std::pair<ob::State *, double> last(nullptr, 0.);
-                        if (!esi->satisfiesBounds(b.get()) || !esi->checkMotion(a.get(), b.get(), last))
-                            return arc + last.second * len;
-                        arc += len;
-                        esi->copyState(a.get(), b.get());
-                    }
-                    return inf;
+                    // the rest of the path, from where the robot is, against the static world
+                    ConfigurationPath rest{toReals(esi, a.get())};
+                    rest.insert(rest.end(), path.begin() + static_cast<std::ptrdiff_t>(std::min(first, path.size())),
+                                path.end());
+                    const double more = firstInterferenceFree(esi, rest, lookahead - arc);
+                    return std::isinf(more) ? more : arc + more;
                 };
                 auto movingChecker = movingCtx_.checker;
                 h.clearance = [movingChecker](const Configuration &q)

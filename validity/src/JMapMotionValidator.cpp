@@ -123,8 +123,7 @@ namespace michi
             return std::numeric_limits<double>::infinity();
         }
 
-        int JMapMotionValidator::decide(const ompl::base::State *s1, const ompl::base::State *s2,
-                                        double *contact) const
+        int JMapMotionValidator::decide(const ompl::base::State *s1, const ompl::base::State *s2, double *contact) const
         {
             if (!si_->satisfiesBounds(s2))
                 return 2;
@@ -139,7 +138,8 @@ namespace michi
             return checker_->answersAlone() ? 0 : 2;
         }
 
-        bool JMapMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
+        bool JMapMotionValidator::check(const ompl::base::State *s1, const ompl::base::State *s2,
+                                        std::pair<ompl::base::State *, double> *lastValid) const
         {
             double contact = 0.;
             bool valid = false;
@@ -149,10 +149,17 @@ namespace michi
                     valid = true;
                     break;
                 case 1:
-                    valid = false;
+                    if (lastValid != nullptr)
+                    {
+                        // the polygons are closed sets: just before the contact the motion is still outside
+                        lastValid->second = std::max(0., contact - 1e-6);
+                        if (lastValid->first != nullptr)
+                            si_->getStateSpace()->interpolate(s1, s2, lastValid->second, lastValid->first);
+                    }
                     break;
                 default:
-                    valid = fallback_->checkMotion(s1, s2);
+                    valid = lastValid != nullptr ? fallback_->checkMotion(s1, s2, *lastValid)
+                                                 : fallback_->checkMotion(s1, s2);
             }
             if (valid)
                 ++valid_;
@@ -161,31 +168,15 @@ namespace michi
             return valid;
         }
 
+        bool JMapMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
+        {
+            return check(s1, s2, nullptr);
+        }
+
         bool JMapMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
                                               std::pair<ompl::base::State *, double> &lastValid) const
         {
-            double contact = 0.;
-            bool valid = false;
-            switch (decide(s1, s2, &contact))
-            {
-                case 0:
-                    valid = true;
-                    break;
-                case 1:
-                    // the polygons are closed sets: just before the contact the motion is still outside
-                    lastValid.second = std::max(0., contact - 1e-6);
-                    if (lastValid.first != nullptr)
-                        si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
-                    valid = false;
-                    break;
-                default:
-                    valid = fallback_->checkMotion(s1, s2, lastValid);
-            }
-            if (valid)
-                ++valid_;
-            else
-                ++invalid_;
-            return valid;
+            return check(s1, s2, &lastValid);
         }
     }  // namespace validity
 }  // namespace michi

@@ -48,6 +48,9 @@ namespace michi
         private:
             /** \brief 0: free (decided), 1: contact (decided, at *contact), 2: ask the fallback. */
             int decide(const ompl::base::State *s1, const ompl::base::State *s2, double *contact) const;
+            /** \brief decide(), then the fallback if needed; counts the motion; lastValid may be null. */
+            bool check(const ompl::base::State *s1, const ompl::base::State *s2,
+                       std::pair<ompl::base::State *, double> *lastValid) const;
             /** \brief Asks the space (once) whether it interpolates the axes round a circle. */
             void learnInterpolation() const;
             JMapValidityCheckerPtr checker_;
