@@ -1,9 +1,12 @@
 // Micro-benchmarks of the collision stack on the bundled problems (Google Benchmark; not part of ctest).
 //   build/tests/micro/bench_validity --benchmark_min_time=0.5
 // Figures compare against a baseline measured in the same process: the FCL boolean check is the baseline of the
-// clearance query, OMPL's DiscreteMotionValidator the baseline of michi's workspace and conservative validators.
+// clearance query, OMPL's DiscreteMotionValidator the baseline of michi's workspace and conservative validators,
+// the conservative (exact, FCL) validator the baseline of the J-map motion validator (segments on the J-map).
 #include <michi/tools/PlanningContext.h>
+#include <michi/tools/JMapSetup.h>
 #include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/validity/JMapMotionValidator.h>
 #include <michi/validity/WorkspaceMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
@@ -60,7 +63,9 @@ namespace
             benchmark::DoNotOptimize(f.ctx.checker->clearance(f.states[i++ % f.states.size()]));
     }
 
-    void motion(benchmark::State &bm, const std::string &name, int kind)
+    /** kind 0: OMPL's discrete, 1: conservative (FCL), 2: workspace, 3: J-map (conservative as its fallback);
+        \e fraction: how far towards the next sample the motions go (planners mostly make short ones). */
+    void motion(benchmark::State &bm, const std::string &name, int kind, double fraction = 0.1)
     {
         auto &f = fixture(name);
         auto si = f.ctx.setup->getSpaceInformation();
@@ -69,15 +74,22 @@ namespace
             validator = std::make_shared<michi::validity::ConservativeMotionValidator>(si, f.ctx.checker);
         else if (kind == 2)
             validator = std::make_shared<michi::validity::WorkspaceMotionValidator>(si, f.ctx.checker, 0.01);
+        else if (kind == 3)
+        {
+            auto jmap = michi::tools::makeJMapChecker(f.problem, f.ctx, f.problem.jmap);
+            jmap->buildAll();  // the lazy tiles' build is not what is measured
+            validator = std::make_shared<michi::validity::JMapMotionValidator>(
+                si, jmap, std::make_shared<michi::validity::ConservativeMotionValidator>(si, f.ctx.checker));
+        }
         else
             validator = std::make_shared<ompl::base::DiscreteMotionValidator>(si);
-        // motions between valid samples, short ones (a tenth of the way) as planners mostly make
+        // motions between valid samples, by default short ones (a tenth of the way) as planners mostly make
         std::vector<std::pair<ompl::base::State *, ompl::base::State *>> motions;
         for (std::size_t a = 0; a + 1 < f.states.size() && motions.size() < 200; ++a)
             if (si->isValid(f.states[a]))
             {
                 auto *b = si->allocState();
-                si->getStateSpace()->interpolate(f.states[a], f.states[a + 1], 0.1, b);
+                si->getStateSpace()->interpolate(f.states[a], f.states[a + 1], fraction, b);
                 if (si->isValid(b))
                     motions.emplace_back(f.states[a], b);
             }
@@ -101,6 +113,9 @@ BENCHMARK_CAPTURE(clearance, planar_2link, std::string("planar_2link"));
 BENCHMARK_CAPTURE(motion, discrete_planar_2link, std::string("planar_2link"), 0);
 BENCHMARK_CAPTURE(motion, workspace_planar_2link, std::string("planar_2link"), 2);
 BENCHMARK_CAPTURE(motion, conservative_planar_2link, std::string("planar_2link"), 1);
+BENCHMARK_CAPTURE(motion, jmap_planar_2link, std::string("planar_2link"), 3);
+BENCHMARK_CAPTURE(motion, conservative_whole_way_planar_2link, std::string("planar_2link"), 1, 1.);
+BENCHMARK_CAPTURE(motion, jmap_whole_way_planar_2link, std::string("planar_2link"), 3, 1.);
 BENCHMARK_CAPTURE(isValid, xarm6_ring, std::string("xarm6_ring"));
 BENCHMARK_CAPTURE(clearance, xarm6_ring, std::string("xarm6_ring"));
 BENCHMARK_CAPTURE(motion, discrete_xarm6_ring, std::string("xarm6_ring"), 0);
