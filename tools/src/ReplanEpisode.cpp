@@ -70,18 +70,21 @@ namespace michi
                 }
             }
 
+            void MethodRun::setMoverTrajectory(std::size_t k, const std::vector<validity::TimedPose> &trajectory)
+            {
+                world_->remove(movers_[k].name);
+                validity::Obstacle o;
+                o.name = movers_[k].name;
+                o.shape = movers_[k].shape;
+                o.trajectory = trajectory;
+                world_->add(o);
+            }
+
             void MethodRun::episode(const std::vector<std::vector<validity::TimedPose>> &trajectories, Results &results,
                                     std::vector<Frame> *frames)
             {
                 for (std::size_t k = 0; k < movers_.size(); ++k)
-                {
-                    world_->remove(movers_[k].name);
-                    validity::Obstacle o;
-                    o.name = movers_[k].name;
-                    o.shape = movers_[k].shape;
-                    o.trajectory = trajectories[k];
-                    world_->add(o);
-                }
+                    setMoverTrajectory(k, trajectories[k]);
                 trajectories_ = trajectories;
                 {
                     std::lock_guard<std::mutex> lock(snapshotMutex_);
@@ -127,12 +130,7 @@ namespace michi
                                 continue;
                             for (auto &key : trajectories_[k])
                                 key.time += settings_.dt;
-                            world_->remove(movers_[k].name);
-                            validity::Obstacle o;
-                            o.name = movers_[k].name;
-                            o.shape = movers_[k].shape;
-                            o.trajectory = trajectories_[k];
-                            world_->add(o);
+                            setMoverTrajectory(k, trajectories_[k]);
                             ++results.obstacleWaits;
                         }
                     world_->setTime(t);

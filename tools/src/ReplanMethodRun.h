@@ -38,6 +38,8 @@ namespace michi
                              std::vector<Frame> *frames);
 
             private:
+                /** \brief Replace moving obstacle \e k of the world by one that follows \e trajectory. */
+                void setMoverTrajectory(std::size_t k, const std::vector<validity::TimedPose> &trajectory);
                 PlanningContext context(const validity::ScenePtr &scene) const;
 
                 static void toState(const ompl::base::SpaceInformationPtr &si, const Configuration &q,
