@@ -42,6 +42,7 @@ namespace michi
             if (log)
                 *log << "michi jmap: building " << settings.map.slices << " slices ("
                      << (jp.planar ? "planar exact" : "fcl sweep") << ")" << std::endl;
+            const auto mapStart = std::chrono::steady_clock::now();
             const auto source = jp.makeSource(jp.axes);
             const validity::JMapPtr map = validity::JMap::build(*source, settings.map);
             validity::JMapPtr grown;
@@ -84,8 +85,20 @@ namespace michi
             conservative.mode = validity::JMapCheckerSettings::Mode::CONSERVATIVE;
             validity::JMapValidityChecker checker(ctx.setup->getSpaceInformation(), ctx.checker, jp.makeSource, jp.axes,
                                                   jp.coversRobot, conservative);
+            const double mapSeconds = seconds(mapStart);
+            if (log)
+                *log << "michi jmap: maps built in " << mapSeconds << " s; building the checker's "
+                     << checker.tileCount() << " tiles" << std::endl;
             const auto tilesStart = std::chrono::steady_clock::now();
-            checker.buildAll();
+            // tile by tile, with progress when the maps were slow (the FCL sweep against meshes: minutes)
+            const double tileWidth = (jp.axes.hi1 - jp.axes.lo1) / static_cast<double>(checker.tileCount());
+            for (std::size_t k = 0; k < checker.tileCount(); ++k)
+            {
+                checker.tile(jp.axes.lo1 + (static_cast<double>(k) + 0.5) * tileWidth);
+                if (log && mapSeconds > 2.)
+                    *log << "michi jmap: tile " << k + 1 << "/" << checker.tileCount() << " built ("
+                         << seconds(tilesStart) << " s)" << std::endl;
+            }
             const double tileSeconds = seconds(tilesStart);
             std::uint64_t unsafe = 0, falseInvalid = 0, jmapInvalid = 0, fclInvalid = 0;
             double jmapNs = 0., fclNs = 0.;
