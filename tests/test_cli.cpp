@@ -87,6 +87,11 @@ TEST_F(Cli, BenchComparesBothCheckersInOneRun)
     EXPECT_NE(summary.find("| geometric_RRTConnect | 2 | 100 % |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| geometric_RRTConnect_jmap | 2 | 100 % |"), std::string::npos) << summary;
     EXPECT_NE(slurp(out / "planar_2link.log").find("geometric_RRTConnect_jmap"), std::string::npos);
+    const CommandRun typo =
+        runMichi("bench " + problemFile("planar_2link") + " --checker fcl,jmpa --out " + (dir_ / "typo").string());
+    EXPECT_EQ(typo.exitCode, 2) << typo.output;
+    EXPECT_NE(typo.output.find("fcl, jmap or fcl,jmap"), std::string::npos) << typo.output;
+    EXPECT_FALSE(fs::exists(dir_ / "typo"));
     // an SE(2) problem has no J-map: a clear error, nothing written
     const fs::path se2 = dir_ / "se2";
     const CommandRun bad = runMichi("bench " + problemFile("se2_corridor") +

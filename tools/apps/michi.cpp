@@ -187,6 +187,8 @@ namespace
         // --checker fcl,jmap: both checkers side by side in one benchmark
         const bool compare =
             args.has("checker") && (args.get("checker") == "fcl,jmap" || args.get("checker") == "jmap,fcl");
+        if (args.has("checker") && !compare && args.get("checker").find(',') != std::string::npos)
+            throw UsageError("bench --checker expects fcl, jmap or fcl,jmap, got '" + args.get("checker") + "'");
         Problem problem = loadProblem(args.positional[0]);
         if (!compare)
             problem = withChecker(problem, args);
