@@ -1,5 +1,6 @@
 #include <michi/planners/HeadingLattice.h>
 
+#include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/validity/FclValidityChecker.h>
 
@@ -28,15 +29,7 @@ namespace michi
         {
             const double PI = boost::math::constants::pi<double>();
 
-            double wrapAngle(double a)
-            {
-                double v = std::fmod(a, 2. * PI);
-                if (v < -PI)
-                    v += 2. * PI;
-                else if (v >= PI)
-                    v -= 2. * PI;
-                return v;
-            }
+            using state_spaces::wrapAngle;
 
             /** Lattice geometry of one heading: the paper's equation (1) when |tan| <= 1 ("columns"), else (2). */
             struct HeadingRow

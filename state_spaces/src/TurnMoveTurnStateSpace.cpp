@@ -1,4 +1,5 @@
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
+#include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/JointStateSpace.h>
 
 #include <boost/math/constants/constants.hpp>
@@ -15,26 +16,6 @@ namespace michi
         namespace
         {
             const double PI = boost::math::constants::pi<double>();
-
-            /** Signed shortest rotation from \e from to \e to, in [-pi, pi). */
-            double turnBetween(double from, double to)
-            {
-                double d = std::remainder(to - from, 2. * PI);
-                if (d >= PI)
-                    d -= 2. * PI;
-                return d;
-            }
-
-            /** Wrap into [-pi, pi) as SO2StateSpace::enforceBounds does. */
-            double wrap(double a)
-            {
-                double v = std::fmod(a, 2. * PI);
-                if (v < -PI)
-                    v += 2. * PI;
-                else if (v >= PI)
-                    v -= 2. * PI;
-                return v;
-            }
         }  // namespace
 
         TurnMoveTurnStateSpace::TurnMoveTurnStateSpace(double turnWeight, bool allowBackward)
@@ -75,7 +56,7 @@ namespace michi
             m.turn2 = turnBetween(ahead, yaw2);
             if (allowBackward_)
             {
-                const double behind = wrap(ahead + PI);
+                const double behind = wrapAngle(ahead + PI);
                 TurnMoveTurn b;
                 b.move = m.move;
                 b.backward = true;
@@ -134,7 +115,7 @@ namespace michi
             {
                 // first turn (or the only one), in place
                 s->setXY(x1, y1);
-                s->setYaw(wrap(yaw1 + m.turn1 * (along / c1)));
+                s->setYaw(wrapAngle(yaw1 + m.turn1 * (along / c1)));
                 return;
             }
             along -= c1;
@@ -149,7 +130,7 @@ namespace michi
             const double c2 = turnWeight_ * std::abs(m.turn2);
             // second turn, at the target position (copied exactly, so the rest of the motion is one turn)
             s->setXY(x2, y2);
-            s->setYaw(c2 > 0. ? wrap(m.heading + m.turn2 * std::min(1., along / c2)) : yaw2);
+            s->setYaw(c2 > 0. ? wrapAngle(m.heading + m.turn2 * std::min(1., along / c2)) : yaw2);
         }
 
         double TurnMoveTurnStateSpace::getMaximumExtent() const
