@@ -1,0 +1,229 @@
+// `michi bench`, `michi plan` and `michi list-planners`: OMPL's Benchmark and one solve on a problem file.
+#include "CommandLine.h"
+
+#include <michi/tools/bench/BenchmarkRunner.h>
+#include <michi/tools/bench/PlannerRegistry.h>
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/pictures/SvgPlot.h>
+#include <michi/tools/problem/PathFile.h>
+#include <michi/tools/problem/Problem.h>
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/filesystem.hpp>
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace cli
+        {
+            namespace
+            {
+                const char *CHECKER_HELP = "collision checker (default: the problem's collision.checker)";
+
+                /** a planner name as a file name part: geometric::RRTConnect -> geometric__RRTConnect */
+                std::string fileSafe(std::string s)
+                {
+                    for (char &c : s)
+                        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_')
+                            c = '_';
+                    return s;
+                }
+
+                struct BenchArgs
+                {
+                    std::string problem;
+                    std::string out;
+                    std::string planners;
+                    std::optional<unsigned int> runs;
+                    std::optional<double> time;
+                    std::optional<std::size_t> query;
+                    std::optional<std::string> checker;
+                    bool verbose{false};
+                };
+
+                int runBench(const BenchArgs &args)
+                {
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose);
+                    // --checker fcl,jmap: both checkers side by side in one benchmark
+                    const bool compare = args.checker && args.checker->find(',') != std::string::npos;
+                    Problem problem = loadProblem(args.problem);
+                    if (args.checker && !compare)
+                        problem.checker = *args.checker;
+                    BenchOptions options;
+                    options.compareCheckers = compare;
+                    options.outDir = args.out;
+                    options.planners = splitComma(args.planners);
+                    options.runs = args.runs.value_or(0);        // 0: the problem's benchmark.runs
+                    options.timeLimit = args.time.value_or(0.);  // 0: the problem's benchmark.time_limit
+                    options.query = args.query.value_or(0);
+                    options.heldOut = !args.query;  // --query: that query in every run, not the held-out ones
+                    options.progress = &std::cerr;
+                    const BenchResult result = runBenchmark(problem, options);
+                    std::ifstream summary(result.summary);
+                    std::cout << summary.rdbuf();
+                    std::cout << "\nwrote " << result.log << "\n      " << result.database << "\n      "
+                              << result.summary << "\n      " << result.picture << " (and .png)" << std::endl;
+                    return 0;
+                }
+
+                struct PlanArgs
+                {
+                    std::string problem;
+                    std::string out{"."};
+                    std::string planner;
+                    std::optional<double> time;
+                    std::optional<std::size_t> query;
+                    std::optional<unsigned int> seed;
+                    std::optional<std::string> checker;
+                    bool verbose{false};
+                };
+
+                int runPlan(const PlanArgs &args)
+                {
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose);
+                    Problem problem = loadProblem(args.problem);
+                    if (args.checker)
+                        problem.checker = *args.checker;
+                    ompl::RNG::setSeed(args.seed.value_or(problem.benchmark.seed));
+                    const std::size_t query = args.query.value_or(0);
+                    PlanningContext ctx = makePlanningContext(problem, query);
+                    const std::string &name = args.planner;
+                    PlannerSpec spec{name, {}};
+                    for (const auto &s : problem.planners)
+                        if (s.name == name)
+                            spec = s;
+                    ompl::base::PlannerPtr planner;
+                    try
+                    {
+                        planner = allocatePlanner(name, ctx.setup->getSpaceInformation());
+                    }
+                    catch (const std::invalid_argument &e)
+                    {
+                        throw UsageError(std::string("--planner: ") + e.what());  // an unknown planner name
+                    }
+                    applyPlannerParams(*planner, spec, problem.file);
+                    ctx.setup->setPlanner(planner);
+                    const double time = args.time.value_or(problem.benchmark.timeLimit);
+                    const auto status = ctx.setup->solve(time);
+                    if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
+                    {
+                        std::cerr << "michi plan: " << problem.file << ": " << name << " found no path within " << time
+                                  << " s (" << status.asString() << ")" << std::endl;
+                        return 1;
+                    }
+                    // bounded like the solve: OMPL's unbounded default can take minutes
+                    ctx.setup->simplifySolution(time);
+                    auto &path = ctx.setup->getSolutionPath();
+                    std::vector<std::vector<double>> states;
+                    for (const auto *s : path.getStates())
+                    {
+                        std::vector<double> values;
+                        ctx.setup->getStateSpace()->copyToReals(values, s);
+                        states.push_back(values);
+                    }
+                    std::ostringstream comment;
+                    comment << problem.name << " query " << query << ", " << name << ", " << states.size()
+                            << " states, length " << path.length() << ", clearance " << path.clearance();
+                    std::cout << "# " << comment.str() << "\n";
+                    for (const auto &s : states)
+                    {
+                        for (std::size_t i = 0; i < s.size(); ++i)
+                            std::cout << (i ? " " : "") << s[i];
+                        std::cout << "\n";
+                    }
+                    const fs::path out = args.out;
+                    if (!fs::exists(out))
+                        fs::create_directories(out);
+                    const std::string stem = (out / (problem.name + "-" + fileSafe(name))).string();
+                    writePathFile(stem + ".path", problem.valueNames(), states, comment.str());
+                    writeProblemSvg(problem, {PlotPath{name, states}}, stem + ".svg", query);
+                    std::cerr << "michi plan: wrote " << stem << ".path and " << stem << ".svg" << std::endl;
+                    return 0;
+                }
+            }  // namespace
+
+            Runner addBench(CLI::App &michi)
+            {
+                auto args = std::make_shared<BenchArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "bench",
+                    "run OMPL's Benchmark; writes DIR/<problem>.log, DIR/<problem>.db (Planner Arena), DIR/summary.md "
+                    "and DIR/<problem>.svg");
+                addProblem(*c, args->problem);
+                addOut(*c, args->out, "output folder (made if missing)");
+                c->add_option("--planners", args->planners,
+                              "planners to run, A,B,... (default: the problem's planners; see michi list-planners)")
+                    ->type_name("A,B,...");
+                addInteger(*c, "--runs", args->runs, 1, 100000, "runs per planner (default: the problem's)");
+                addTime(*c, args->time, "time limit per run (default: the problem's)");
+                addInteger(*c, "--query", args->query, 0, 1000000,
+                           "run this query of the problem every time (default: cycle the held-out experience "
+                           "queries if any, else query 0)")
+                    ->type_name("I");
+                c->add_option_function<std::string>(
+                     "--checker",
+                     [args](const std::string &text)
+                     {
+                         if (text != "fcl" && text != "jmap" && text != "fcl,jmap" && text != "jmap,fcl")
+                             throw UsageError("--checker: expected fcl, jmap or fcl,jmap, got '" + text + "'");
+                         args->checker = text;
+                     },
+                     std::string(CHECKER_HELP) +
+                         "; fcl,jmap runs every planner with both (J-map runs named <planner>_jmap)")
+                    ->type_name("fcl|jmap|fcl,jmap");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runBench(*args);
+                };
+            }
+
+            Runner addPlan(CLI::App &michi)
+            {
+                auto args = std::make_shared<PlanArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "plan", "solve once, print the path, write DIR/<problem>-<planner>.path and .svg");
+                addProblem(*c, args->problem);
+                c->add_option("--planner", args->planner, "the planner (see michi list-planners)")
+                    ->required()
+                    ->type_name("NAME");
+                addOut(*c, args->out, "output folder (default: the current folder)", false);
+                addTime(*c, args->time, "time limit (default: the problem's)");
+                addInteger(*c, "--query", args->query, 0, 1000000, "the problem's query to solve (default 0)")
+                    ->type_name("I");
+                addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
+                addChoice(*c, "--checker", args->checker, {"fcl", "jmap"}, CHECKER_HELP);
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runPlan(*args);
+                };
+            }
+
+            Runner addListPlanners(CLI::App &michi)
+            {
+                auto verbose = std::make_shared<bool>(false);
+                CLI::App *c = michi.add_subcommand("list-planners", "the planner names that bench and plan take");
+                addVerbose(*c, *verbose);
+                return []
+                {
+                    for (const auto &name : plannerNames())
+                        std::cout << name << "\n";
+                    return 0;
+                };
+            }
+        }  // namespace cli
+    }      // namespace tools
+}  // namespace michi

@@ -1,0 +1,356 @@
+// The sub-commands of the methods' own studies: `michi circles` and `michi jmap` (paper 000), `michi random-scenes`,
+// `michi lattice` (paper 003), `michi dualarm` (paper 004) and `michi replan` (paper 002).
+#include "CommandLine.h"
+
+#include <michi/tools/commands/CircleCommand.h>
+#include <michi/tools/commands/DualArmCommand.h>
+#include <michi/tools/commands/HeadingLatticeReport.h>
+#include <michi/tools/commands/JMapReport.h>
+#include <michi/tools/commands/ReplanCommand.h>
+#include <michi/tools/problem/Problem.h>
+#include <michi/tools/problem/RandomPlanarScene.h>
+
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/filesystem.hpp>
+
+#include <iostream>
+#include <memory>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace cli
+        {
+            namespace
+            {
+                struct CirclesArgs
+                {
+                    std::string problem;
+                    std::string out;
+                    std::optional<std::string> checker;
+                    std::optional<double> time;
+                    std::optional<std::string> view;
+                    std::vector<std::string> set;
+                    bool verbose{false};
+                };
+
+                int runCirclesCommand(const CirclesArgs &args)
+                {
+                    CircleOptions options;
+                    for (const auto &kv : args.set)
+                    {
+                        const auto eq = kv.find('=');
+                        if (eq == std::string::npos || eq == 0)
+                            throw UsageError("--set: expected NAME=VALUE, got '" + kv + "'");
+                        options.params[kv.substr(0, eq)] = kv.substr(eq + 1);
+                    }
+                    if (args.view)
+                    {
+                        options.view = parseRealList("--view", *args.view, -1e9, 1e9, true, 4);
+                        if (!(options.view[0] < options.view[2]) || !(options.view[1] < options.view[3]))
+                            throw UsageError(
+                                "--view: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX, "
+                                "got '" +
+                                *args.view + "'");
+                    }
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    if (args.verbose)  // without --verbose, OMPL's log level is left as it is (as before)
+                        setOmplLogLevel(true);
+                    options.outDir = args.out;
+                    options.checker = args.checker.value_or("");
+                    options.timeLimit = args.time.value_or(options.timeLimit);
+                    options.progress = &std::cerr;
+                    std::cout << runCircles(loadProblem(args.problem), options);
+                    return 0;
+                }
+
+                struct JMapArgs
+                {
+                    std::string problem;
+                    std::string out;
+                    std::optional<std::uint64_t> verify;
+                    std::optional<unsigned int> seed;
+                    bool verbose{false};
+                };
+
+                int runJMapCommand(const JMapArgs &args)
+                {
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose);
+                    const Problem problem = loadProblem(args.problem);
+                    JMapReportOptions options;
+                    options.outDir = args.out;
+                    options.verify = args.verify.value_or(0);
+                    options.seed = args.seed.value_or(problem.benchmark.seed);
+                    options.progress = &std::cerr;
+                    std::cout << runJMapReport(problem, options);
+                    std::cerr << "michi jmap: wrote " << (fs::path(options.outDir) / "jmap.json").string()
+                              << " and jmap.svg (and .png)" << std::endl;
+                    return 0;
+                }
+
+                struct RandomScenesArgs
+                {
+                    std::string out;
+                    std::optional<std::string> arm;
+                    std::optional<unsigned int> count;
+                    std::optional<std::uint32_t> seed;
+                    std::optional<int> polygons;
+                    bool verbose{false};
+                };
+
+                int runRandomScenesCommand(const RandomScenesArgs &args)
+                {
+                    RandomScenesOptions options;
+                    options.count = args.count.value_or(options.count);
+                    options.seed = args.seed.value_or(options.seed);
+                    options.arm = args.arm.value_or(options.arm);
+                    options.scene.polygons = args.polygons.value_or(options.scene.polygons);
+                    // the scenes take seeds seed .. seed + count - 1, all 32-bit
+                    if (options.seed > MAX_SEED - (options.count - 1))
+                        throw UsageError("--seed: seed + count - 1 exceeds " + std::to_string(MAX_SEED) + ", got '" +
+                                         std::to_string(options.seed) + "' with --count " +
+                                         std::to_string(options.count));
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose);
+                    options.outDir = args.out;
+                    const auto files = writeRandomScenes(options);
+                    for (const auto &f : files)
+                        std::cout << f << "\n";
+                    std::cerr << "michi random-scenes: wrote " << files.size() << " scene"
+                              << (files.size() > 1 ? "s" : "") << " to " << options.outDir << std::endl;
+                    return 0;
+                }
+
+                struct LatticeArgs
+                {
+                    std::string problem;
+                    std::string out;
+                    std::optional<std::string> cellSizes;
+                    std::optional<std::string> angleSteps;
+                    std::optional<double> time;
+                    bool verbose{false};
+                };
+
+                int runLatticeCommand(const LatticeArgs &args)
+                {
+                    HeadingLatticeReportOptions options;
+                    if (args.cellSizes)
+                        options.cellSizes = parseRealList("--cell-sizes", *args.cellSizes, 0., 1e6);
+                    if (args.angleSteps)
+                        options.angleSteps = parseRealList("--angle-steps", *args.angleSteps, 0., 2. * M_PI);
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose);
+                    options.outDir = args.out;
+                    options.timeLimit = args.time.value_or(options.timeLimit);
+                    options.progress = &std::cerr;
+                    std::cout << runHeadingLatticeReport(loadProblem(args.problem), options);
+                    return 0;
+                }
+
+                struct DualArmArgs
+                {
+                    std::string problem;
+                    std::string out;
+                    std::optional<double> time;
+                    std::optional<unsigned int> seed;
+                    bool verbose{false};
+                };
+
+                int runDualArmCommand(const DualArmArgs &args)
+                {
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose);
+                    const Problem problem = loadProblem(args.problem);
+                    ompl::RNG::setSeed(args.seed.value_or(problem.benchmark.seed));
+                    DualArmOptions options;
+                    options.outDir = args.out;
+                    options.planningTime = args.time.value_or(0.);  // 0: the problem's dual_arm.planning.time
+                    options.progress = &std::cerr;
+                    std::cout << runDualArm(problem, options);
+                    std::cerr << "michi dualarm: wrote " << (fs::path(options.outDir) / "dualarm.json").string()
+                              << " and dualarm-*.svg/.png" << std::endl;
+                    return 0;
+                }
+
+                struct ReplanArgs
+                {
+                    std::string problem;
+                    std::string out;
+                    std::optional<unsigned int> episodes;
+                    std::optional<unsigned int> seed;
+                    std::string methods;
+                    bool verbose{false};
+                };
+
+                int runReplanCommand(const ReplanArgs &args)
+                {
+                    checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    setOmplLogLevel(args.verbose, true);
+                    ReplanOptions options;
+                    options.problemFile = args.problem;
+                    options.outDir = args.out;
+                    options.episodes = args.episodes.value_or(20);
+                    options.seed = args.seed.value_or(1);
+                    options.methods = splitComma(args.methods);
+                    options.progress = &std::cerr;
+                    std::cout << runReplan(options);
+                    std::cerr << "michi replan: wrote " << (fs::path(options.outDir) / "replan.json").string()
+                              << std::endl;
+                    return 0;
+                }
+            }  // namespace
+
+            Runner addCircles(CLI::App &michi)
+            {
+                auto args = std::make_shared<CirclesArgs>();
+                CLI::App *c = michi.add_subcommand("circles",
+                                                   "solve with michi::planners::ConcentricCircle and draw its circles, "
+                                                   "candidates, links and paths (paper 000)");
+                addProblem(*c, args->problem);
+                addOut(*c, args->out, "output folder (made if missing)");
+                addChoice(*c, "--checker", args->checker, {"fcl", "jmap"},
+                          "collision checker (default: the problem's collision.checker)");
+                addTime(*c, args->time, "time limit (default 30)");
+                c->add_option("--set", args->set, "a ConcentricCircle parameter by name (repeatable)")
+                    ->type_name("NAME=VALUE")
+                    ->allow_extra_args(false);
+                c->add_option_function<std::string>(
+                     "--view",
+                     [args](const std::string &text)
+                     {
+                         args->view = text;
+                     },
+                     "picture box of every stage (default: all)")
+                    ->type_name("XMIN,YMIN,XMAX,YMAX");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runCirclesCommand(*args);
+                };
+            }
+
+            Runner addJMap(CLI::App &michi)
+            {
+                auto args = std::make_shared<JMapArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "jmap",
+                    "build the J-map of the problem's arm (paper 000); writes DIR/jmap.svg and DIR/jmap.json; with "
+                    "--verify, N uniform states are checked against FCL (unsafe and false-invalid counts, query "
+                    "times)");
+                addProblem(*c, args->problem);
+                addOut(*c, args->out, "output folder (made if missing)");
+                addInteger(*c, "--verify", args->verify, 0, 100000000,
+                           "uniform states checked against FCL (default 0: none)");
+                addSeed(*c, args->seed, "seed of the verification states (default: the problem's benchmark.seed)");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runJMapCommand(*args);
+                };
+            }
+
+            Runner addRandomScenes(CLI::App &michi)
+            {
+                auto args = std::make_shared<RandomScenesArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "random-scenes",
+                    "random planar scenes (seeds S, S+1, ...) for the arm of a problem: writes DIR/scene_<seed>.yaml");
+                addOut(*c, args->out, "output folder (made if missing)");
+                addInteger(*c, "--count", args->count, 1, 100000, "scenes to write (default 50)");
+                // seeds of a local ompl::RNG per scene, not ompl::RNG::setSeed: 0 is accepted as before
+                addInteger(*c, "--seed", args->seed, 0, MAX_SEED, "seed of the first scene (default 1)")
+                    ->type_name("S");
+                c->add_option_function<std::string>(
+                     "--arm",
+                     [args](const std::string &text)
+                     {
+                         args->arm = text;
+                     },
+                     "template problem whose arm and settings are used (default problems/planar_2link.yaml)")
+                    ->type_name("PROBLEM.yaml");
+                addInteger(*c, "--polygons", args->polygons, 0, 1000, "polygons per scene (default 6)")->type_name("K");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runRandomScenesCommand(*args);
+                };
+            }
+
+            Runner addLattice(CLI::App &michi)
+            {
+                auto args = std::make_shared<LatticeArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "lattice",
+                    "build the heading-constrained lattice (paper 003) per setting: nodes, build and query times "
+                    "(DIR/lattice.md) and pictures of the lattice, groups, path correction and path (DIR/*.svg)");
+                addProblem(*c, args->problem);
+                addOut(*c, args->out, "output folder (made if missing)");
+                c->add_option_function<std::string>(
+                     "--cell-sizes",
+                     [args](const std::string &text)
+                     {
+                         args->cellSizes = text;
+                     },
+                     "cell_size values in metres (default 0.25)")
+                    ->type_name("A,B,...");
+                c->add_option_function<std::string>(
+                     "--angle-steps",
+                     [args](const std::string &text)
+                     {
+                         args->angleSteps = text;
+                     },
+                     "angle_step values in radians, e.g. pi/8 (default 0.3927)")
+                    ->type_name("A,B,...");
+                addTime(*c, args->time, "time limit per solve (default 60)");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runLatticeCommand(*args);
+                };
+            }
+
+            Runner addDualArm(CLI::App &michi)
+            {
+                auto args = std::make_shared<DualArmArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "dualarm",
+                    "dual-arm work positions by manipulability (paper 004); writes DIR/dualarm.json and pictures");
+                addProblem(*c, args->problem);
+                addOut(*c, args->out, "output folder (made if missing)");
+                addTime(*c, args->time, "time per approach plan (default: the problem's dual_arm.planning.time)");
+                addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runDualArmCommand(*args);
+                };
+            }
+
+            Runner addReplan(CLI::App &michi)
+            {
+                auto args = std::make_shared<ReplanArgs>();
+                CLI::App *c = michi.add_subcommand(
+                    "replan",
+                    "non-stop replanning among moving obstacles (paper 002): N randomized episodes per method; writes "
+                    "DIR/replan.json and DIR/episode/frame_*.svg");
+                addProblem(*c, args->problem);
+                addOut(*c, args->out, "output folder (made if missing)");
+                addInteger(*c, "--episodes", args->episodes, 1, 100000, "episodes per method (default 20)");
+                addSeed(*c, args->seed, "seed of the episodes (default 1)");
+                c->add_option("--methods", args->methods,
+                              "methods to run, e.g. dual,rrtconnect (default: DualRoadmap and every baseline)")
+                    ->type_name("A,B,...");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    return runReplanCommand(*args);
+                };
+            }
+        }  // namespace cli
+    }      // namespace tools
+}  // namespace michi
