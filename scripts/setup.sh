@@ -16,6 +16,8 @@ PACKAGES=(
     python3 sqlite3
     librsvg2-bin
     libtinyxml2-dev
+    libcli11-dev
+    clang libclang-rt-14-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Sanitizer and fuzz jobs (docs/reliability.md), run by scripts/test.sh after the main test suite.
+#  1. build-asan: clang, Release with -O1 -g, MICHI_SANITIZE=address (ASan+UBSan on the libraries, the `michi`
+#     command and the tests) and MICHI_FUZZ=ON (the same libraries instrumented for coverage, plus the libFuzzer
+#     targets). Runs the default test set (not `slow`, not `install`) under ASan+UBSan, then scripts/fuzz.sh (each
+#     fuzz target for MICHI_FUZZ_SECONDS seconds) in the same build.
+#  2. build-tsan: clang, MICHI_SANITIZE=thread; builds and runs only the tests that start threads (MICHI_TSAN_TESTS
+#     in tests/CMakeLists.txt, label tsan).
+# Usage: scripts/sanitizers.sh [asan|tsan|fuzz|all]   (default all). Build directories: $MICHI_ASAN_DIR (build-asan),
+# $MICHI_TSAN_DIR (build-tsan). Findings inside OMPL/FCL are suppressed in tests/sanitizers/*.supp, with the bug named.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what=${1:-all}
+jobs=$(nproc 2>/dev/null || echo 2)
+src=$(pwd)
+asan_dir=${MICHI_ASAN_DIR:-build-asan}
+tsan_dir=${MICHI_TSAN_DIR:-build-tsan}
+cxx=${MICHI_SANITIZER_CXX:-clang++}
+launcher=()
+if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+common=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -g -DNDEBUG" -DCMAKE_CXX_COMPILER="$cxx"
+    -DMICHI_BUILD_BENCHMARKS=OFF "${launcher[@]}")
+supp="$src/tests/sanitizers"
+export ASAN_OPTIONS="suppressions=$supp/asan.supp:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="suppressions=$supp/ubsan.supp:print_stacktrace=1:halt_on_error=1"
+export TSAN_OPTIONS="suppressions=$supp/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
+
+stamp() { echo "sanitizers: $(date +%T) $*" >&2; }
+
+run_asan() {
+    stamp "configure $asan_dir (ASan+UBSan, libFuzzer)"
+    cmake -S . -B "$asan_dir" "${common[@]}" -DMICHI_SANITIZE=address -DMICHI_FUZZ=ON >/dev/null
+    stamp "build $asan_dir"
+    cmake --build "$asan_dir" -j"$jobs"
+    stamp "ctest under ASan+UBSan (all but slow, install and the libFuzzer runs)"
+    ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE 'slow|install|libfuzzer' --timeout 900
+}
+
+run_fuzz() {
+    stamp "fuzz targets in $asan_dir"
+    MICHI_FUZZ_BUILD_DIR="$asan_dir" bash scripts/fuzz.sh
+}
+
+run_tsan() {
+    stamp "configure $tsan_dir (TSan)"
+    cmake -S . -B "$tsan_dir" "${common[@]}" -DMICHI_SANITIZE=thread >/dev/null
+    stamp "build $tsan_dir (the threaded tests only)"
+    cmake --build "$tsan_dir" -j"$jobs"
+    stamp "ctest under TSan (label tsan)"
+    ctest --test-dir "$tsan_dir" --output-on-failure -j"$jobs" -L tsan --timeout 900
+}
+
+start=$(date +%s)
+case "$what" in
+    asan) run_asan ;;
+    fuzz) run_fuzz ;;
+    tsan) run_tsan ;;
+    all) run_asan; run_fuzz; run_tsan ;;
+    *) echo "usage: scripts/sanitizers.sh [asan|tsan|fuzz|all]" >&2; exit 2 ;;
+esac
+stamp "done ($what) in $(( $(date +%s) - start )) s"
