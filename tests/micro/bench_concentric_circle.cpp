@@ -4,8 +4,8 @@
 //   build/tests/micro/bench_concentric_circle --benchmark_min_time=2
 // Each iteration clears the planner and the solutions and solves once; RRTConnect's seed is fixed once, before the
 // first benchmark (its time varies with the seed; ConcentricCircle is deterministic).
-#include <michi/planners/ConcentricCircle.h>
-#include <michi/tools/PlanningContext.h>
+#include <michi/planners/concentric_circle/ConcentricCircle.h>
+#include <michi/tools/bench/PlanningContext.h>
 
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>

@@ -4,9 +4,9 @@
 // Baselines measured in the same process: the FCL validity check of a state (what every planner pays anyway) for
 // ManipulabilityObjective::stateCost, and OMPL's PathLengthOptimizationObjective::motionCost for the objective's
 // motion cost (trapezoid rule, and subdivided with interpolate).
-#include <michi/planners/ManipulabilityObjective.h>
-#include <michi/tools/DualArmProblem.h>
-#include <michi/tools/PlanningContext.h>
+#include <michi/planners/dual_arm/ManipulabilityObjective.h>
+#include <michi/tools/problem/DualArmProblem.h>
+#include <michi/tools/bench/PlanningContext.h>
 
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/util/RandomNumbers.h>

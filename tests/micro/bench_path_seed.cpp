@@ -2,7 +2,7 @@
 // implementation). A 6-joint, 20-waypoint seed decoded for new random start/goal pairs, both variants; encoding
 // of the same path as a reference in the same process.
 //   build/tests/micro/bench_path_seed --benchmark_min_time=0.5
-#include <michi/planners/PathSeedCodec.h>
+#include <michi/planners/path_seed/PathSeedCodec.h>
 
 #include <ompl/util/RandomNumbers.h>
 

@@ -3,11 +3,11 @@
 // Figures compare against a baseline measured in the same process: the FCL boolean check is the baseline of the
 // clearance query, OMPL's DiscreteMotionValidator the baseline of michi's workspace and conservative validators,
 // the conservative (exact, FCL) validator the baseline of the J-map motion validator (segments on the J-map).
-#include <michi/tools/PlanningContext.h>
-#include <michi/tools/JMapSetup.h>
-#include <michi/validity/ConservativeMotionValidator.h>
-#include <michi/validity/JMapMotionValidator.h>
-#include <michi/validity/WorkspaceMotionValidator.h>
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/problem/ProblemJMap.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
+#include <michi/validity/jmap/JMapMotionValidator.h>
+#include <michi/validity/fcl/WorkspaceMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/util/RandomNumbers.h>

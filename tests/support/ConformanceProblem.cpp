@@ -1,11 +1,11 @@
 #include "support/ConformanceProblem.h"
 
 #include <michi/state_spaces/JointStateSpace.h>
-#include <michi/validity/ConservativeMotionValidator.h>
-#include <michi/validity/JMapMotionValidator.h>
-#include <michi/validity/JMapValidityChecker.h>
-#include <michi/validity/PlanarArm.h>
-#include <michi/validity/Polygon2.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
+#include <michi/validity/jmap/JMapMotionValidator.h>
+#include <michi/validity/jmap/JMapValidityChecker.h>
+#include <michi/validity/jmap/PlanarArm.h>
+#include <michi/validity/scene/Polygon2.h>
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
@@ -50,10 +50,11 @@ namespace michi
             }
         }  // namespace
 
-        ConformanceProblem makeConformanceProblem(const std::string &checker, const std::string &kind)
+        ConformanceProblem makeConformanceProblem(const std::string &checker, const std::string &kind,
+                                                  bool enclosedGoal)
         {
             if (kind == "se2" && checker == "fcl")
-                return makeSe2ConformanceProblem();
+                return makeSe2ConformanceProblem(enclosedGoal);
             if (kind != "arm")
                 throw std::invalid_argument("conformance problem must be arm, or se2 with the fcl checker");
             auto model = validity::RobotModel::fromUrdfString(ARM_URDF, "conformance_arm.urdf", ".");
@@ -61,7 +62,21 @@ namespace michi
                                                                        std::vector<double>{0., 0.});
             auto scene = std::make_shared<validity::Scene>();
             int i = 0;
-            for (const auto &outline : obstacleOutlines())
+            auto outlines = obstacleOutlines();
+            if (enclosedGoal)
+            {
+                // two posts at 0.25 m from the base on both sides of the goal's link 1 (1.2 rad +- 0.15 rad): link 1
+                // passes through that radius at every angle, so the goal's pocket of about +-0.05 rad is closed
+                for (double angle : {1.05, 1.35})
+                {
+                    const Eigen::Vector2d c(0.25 * std::cos(angle), 0.25 * std::sin(angle));
+                    const double h = 0.015;
+                    outlines.push_back(
+                        {c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h), c + Eigen::Vector2d(h, h),
+                         c + Eigen::Vector2d(-h, h)});
+                }
+            }
+            for (const auto &outline : outlines)
                 scene->add(validity::Obstacle{"obstacle" + std::to_string(i++),
                                               validity::Shape::prism(outline, -0.5, 0.5),
                                               Eigen::Isometry3d::Identity(),

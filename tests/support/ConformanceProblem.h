@@ -2,7 +2,7 @@
 #ifndef MICHI_TESTS_SUPPORT_CONFORMANCE_PROBLEM_
 #define MICHI_TESTS_SUPPORT_CONFORMANCE_PROBLEM_
 
-#include <michi/validity/FclValidityChecker.h>
+#include <michi/validity/fcl/FclValidityChecker.h>
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -40,12 +40,15 @@ namespace michi
             std::shared_ptr<validity::FclValidityChecker> checker;   ///< FCL (inside the J-map checker too)
             std::shared_ptr<ompl::base::StateValidityChecker> used;  ///< the space's checker
         };
-        ConformanceProblem makeConformanceProblem(const std::string &checker = "fcl", const std::string &kind = "arm");
+        /** \e enclosedGoal: obstacles are added that wall the goal in (a free pocket it cannot leave), so the
+            problem has no solution and a planner runs until its termination condition stops it. */
+        ConformanceProblem makeConformanceProblem(const std::string &checker = "fcl", const std::string &kind = "arm",
+                                                  bool enclosedGoal = false);
 
         /** \brief The SE(2) conformance problem: a 0.6 m x 0.2 m rectangle in state_spaces::TurnMoveTurnStateSpace
             on [0, 4] x [0, 4], a wall across the middle with a 0.8 m gap, start and goal on both sides (FCL checker,
             conservative motion validator with turn-move-turn displacement bounds). Checker "fcl" only. */
-        ConformanceProblem makeSe2ConformanceProblem();
+        ConformanceProblem makeSe2ConformanceProblem(bool enclosedGoal = false);
         /** \brief independentPathCheck() for the SE(2) problem: footprints along the path (Boost.Geometry). */
         std::string independentSe2PathCheck(const ompl::geometric::PathGeometric &path);
 

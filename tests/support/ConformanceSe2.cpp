@@ -3,9 +3,9 @@
 #include "support/ConformanceProblem.h"
 
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
-#include <michi/tools/TurnMoveTurnBodies.h>
-#include <michi/validity/ConservativeMotionValidator.h>
-#include <michi/validity/Polygon2.h>
+#include <michi/tools/problem/TurnMoveTurnBodies.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
+#include <michi/validity/scene/Polygon2.h>
 
 #include <ompl/base/ScopedState.h>
 
@@ -31,7 +31,7 @@ namespace michi
             }
         }  // namespace
 
-        ConformanceProblem makeSe2ConformanceProblem()
+        ConformanceProblem makeSe2ConformanceProblem(bool enclosedGoal)
         {
             auto body =
                 std::make_shared<validity::PlanarRigidBody>(std::vector<Eigen::Vector2d>{{-HALF_LENGTH, -HALF_WIDTH},
@@ -43,7 +43,17 @@ namespace michi
             auto bodies = std::make_shared<tools::TurnMoveTurnBodies>(body, space);
             auto scene = std::make_shared<validity::Scene>();
             int i = 0;
-            for (const auto &outline : se2Walls())
+            auto walls = se2Walls();
+            if (enclosedGoal)
+            {
+                // a closed square of walls 0.45 m around the goal (3, 3): the body turns inside but cannot leave
+                const double in = 0.45, out = 0.5;
+                walls.push_back({{3. - out, 3. - out}, {3. + out, 3. - out}, {3. + out, 3. - in}, {3. - out, 3. - in}});
+                walls.push_back({{3. - out, 3. + in}, {3. + out, 3. + in}, {3. + out, 3. + out}, {3. - out, 3. + out}});
+                walls.push_back({{3. - out, 3. - in}, {3. - in, 3. - in}, {3. - in, 3. + in}, {3. - out, 3. + in}});
+                walls.push_back({{3. + in, 3. - in}, {3. + out, 3. - in}, {3. + out, 3. + in}, {3. + in, 3. + in}});
+            }
+            for (const auto &outline : walls)
                 scene->add(validity::Obstacle{"wall" + std::to_string(i++),
                                               validity::Shape::prism(outline, -0.5, 0.5),
                                               Eigen::Isometry3d::Identity(),

@@ -1,7 +1,7 @@
 #include "support/GridReachability.h"
 
-#include <michi/tools/GridReachability.h>
-#include <michi/validity/ConservativeMotionValidator.h>
+#include <michi/tools/problem/GridReachability.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/util/RandomNumbers.h>

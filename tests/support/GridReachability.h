@@ -5,7 +5,7 @@
 
 #include "support/TestScenes.h"
 
-#include <michi/tools/GridReachability.h>
+#include <michi/tools/problem/GridReachability.h>
 
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/geometric/SimpleSetup.h>

@@ -1,11 +1,11 @@
 #ifndef MICHI_TESTS_SUPPORT_TEST_SCENES_
 #define MICHI_TESTS_SUPPORT_TEST_SCENES_
 
-#include <michi/tools/RandomPlanarScene.h>
-#include <michi/validity/CollisionBodies.h>
-#include <michi/validity/FclValidityChecker.h>
-#include <michi/validity/RobotModel.h>
-#include <michi/validity/Scene.h>
+#include <michi/tools/problem/RandomPlanarScene.h>
+#include <michi/validity/robot/CollisionBodies.h>
+#include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/robot/RobotModel.h>
+#include <michi/validity/scene/Scene.h>
 
 #include <ompl/base/SpaceInformation.h>
 

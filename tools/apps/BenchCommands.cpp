@@ -100,20 +100,19 @@ namespace michi
                     const std::size_t query = args.query.value_or(0);
                     PlanningContext ctx = makePlanningContext(problem, query);
                     const std::string &name = args.planner;
-                    PlannerSpec spec{name, {}};
-                    for (const auto &s : problem.planners)
-                        if (s.name == name)
-                            spec = s;
                     ompl::base::PlannerPtr planner;
                     try
                     {
-                        planner = allocatePlanner(name, ctx.setup->getSpaceInformation());
+                        planner = makePlanner(problem, name, ctx.setup->getSpaceInformation());
+                    }
+                    catch (const ProblemError &)
+                    {
+                        throw;  // a bad parameter in the problem file
                     }
                     catch (const std::invalid_argument &e)
                     {
                         throw UsageError(std::string("--planner: ") + e.what());  // an unknown planner name
                     }
-                    applyPlannerParams(*planner, spec, problem.file);
                     ctx.setup->setPlanner(planner);
                     const double time = args.time.value_or(problem.benchmark.timeLimit);
                     const auto status = ctx.setup->solve(time);

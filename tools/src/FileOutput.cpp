@@ -2,10 +2,18 @@
 
 #include <boost/filesystem.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <climits>
+#include <csignal>
+#include <mutex>
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -64,16 +72,159 @@ namespace michi
             return out + "\"";
         }
 
+        namespace
+        {
+            // Staging folders that exist right now, so that a signal (Ctrl-C, kill, a crash) removes them too.
+            // The handler may only call async-signal-safe functions: it forks and execs rm on paths copied into
+            // fixed buffers when the folder was made (no allocation, no locks in the handler).
+            constexpr std::size_t MAX_STAGED = 32;
+            struct StagedSlot
+            {
+                std::atomic<bool> used{false};
+                char path[PATH_MAX]{};
+            };
+            std::array<StagedSlot, MAX_STAGED> stagedSlots;
+            std::mutex stagedMutex;  // taken by register/unregister only, never by the handler
+            const int CLEANUP_SIGNALS[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGSEGV, SIGBUS, SIGFPE, SIGABRT, SIGILL};
+
+            extern "C" void removeStagedAndReraise(int sig)
+            {
+                for (auto &slot : stagedSlots)
+                {
+                    if (!slot.used.load())
+                        continue;
+                    const pid_t child = fork();
+                    if (child == 0)
+                    {
+                        char rm[] = "/bin/rm", flags[] = "-rf", dashes[] = "--";
+                        char *argv[] = {rm, flags, dashes, slot.path, nullptr};
+                        char *envp[] = {nullptr};
+                        execve(rm, argv, envp);
+                        _exit(127);
+                    }
+                    if (child > 0)
+                    {
+                        int status = 0;
+                        waitpid(child, &status, 0);
+                    }
+                }
+                // then die of the same signal, as the default action would have (exit status, core dump)
+                signal(sig, SIG_DFL);
+                raise(sig);
+            }
+
+            void installCleanupHandlers()
+            {
+                static std::once_flag once;
+                std::call_once(once,
+                               []
+                               {
+                                   for (int sig : CLEANUP_SIGNALS)
+                                   {
+                                       struct sigaction action
+                                       {
+                                       };
+                                       struct sigaction previous
+                                       {
+                                       };
+                                       // keep a handler the embedding program installed; take over only defaults
+                                       if (sigaction(sig, nullptr, &previous) != 0 || previous.sa_handler != SIG_DFL)
+                                           continue;
+                                       action.sa_handler = removeStagedAndReraise;
+                                       sigemptyset(&action.sa_mask);
+                                       action.sa_flags = SA_RESETHAND;
+                                       sigaction(sig, &action, nullptr);
+                                   }
+                               });
+            }
+
+            int registerStaged(const std::string &path)
+            {
+                if (path.size() >= PATH_MAX)
+                    return -1;
+                installCleanupHandlers();
+                std::lock_guard<std::mutex> lock(stagedMutex);
+                for (std::size_t i = 0; i < stagedSlots.size(); ++i)
+                    if (!stagedSlots[i].used.load())
+                    {
+                        std::memcpy(stagedSlots[i].path, path.c_str(), path.size() + 1);
+                        stagedSlots[i].used.store(true);
+                        return static_cast<int>(i);
+                    }
+                return -1;  // more than MAX_STAGED at once: still removed on normal exits and exceptions
+            }
+
+            void unregisterStaged(int slot)
+            {
+                if (slot < 0)
+                    return;
+                std::lock_guard<std::mutex> lock(stagedMutex);
+                stagedSlots[static_cast<std::size_t>(slot)].used.store(false);
+            }
+
+            /** Staging folders of the same output left by a process that no longer runs (killed with SIGKILL,
+                which no handler sees): ".<name>.partial-<pid>" beside the output folder. */
+            void removeAbandonedStaging(const boost::filesystem::path &out)
+            {
+                namespace fs = boost::filesystem;
+                boost::system::error_code ec;
+                const std::string prefix = "." + out.filename().string() + ".partial-";
+                for (fs::directory_iterator it(out.parent_path(), ec), end; !ec && it != end; it.increment(ec))
+                {
+                    const std::string name = it->path().filename().string();
+                    if (name.compare(0, prefix.size(), prefix) != 0)
+                        continue;
+                    char *used = nullptr;
+                    const long pid = std::strtol(name.c_str() + prefix.size(), &used, 10);
+                    if (pid <= 0 || *used != '\0')
+                        continue;
+                    if (kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+                    {
+                        boost::system::error_code ignored;
+                        fs::remove_all(it->path(), ignored);
+                    }
+                }
+            }
+        }  // namespace
+
         StagedDirectory::StagedDirectory(const std::string &outDir)
             : out_(boost::filesystem::absolute(outDir))
             , dir_(out_.parent_path() / ("." + out_.filename().string() + ".partial-" + std::to_string(getpid())))
         {
-            boost::filesystem::remove_all(dir_);
-            boost::filesystem::create_directories(dir_);
+            namespace fs = boost::filesystem;
+            // name what is wrong with --out in one line (a raw boost::filesystem error names no option)
+            for (fs::path p = out_.parent_path(); !p.empty(); p = p.parent_path())
+            {
+                boost::system::error_code ec;
+                const fs::file_status status = fs::status(p, ec);
+                if (fs::exists(status))
+                {
+                    if (!fs::is_directory(status))
+                        throw std::runtime_error("output folder '" + out_.string() + "': '" + p.string() +
+                                                 "' is a file, not a folder");
+                    break;
+                }
+                if (p == p.parent_path())
+                    break;
+            }
+            {
+                boost::system::error_code ec;
+                if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
+                    throw std::runtime_error("output folder '" + out_.string() + "' is a file, not a folder");
+            }
+            removeAbandonedStaging(out_);
+            boost::system::error_code ec;
+            fs::remove_all(dir_, ec);
+            fs::create_directories(dir_, ec);
+            if (ec)
+                throw std::runtime_error("output folder '" + out_.string() + "': cannot create '" + dir_.string() +
+                                         "': " + ec.message());
+            slot_ = registerStaged(dir_.string());
         }
 
         StagedDirectory::~StagedDirectory()
         {
+            unregisterStaged(slot_);
             boost::system::error_code ec;
             boost::filesystem::remove_all(dir_, ec);
         }
@@ -86,7 +237,10 @@ namespace michi
         void StagedDirectory::commit()
         {
             namespace fs = boost::filesystem;
-            fs::create_directories(out_);
+            boost::system::error_code ec;
+            fs::create_directories(out_, ec);
+            if (ec)
+                throw std::runtime_error("output folder '" + out_.string() + "': cannot create it: " + ec.message());
             for (const auto &entry : fs::directory_iterator(dir_))
             {
                 const fs::path target = out_ / entry.path().filename();

@@ -1,7 +1,7 @@
 #ifndef MICHI_PLANNERS_HAND_IK_
 #define MICHI_PLANNERS_HAND_IK_
 
-#include <michi/planners/Manipulability.h>
+#include <michi/planners/dual_arm/Manipulability.h>
 
 #include <Eigen/Core>
 

@@ -21,7 +21,10 @@ namespace michi
 
         /** \brief A folder of outputs written all-or-nothing: files go to a hidden staging folder beside the output
             folder, and commit() moves them in (replacing entries of the same name); without commit() the staging
-            folder is removed, so a failure leaves the output folder as it was. */
+            folder is removed, so a failure leaves the output folder as it was. The staging folder is removed on
+            every exit path: exceptions, and SIGINT/SIGTERM/SIGHUP/SIGQUIT and crash signals (the process then
+            dies of the same signal); one left by a process killed with SIGKILL is removed by the next run.
+            Throws std::runtime_error naming the folder when it cannot be made (e.g. a file in the way). */
         class StagedDirectory
         {
         public:
@@ -45,6 +48,7 @@ namespace michi
         private:
             boost::filesystem::path out_;
             boost::filesystem::path dir_;
+            int slot_{-1};  ///< registration for removal on a signal (FileOutput.cpp)
         };
     }  // namespace tools
 }  // namespace michi

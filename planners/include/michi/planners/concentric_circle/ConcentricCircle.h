@@ -1,0 +1,260 @@
+#ifndef MICHI_PLANNERS_CONCENTRIC_CIRCLE_
+#define MICHI_PLANNERS_CONCENTRIC_CIRCLE_
+
+#include <michi/planners/concentric_circle/CircleMap.h>
+#include <michi/planners/concentric_circle/ConcentricCircleSearch.h>
+
+#include <ompl/base/Planner.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace michi
+{
+    namespace planners
+    {
+        /**
+           @anchor michiConcentricCircle
+           @par Short description
+           The concentric-circle potential method: circles around the start at a fixed spacing until the goal,
+           each cut into \e divisions points; an oval potential (attraction -Kg/Dg to the goal, repulsion Kp/Dp^2
+           with Dp = |PA| + |PB| - |AB| from every obstacle edge AB visible from P) picks one candidate per free
+           arc; candidates of adjacent circles that see each other are linked, and chains of links are paths
+           (several: left and right around obstacles); the best by length or clearance is the solution. Where no
+           chain exists, unlinked points become a new start and goal (recursion) until \e max_recursions. The
+           method is deterministic.
+
+           Modes (parameter \e mode):
+           - \c jmap: the space's validity checker is a michi::validity::JMapValidityChecker over exactly the two
+             joints of the state: circles, potential and visibility on the J-map polygons; every path is then
+             re-checked with the space's motion validator (links it rejects are dropped).
+           - \c projection: any space: the plane of two state values (\e axis1, \e axis2), the other values
+             interpolated between start and goal along the start-goal direction; points checked with the space's
+             validity checker, visibility with its motion validator; the potential's obstacle edges are the
+             blocked runs of the circles. Continuous (SO(2)) values wrap.
+           - \c hierarchy (3 or more values, the paper's arm -> hand split): the arm (\e axis1, \e axis2) is
+             planned first, checked without the links moved by the other values when the checker's robot is a
+             planar arm (exact capsule geometry of michi::validity::PlanarArm), else as in projection mode; then,
+             along each arm path (best first), a hand map (arm-path arc length x \e hand_axis) is planned with the
+             space's own checker and motion validator; the first hand path found gives the full path.
+           - \c surface (3 or more values, the paper's trajectory-restriction surface): the plane in joint space
+             through start and goal at orientation \e surface_angle about the start-goal line; points and segments
+             checked with the space's checker and motion validator; if no path is found on it, the planes turned
+             by 45, 90 and 135 degrees are tried.
+           - \c auto: jmap when possible; for 3 or more values hierarchy when the robot is a planar arm, then
+             surface; else projection.
+           Every returned path passes the space's motion validator.
+
+           @par External documentation
+           N. Kawarazaki and T. Nagata, "Generation of Collision-free Path of a Manipulator by Means of
+           Joint-map", 1991 (michi: docs/concentric-circle.md).
+        */
+        class ConcentricCircle : public ompl::base::Planner
+        {
+        public:
+            /** \brief One 2-D search of the last solve and how its points become states. */
+            struct Stage
+            {
+                std::string name;  ///< "jmap", "projection", "arm", "hand"
+                std::shared_ptr<CircleMap> map;
+                std::shared_ptr<ConcentricCircleSearch> search;
+                std::function<void(const Eigen::Vector2d &, ompl::base::State *)> lift;
+                int chosenPath{-1};  ///< index into search->paths() that the solution uses (-1: none)
+            };
+
+            explicit ConcentricCircle(const ompl::base::SpaceInformationPtr &si);
+            ~ConcentricCircle() override;
+
+            ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
+            void clear() override;
+            void setup() override;
+            void getPlannerData(ompl::base::PlannerData &data) const override;
+
+            void setRingSpacing(double v)
+            {
+                settings_.ringSpacing = v;
+            }
+            double getRingSpacing() const
+            {
+                return settings_.ringSpacing;
+            }
+            void setDivisions(int v)
+            {
+                settings_.divisions = v;
+            }
+            int getDivisions() const
+            {
+                return settings_.divisions;
+            }
+            void setPointSpacing(double v)
+            {
+                settings_.pointSpacing = v;
+            }
+            double getPointSpacing() const
+            {
+                return settings_.pointSpacing;
+            }
+            void setKGoal(double v)
+            {
+                settings_.kGoal = v;
+            }
+            double getKGoal() const
+            {
+                return settings_.kGoal;
+            }
+            void setKObstacle(double v)
+            {
+                settings_.kObstacle = v;
+            }
+            double getKObstacle() const
+            {
+                return settings_.kObstacle;
+            }
+            void setPotentialRange(double v)
+            {
+                settings_.potentialRange = v;
+            }
+            double getPotentialRange() const
+            {
+                return settings_.potentialRange;
+            }
+            void setMaxArcPoints(int v)
+            {
+                settings_.maxArcPoints = v;
+            }
+            int getMaxArcPoints() const
+            {
+                return settings_.maxArcPoints;
+            }
+            void setArcEnds(bool v)
+            {
+                settings_.arcEnds = v;
+            }
+            bool getArcEnds() const
+            {
+                return settings_.arcEnds;
+            }
+            void setMaxRecursions(int v)
+            {
+                settings_.maxRecursions = v;
+            }
+            int getMaxRecursions() const
+            {
+                return settings_.maxRecursions;
+            }
+            void setOuterRings(bool v)
+            {
+                settings_.outerRings = v;
+            }
+            bool getOuterRings() const
+            {
+                return settings_.outerRings;
+            }
+            void setMaxPaths(int v)
+            {
+                settings_.maxPaths = v;
+            }
+            int getMaxPaths() const
+            {
+                return settings_.maxPaths;
+            }
+            /** \brief "length" (shortest) or "clearance" (largest minimum clearance) picks the solution. */
+            void setObjective(const std::string &v);
+            const std::string &getObjective() const
+            {
+                return objective_;
+            }
+            /** \brief "auto", "jmap", "projection", "hierarchy" or "surface". */
+            void setMode(const std::string &v);
+            const std::string &getMode() const
+            {
+                return mode_;
+            }
+            void setAxis1(int v)
+            {
+                axis1_ = v;
+            }
+            int getAxis1() const
+            {
+                return axis1_;
+            }
+            void setAxis2(int v)
+            {
+                axis2_ = v;
+            }
+            int getAxis2() const
+            {
+                return axis2_;
+            }
+            /** \brief Orientation of the trajectory-restriction plane about the start-goal line (radians). */
+            void setSurfaceAngle(double v)
+            {
+                surfaceAngle_ = v;
+            }
+            double getSurfaceAngle() const
+            {
+                return surfaceAngle_;
+            }
+            /** \brief The hand value of hierarchy mode (-1: the first value that is neither axis). */
+            void setHandAxis(int v)
+            {
+                handAxis_ = v;
+            }
+            int getHandAxis() const
+            {
+                return handAxis_;
+            }
+
+            /** \brief The searches of the last solve (for pictures and tests). */
+            const std::vector<Stage> &stages() const
+            {
+                return stages_;
+            }
+            /** \brief The mode the last solve used ("jmap", "projection", "hierarchy"). */
+            const std::string &usedMode() const
+            {
+                return usedMode_;
+            }
+            /** \brief Every full path the last solve found and checked (the solution is one of them). */
+            const std::vector<std::vector<ompl::base::State *>> &fullPaths() const
+            {
+                return fullPaths_;
+            }
+
+        private:
+            struct Axes;
+            bool solveJMap(const std::vector<double> &start, const std::vector<double> &goal,
+                           const ompl::base::PlannerTerminationCondition &ptc);
+            bool solveProjection(const std::vector<double> &start, const std::vector<double> &goal,
+                                 const ompl::base::PlannerTerminationCondition &ptc);
+            bool solveHierarchy(const std::vector<double> &start, const std::vector<double> &goal,
+                                const ompl::base::PlannerTerminationCondition &ptc);
+            bool solveSurface(const std::vector<double> &start, const std::vector<double> &goal,
+                              const ompl::base::PlannerTerminationCondition &ptc);
+            /** states of path \e i of stage \e s (every segment checked with the motion validator); empty when
+                a segment fails */
+            std::vector<ompl::base::State *> liftPath(const Stage &stage, std::size_t i, bool check);
+            void freePaths();
+            double pathCost(const std::vector<ompl::base::State *> &states) const;
+
+            ConcentricCircleSettings settings_;
+            std::string objective_{"length"};
+            std::string mode_{"auto"};
+            int axis1_{0};
+            int axis2_{1};
+            int handAxis_{-1};
+            double surfaceAngle_{0.};
+
+            std::vector<Stage> stages_;
+            std::string usedMode_;
+            std::vector<std::vector<ompl::base::State *>> fullPaths_;
+            int bestPath_{-1};
+            /** states of the exported graph (planner data) */
+            mutable std::vector<std::vector<ompl::base::State *>> stageStates_;
+        };
+    }  // namespace planners
+}  // namespace michi
+
+#endif

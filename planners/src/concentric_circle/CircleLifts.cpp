@@ -1,0 +1,486 @@
+#include <michi/planners/concentric_circle/CircleLifts.h>
+
+#include <michi/validity/robot/CollisionBodies.h>
+#include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/jmap/JMap.h>
+#include <michi/validity/jmap/JMapValidityChecker.h>
+#include <michi/validity/jmap/PlanarArm.h>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
+#include <ompl/util/Exception.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace ob = ompl::base;
+namespace bg = boost::geometry;
+
+namespace michi
+{
+    namespace planners
+    {
+        namespace
+        {
+            void collectAxes(const ob::StateSpace &space, std::vector<ValueAxis> &out)
+            {
+                if (space.isCompound())
+                {
+                    const auto &compound = *space.as<ob::CompoundStateSpace>();
+                    for (unsigned int i = 0; i < compound.getSubspaceCount(); ++i)
+                        collectAxes(*compound.getSubspace(i), out);
+                    return;
+                }
+                if (space.getType() == ob::STATE_SPACE_SO2)
+                {
+                    out.push_back({-M_PI, M_PI, true});
+                    return;
+                }
+                if (const auto *rv = dynamic_cast<const ob::RealVectorStateSpace *>(&space))
+                {
+                    const auto &b = rv->getBounds();
+                    for (unsigned int i = 0; i < rv->getDimension(); ++i)
+                        out.push_back({b.low[i], b.high[i], false});
+                    return;
+                }
+                throw ompl::Exception("ConcentricCircle",
+                                      "state space '" + space.getName() +
+                                          "' is neither a real vector nor an SO(2) space (nor a compound of them)");
+            }
+
+            /** b - a, the short way round on a wrapping axis */
+            double difference(const ValueAxis &axis, double a, double b)
+            {
+                double d = b - a;
+                if (axis.wraps)
+                {
+                    const double period = axis.hi - axis.lo;
+                    d -= period * std::round(d / period);
+                }
+                return d;
+            }
+
+            std::vector<double> interpolate(const std::vector<ValueAxis> &axes, const std::vector<double> &from,
+                                            const std::vector<double> &to, double t)
+            {
+                std::vector<double> v(from.size());
+                for (std::size_t i = 0; i < from.size(); ++i)
+                    v[i] = from[i] + t * difference(axes[i], from[i], to[i]);
+                return v;
+            }
+
+            /** the validity checker's FCL checker and robot (null when it is not michi's) */
+            const validity::FclValidityChecker *fclOf(const ob::SpaceInformationPtr &si)
+            {
+                const auto *checker = si->getStateValidityChecker().get();
+                if (const auto *f = dynamic_cast<const validity::FclValidityChecker *>(checker))
+                    return f;
+                if (const auto *j = dynamic_cast<const validity::JMapValidityChecker *>(checker))
+                    return j->fcl().get();
+                return nullptr;
+            }
+        }  // namespace
+
+        std::vector<ValueAxis> valueAxes(const ob::StateSpace &space)
+        {
+            std::vector<ValueAxis> out;
+            collectAxes(space, out);
+            return out;
+        }
+
+        void setStateValues(const ob::StateSpace &space, const std::vector<double> &values, ob::State *state)
+        {
+            space.copyFromReals(state, values);
+            space.enforceBounds(state);
+        }
+
+        // ---------------------------------------------------------------- projection
+
+        ProjectionLift::ProjectionLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal,
+                                       int axis1, int axis2)
+            : si_(std::move(si))
+            , start_(std::move(start))
+            , goal_(std::move(goal))
+            , axis1_(axis1)
+            , axis2_(axis2)
+            , axes_(valueAxes(*si_->getStateSpace()))
+        {
+            if (axes_.size() != start_.size())
+                throw ompl::Exception("ConcentricCircle", "the space's values do not match its components");
+            start2_ = Eigen::Vector2d(start_[axis1_], start_[axis2_]);
+            goal2_ = start2_ + Eigen::Vector2d(difference(axes_[axis1_], start_[axis1_], goal_[axis1_]),
+                                               difference(axes_[axis2_], start_[axis2_], goal_[axis2_]));
+            a_ = si_->allocState();
+            b_ = si_->allocState();
+        }
+
+        ProjectionLift::~ProjectionLift()
+        {
+            si_->freeState(a_);
+            si_->freeState(b_);
+        }
+
+        std::vector<double> ProjectionLift::values(const Eigen::Vector2d &p) const
+        {
+            const Eigen::Vector2d d = goal2_ - start2_;
+            const double len2 = d.squaredNorm();
+            const double t = len2 > 0. ? std::clamp((p - start2_).dot(d) / len2, 0., 1.) : 0.;
+            std::vector<double> v = interpolate(axes_, start_, goal_, t);
+            v[axis1_] = p.x();
+            v[axis2_] = p.y();
+            return v;
+        }
+
+        void ProjectionLift::lift(const Eigen::Vector2d &p, ob::State *state) const
+        {
+            setStateValues(*si_->getStateSpace(), values(p), state);
+        }
+
+        std::shared_ptr<CircleMap> ProjectionLift::makeMap() const
+        {
+            auto map = std::make_shared<CallbackCircleMap>(
+                [this](const Eigen::Vector2d &p)
+                {
+                    lift(p, a_);
+                    return si_->isValid(a_);
+                },
+                [this](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                {
+                    lift(a, a_);
+                    lift(b, b_);
+                    return si_->checkMotion(a_, b_);
+                });
+            map->lo = Eigen::Vector2d(axes_[axis1_].lo, axes_[axis2_].lo);
+            map->hi = Eigen::Vector2d(axes_[axis1_].hi, axes_[axis2_].hi);
+            map->wraps = {{axes_[axis1_].wraps, axes_[axis2_].wraps}};
+            return map;
+        }
+
+        // ---------------------------------------------------------------- hand map
+
+        HandLift::HandLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal, int axis1,
+                           int axis2, int hand, std::vector<Eigen::Vector2d> armPath)
+            : si_(std::move(si))
+            , start_(std::move(start))
+            , goal_(std::move(goal))
+            , axis1_(axis1)
+            , axis2_(axis2)
+            , hand_(hand)
+            , axes_(valueAxes(*si_->getStateSpace()))
+            , arm_(std::move(armPath))
+        {
+            s_.push_back(0.);
+            for (std::size_t i = 1; i < arm_.size(); ++i)
+                s_.push_back(s_.back() + (arm_[i] - arm_[i - 1]).norm());
+            // an arm that does not move still gets a short axis, so the hand can turn
+            length_ = std::max(s_.back(), 1e-3);
+            start2_ = Eigen::Vector2d(0., start_[hand_]);
+            goal2_ = Eigen::Vector2d(length_, start_[hand_] + difference(axes_[hand_], start_[hand_], goal_[hand_]));
+            a_ = si_->allocState();
+            b_ = si_->allocState();
+        }
+
+        HandLift::~HandLift()
+        {
+            si_->freeState(a_);
+            si_->freeState(b_);
+        }
+
+        std::vector<double> HandLift::values(const Eigen::Vector2d &p) const
+        {
+            const double x = std::clamp(p.x(), 0., length_);
+            std::vector<double> v = interpolate(axes_, start_, goal_, x / length_);
+            Eigen::Vector2d arm = arm_.back();
+            const auto it = std::upper_bound(s_.begin(), s_.end(), x);
+            if (it != s_.end())
+            {
+                const std::size_t k = std::max<std::ptrdiff_t>(0, (it - s_.begin()) - 1);
+                const double seg = s_[k + 1] - s_[k];
+                const double f = seg > 0. ? (x - s_[k]) / seg : 0.;
+                arm = arm_[k] + f * (arm_[k + 1] - arm_[k]);
+            }
+            v[axis1_] = arm.x();
+            v[axis2_] = arm.y();
+            v[hand_] = p.y();
+            return v;
+        }
+
+        void HandLift::lift(const Eigen::Vector2d &p, ob::State *state) const
+        {
+            setStateValues(*si_->getStateSpace(), values(p), state);
+        }
+
+        std::vector<Eigen::Vector2d> HandLift::breakpoints(const Eigen::Vector2d &a, const Eigen::Vector2d &b) const
+        {
+            std::vector<Eigen::Vector2d> out;
+            const double lo = std::min(a.x(), b.x()), hi = std::max(a.x(), b.x());
+            for (std::size_t k = 1; k + 1 < s_.size(); ++k)
+                if (s_[k] > lo + 1e-12 && s_[k] < hi - 1e-12)
+                {
+                    const double f = (s_[k] - a.x()) / (b.x() - a.x());
+                    out.emplace_back(s_[k], a.y() + f * (b.y() - a.y()));
+                }
+            if (b.x() < a.x())
+                std::reverse(out.begin(), out.end());
+            return out;
+        }
+
+        std::shared_ptr<CircleMap> HandLift::makeMap() const
+        {
+            auto map = std::make_shared<CallbackCircleMap>(
+                [this](const Eigen::Vector2d &p)
+                {
+                    lift(p, a_);
+                    return si_->isValid(a_);
+                },
+                [this](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                {
+                    std::vector<Eigen::Vector2d> pts{a};
+                    for (const auto &q : breakpoints(a, b))
+                        pts.push_back(q);
+                    pts.push_back(b);
+                    for (std::size_t i = 1; i < pts.size(); ++i)
+                    {
+                        lift(pts[i - 1], a_);
+                        lift(pts[i], b_);
+                        if (!si_->checkMotion(a_, b_))
+                            return false;
+                    }
+                    return true;
+                },
+                [this](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                {
+                    return breakpoints(a, b);
+                });
+            map->lo = Eigen::Vector2d(0., axes_[hand_].lo);
+            map->hi = Eigen::Vector2d(length_, axes_[hand_].hi);
+            map->wraps = {{false, axes_[hand_].wraps}};
+            return map;
+        }
+
+        // ---------------------------------------------------------------- trajectory-restriction surface
+
+        SurfaceLift::SurfaceLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal,
+                                 double angle, double margin)
+            : si_(std::move(si)), start_(std::move(start)), margin_(margin)
+        {
+            const auto axes = valueAxes(*si_->getStateSpace());
+            const std::size_t n = start_.size();
+            std::vector<double> d(n);
+            for (std::size_t i = 0; i < n; ++i)
+                d[i] = difference(axes[i], start_[i], goal[i]);
+            double len = 0.;
+            for (double x : d)
+                len += x * x;
+            len = std::sqrt(len);
+            e1_.assign(n, 0.);
+            if (len > 0.)
+                for (std::size_t i = 0; i < n; ++i)
+                    e1_[i] = d[i] / len;
+            else
+                e1_[0] = 1.;
+            // the two coordinate axes least aligned with e1, orthonormalised against e1 (and each other)
+            std::vector<std::size_t> order(n);
+            for (std::size_t i = 0; i < n; ++i)
+                order[i] = i;
+            std::stable_sort(order.begin(), order.end(),
+                             [this](std::size_t a, std::size_t b)
+                             {
+                                 return std::abs(e1_[a]) < std::abs(e1_[b]);
+                             });
+            std::vector<std::vector<double>> basis{e1_};
+            for (std::size_t k = 0; k < n && basis.size() < 3; ++k)
+            {
+                std::vector<double> v(n, 0.);
+                v[order[k]] = 1.;
+                for (const auto &b : basis)
+                {
+                    double dot = 0.;
+                    for (std::size_t i = 0; i < n; ++i)
+                        dot += v[i] * b[i];
+                    for (std::size_t i = 0; i < n; ++i)
+                        v[i] -= dot * b[i];
+                }
+                double norm = 0.;
+                for (double x : v)
+                    norm += x * x;
+                norm = std::sqrt(norm);
+                if (norm < 1e-9)
+                    continue;
+                for (double &x : v)
+                    x /= norm;
+                basis.push_back(v);
+            }
+            e2_.assign(n, 0.);
+            for (std::size_t i = 0; i < n; ++i)
+                e2_[i] = std::cos(angle) * basis[1][i] + (basis.size() > 2 ? std::sin(angle) * basis[2][i] : 0.);
+            start2_ = Eigen::Vector2d::Zero();
+            goal2_ = Eigen::Vector2d(len, 0.);
+            a_ = si_->allocState();
+            b_ = si_->allocState();
+        }
+
+        SurfaceLift::~SurfaceLift()
+        {
+            si_->freeState(a_);
+            si_->freeState(b_);
+        }
+
+        std::vector<double> SurfaceLift::values(const Eigen::Vector2d &p) const
+        {
+            std::vector<double> v(start_);
+            for (std::size_t i = 0; i < v.size(); ++i)
+                v[i] += p.x() * e1_[i] + p.y() * e2_[i];
+            return v;
+        }
+
+        void SurfaceLift::lift(const Eigen::Vector2d &p, ob::State *state) const
+        {
+            setStateValues(*si_->getStateSpace(), values(p), state);
+        }
+
+        std::shared_ptr<CircleMap> SurfaceLift::makeMap() const
+        {
+            auto map = std::make_shared<CallbackCircleMap>(
+                [this](const Eigen::Vector2d &p)
+                {
+                    // values beyond a bounded joint's limits are outside the map (not clamped)
+                    si_->getStateSpace()->copyFromReals(a_, values(p));
+                    if (!si_->satisfiesBounds(a_))
+                    {
+                        si_->getStateSpace()->enforceBounds(a_);
+                        std::vector<double> wrapped;
+                        si_->getStateSpace()->copyToReals(wrapped, a_);
+                        const auto v = values(p);
+                        const auto axes = valueAxes(*si_->getStateSpace());
+                        for (std::size_t i = 0; i < v.size(); ++i)
+                            if (!axes[i].wraps && std::abs(wrapped[i] - v[i]) > 1e-12)
+                                return false;
+                    }
+                    return si_->isValid(a_);
+                },
+                [this](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                {
+                    lift(a, a_);
+                    lift(b, b_);
+                    return si_->checkMotion(a_, b_);
+                });
+            map->lo = Eigen::Vector2d(-margin_, -margin_);
+            map->hi = Eigen::Vector2d(goal2_.x() + margin_, margin_);
+            return map;
+        }
+
+        bool isPlanarArm(const ob::SpaceInformationPtr &si)
+        {
+            const auto *fcl = fclOf(si);
+            const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
+            if (rgb == nullptr)
+                return false;
+            try
+            {
+                validity::PlanarArm::fromModel(*rgb->model());
+                return true;
+            }
+            catch (const std::invalid_argument &)
+            {
+                return false;
+            }
+        }
+
+        // ---------------------------------------------------------------- J-map polygons
+
+        std::shared_ptr<CircleMap> makeJMapCircleMap(const ob::SpaceInformationPtr &si)
+        {
+            auto *checker = dynamic_cast<validity::JMapValidityChecker *>(si->getStateValidityChecker().get());
+            if (checker == nullptr)
+                return nullptr;
+            const auto axes = valueAxes(*si->getStateSpace());
+            if (axes.size() != 2 || axes[0].wraps || axes[1].wraps)
+                return nullptr;
+            const auto *rgb = dynamic_cast<const validity::RobotGroupBodies *>(checker->fcl()->bodies().get());
+            if (rgb == nullptr || rgb->variables().size() != 2 || rgb->variables()[0] != checker->axes().axis1 ||
+                rgb->variables()[1] != checker->axes().axis2)
+                return nullptr;
+            checker->buildAll();
+            // every tile's polygons, united (tiles split regions at their borders)
+            std::set<const validity::JMap *> seen;
+            validity::MultiPolygon2 all;
+            const int samples = static_cast<int>(checker->tileCount()) * 4;
+            for (int i = 0; i < samples; ++i)
+            {
+                const double theta1 = axes[0].lo + (i + 0.5) * (axes[0].hi - axes[0].lo) / samples;
+                const validity::JMap &tile = checker->tile(theta1);
+                if (!seen.insert(&tile).second)
+                    continue;
+                for (const auto &poly : tile.polygons())
+                {
+                    validity::MultiPolygon2 merged;
+                    bg::union_(all, poly, merged);
+                    all = std::move(merged);
+                }
+            }
+            return std::make_shared<PolygonCircleMap>(all, Eigen::Vector2d(axes[0].lo, axes[1].lo),
+                                                      Eigen::Vector2d(axes[0].hi, axes[1].hi));
+        }
+
+        // ---------------------------------------------------------------- the arm without its hand
+
+        std::shared_ptr<CircleMap> makeArmCircleMap(const ob::SpaceInformationPtr &si, const ProjectionLift &arm,
+                                                    const std::vector<int> &handValues)
+        {
+            const auto *fcl = fclOf(si);
+            const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
+            validity::PlanarArmPtr planar;
+            if (rgb != nullptr)
+            {
+                try
+                {
+                    planar = validity::PlanarArm::fromModel(*rgb->model());
+                }
+                catch (const std::invalid_argument &)
+                {
+                    planar.reset();
+                }
+            }
+            if (!planar)
+                return arm.makeMap();
+            const auto &variables = rgb->variables();
+            std::vector<double> start = arm.values(arm.start2());
+            std::vector<double> configuration = rgb->fullConfiguration(start.data());
+            std::vector<int> links;
+            for (std::size_t l = 0; l < planar->links().size(); ++l)
+            {
+                bool hand = false;
+                for (const int h : handValues)
+                    hand = hand || planar->moves(variables[h], static_cast<int>(l));
+                if (!hand)
+                    links.push_back(static_cast<int>(l));
+            }
+            auto axes = validity::planarAxes(*planar, variables[arm.axis1()], variables[arm.axis2()], configuration);
+            auto source =
+                std::make_shared<validity::PlanarIntervalSource>(planar, fcl->scene()->polygons2d(), axes, links);
+            const auto &valueAxis = arm.axes();
+            const ValueAxis ax1 = valueAxis[arm.axis1()], ax2 = valueAxis[arm.axis2()];
+            auto freeAt = [source](const Eigen::Vector2d &p)
+            {
+                return !source->collides(p.x(), p.y());
+            };
+            auto map = std::make_shared<CallbackCircleMap>(
+                freeAt,
+                [freeAt](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                {
+                    const double step = 0.005;
+                    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+                    for (int i = 0; i <= n; ++i)
+                        if (!freeAt(a + (b - a) * (static_cast<double>(i) / n)))
+                            return false;
+                    return true;
+                });
+            map->lo = Eigen::Vector2d(ax1.lo, ax2.lo);
+            map->hi = Eigen::Vector2d(ax1.hi, ax2.hi);
+            map->wraps = {{ax1.wraps, ax2.wraps}};
+            return map;
+        }
+    }  // namespace planners
+}  // namespace michi

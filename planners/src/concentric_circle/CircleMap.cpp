@@ -1,0 +1,189 @@
+#include <michi/planners/concentric_circle/CircleMap.h>
+
+#include <boost/geometry/index/rtree.hpp>
+
+#include <algorithm>
+#include <utility>
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace michi
+{
+    namespace planners
+    {
+        namespace
+        {
+            double cross(const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+            }
+
+            bool onSegment(const Eigen::Vector2d &p, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                return std::min(a.x(), b.x()) - 1e-12 <= p.x() && p.x() <= std::max(a.x(), b.x()) + 1e-12 &&
+                       std::min(a.y(), b.y()) - 1e-12 <= p.y() && p.y() <= std::max(a.y(), b.y()) + 1e-12;
+            }
+
+            /** closed segments [p1, p2] and [q1, q2] share a point */
+            bool segmentsTouch(const Eigen::Vector2d &p1, const Eigen::Vector2d &p2, const Eigen::Vector2d &q1,
+                               const Eigen::Vector2d &q2)
+            {
+                const double d1 = cross(q1, q2, p1), d2 = cross(q1, q2, p2);
+                const double d3 = cross(p1, p2, q1), d4 = cross(p1, p2, q2);
+                if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+                    return true;
+                const double eps = 1e-14;
+                return (std::abs(d1) <= eps && onSegment(p1, q1, q2)) ||
+                       (std::abs(d2) <= eps && onSegment(p2, q1, q2)) ||
+                       (std::abs(d3) <= eps && onSegment(q1, p1, p2)) || (std::abs(d4) <= eps && onSegment(q2, p1, p2));
+            }
+
+            double segmentDistance(const Eigen::Vector2d &p, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                const Eigen::Vector2d ab = b - a;
+                const double len2 = ab.squaredNorm();
+                const double t = len2 > 0. ? std::clamp((p - a).dot(ab) / len2, 0., 1.) : 0.;
+                return (a + t * ab - p).norm();
+            }
+
+            using Value = std::pair<validity::Box2, int>;
+        }  // namespace
+
+        std::vector<Eigen::Vector2d> CircleMap::breakpoints(const Eigen::Vector2d &, const Eigen::Vector2d &) const
+        {
+            return {};
+        }
+
+        bool CircleMap::obstacleEdges(const Eigen::Vector2d &, double, std::vector<Edge2> &) const
+        {
+            return false;
+        }
+
+        bool CircleMap::inRange(const Eigen::Vector2d &p) const
+        {
+            for (int i = 0; i < 2; ++i)
+                if (!wraps[i] && (p[i] < lo[i] || p[i] > hi[i]))
+                    return false;
+            return true;
+        }
+
+        CallbackCircleMap::CallbackCircleMap(PointTest isFree, SegmentTest isVisible, Breaks breaks)
+            : isFree_(std::move(isFree)), isVisible_(std::move(isVisible)), breaks_(std::move(breaks))
+        {
+        }
+
+        bool CallbackCircleMap::isFree(const Eigen::Vector2d &p) const
+        {
+            return inRange(p) && isFree_(p);
+        }
+
+        bool CallbackCircleMap::isVisible(const Eigen::Vector2d &a, const Eigen::Vector2d &b) const
+        {
+            return isVisible_(a, b);
+        }
+
+        std::vector<Eigen::Vector2d> CallbackCircleMap::breakpoints(const Eigen::Vector2d &a,
+                                                                    const Eigen::Vector2d &b) const
+        {
+            return breaks_ ? breaks_(a, b) : std::vector<Eigen::Vector2d>{};
+        }
+
+        struct PolygonCircleMap::Index
+        {
+            bgi::rtree<Value, bgi::quadratic<16>> tree;
+        };
+
+        PolygonCircleMap::PolygonCircleMap(validity::MultiPolygon2 obstacles, const Eigen::Vector2d &lo,
+                                           const Eigen::Vector2d &hi)
+            : obstacles_(std::move(obstacles)), index_(std::make_unique<Index>())
+        {
+            this->lo = lo;
+            this->hi = hi;
+            auto addRing = [this](const validity::Polygon2::ring_type &ring)
+            {
+                // closed rings: the last point repeats the first
+                const std::size_t n = ring.size() > 0 ? ring.size() - 1 : 0;
+                if (n < 2)
+                    return;
+                const int first = static_cast<int>(edges_.size());
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    const auto &p = ring[i], &q = ring[i + 1];
+                    edges_.push_back({{p.x(), p.y()}, {q.x(), q.y()}});
+                    prev_.push_back(i == 0 ? first + static_cast<int>(n) - 1 : static_cast<int>(edges_.size()) - 2);
+                }
+            };
+            for (const auto &poly : obstacles_)
+            {
+                addRing(poly.outer());
+                for (const auto &inner : poly.inners())
+                    addRing(inner);
+            }
+            next_.assign(edges_.size(), -1);
+            for (std::size_t e = 0; e < edges_.size(); ++e)
+                next_[prev_[e]] = static_cast<int>(e);
+            std::vector<Value> values;
+            values.reserve(edges_.size());
+            for (std::size_t e = 0; e < edges_.size(); ++e)
+            {
+                const auto &ed = edges_[e];
+                validity::Box2 box(validity::Point2(std::min(ed.a.x(), ed.b.x()), std::min(ed.a.y(), ed.b.y())),
+                                   validity::Point2(std::max(ed.a.x(), ed.b.x()), std::max(ed.a.y(), ed.b.y())));
+                values.emplace_back(box, static_cast<int>(e));
+            }
+            index_->tree = bgi::rtree<Value, bgi::quadratic<16>>(values.begin(), values.end());
+        }
+
+        PolygonCircleMap::~PolygonCircleMap() = default;
+
+        bool PolygonCircleMap::isFree(const Eigen::Vector2d &p) const
+        {
+            return inRange(p) && !bg::covered_by(validity::Point2(p.x(), p.y()), obstacles_);
+        }
+
+        bool PolygonCircleMap::blocked(const Eigen::Vector2d &a, const Eigen::Vector2d &b, int skip1, int skip2) const
+        {
+            validity::Box2 box(validity::Point2(std::min(a.x(), b.x()), std::min(a.y(), b.y())),
+                               validity::Point2(std::max(a.x(), b.x()), std::max(a.y(), b.y())));
+            for (auto it = index_->tree.qbegin(bgi::intersects(box)); it != index_->tree.qend(); ++it)
+            {
+                const int e = it->second;
+                if (e == skip1 || e == skip2)
+                    continue;
+                if (segmentsTouch(a, b, edges_[e].a, edges_[e].b))
+                    return true;
+            }
+            return false;
+        }
+
+        bool PolygonCircleMap::isVisible(const Eigen::Vector2d &a, const Eigen::Vector2d &b) const
+        {
+            if (!inRange(a) || !inRange(b))
+                return false;
+            // both ends free and no edge crossed or touched: the whole segment is outside every polygon
+            return !blocked(a, b, -1, -1) && isFree(a) && isFree(b);
+        }
+
+        bool PolygonCircleMap::obstacleEdges(const Eigen::Vector2d &p, double range, std::vector<Edge2> &edges) const
+        {
+            validity::Box2 box(validity::Point2(p.x() - range, p.y() - range),
+                               validity::Point2(p.x() + range, p.y() + range));
+            std::vector<int> near;
+            for (auto it = index_->tree.qbegin(bgi::intersects(box)); it != index_->tree.qend(); ++it)
+                near.push_back(it->second);
+            std::sort(near.begin(), near.end());  // deterministic order of the sum
+            for (const int e : near)
+            {
+                const Edge2 &ed = edges_[e];
+                if (segmentDistance(p, ed.a, ed.b) > range)
+                    continue;
+                // vertex a is shared by edges e and prev_[e]; vertex b by e and the edge after e
+                if (blocked(p, ed.a, e, prev_[e]) || blocked(p, ed.b, e, next_[e]))
+                    continue;
+                edges.push_back(ed);
+            }
+            return true;
+        }
+    }  // namespace planners
+}  // namespace michi

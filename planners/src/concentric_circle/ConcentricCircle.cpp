@@ -1,0 +1,490 @@
+#include <michi/planners/concentric_circle/ConcentricCircle.h>
+
+#include <michi/planners/concentric_circle/CircleLifts.h>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/Exception.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace planners
+    {
+        ConcentricCircle::ConcentricCircle(const ob::SpaceInformationPtr &si) : ob::Planner(si, "ConcentricCircle")
+        {
+            specs_.approximateSolutions = false;
+            specs_.optimizingPaths = false;
+            specs_.multithreaded = false;
+            specs_.directed = false;
+            specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
+
+            declareParam<double>("ring_spacing", this, &ConcentricCircle::setRingSpacing,
+                                 &ConcentricCircle::getRingSpacing, "0.005:0.005:1.");
+            declareParam<int>("divisions", this, &ConcentricCircle::setDivisions, &ConcentricCircle::getDivisions,
+                              "8:4:720");
+            declareParam<double>("point_spacing", this, &ConcentricCircle::setPointSpacing,
+                                 &ConcentricCircle::getPointSpacing, "0.:0.01:1.");
+            declareParam<double>("k_goal", this, &ConcentricCircle::setKGoal, &ConcentricCircle::getKGoal,
+                                 "0.:0.1:100.");
+            declareParam<double>("k_obstacle", this, &ConcentricCircle::setKObstacle, &ConcentricCircle::getKObstacle,
+                                 "0.:0.0001:1.");
+            declareParam<double>("potential_range", this, &ConcentricCircle::setPotentialRange,
+                                 &ConcentricCircle::getPotentialRange, "0.:0.01:10.");
+            declareParam<int>("max_arc_points", this, &ConcentricCircle::setMaxArcPoints,
+                              &ConcentricCircle::getMaxArcPoints, "0:1:720");
+            declareParam<bool>("arc_ends", this, &ConcentricCircle::setArcEnds, &ConcentricCircle::getArcEnds, "0,1");
+            declareParam<int>("max_recursions", this, &ConcentricCircle::setMaxRecursions,
+                              &ConcentricCircle::getMaxRecursions, "0:1:1000");
+            declareParam<bool>("outer_rings", this, &ConcentricCircle::setOuterRings, &ConcentricCircle::getOuterRings,
+                               "0,1");
+            declareParam<int>("max_paths", this, &ConcentricCircle::setMaxPaths, &ConcentricCircle::getMaxPaths,
+                              "1:1:1000");
+            declareParam<std::string>("objective", this, &ConcentricCircle::setObjective,
+                                      &ConcentricCircle::getObjective, "length,clearance");
+            declareParam<std::string>("mode", this, &ConcentricCircle::setMode, &ConcentricCircle::getMode,
+                                      "auto,jmap,projection,hierarchy,surface");
+            declareParam<int>("axis1", this, &ConcentricCircle::setAxis1, &ConcentricCircle::getAxis1, "0:1:100");
+            declareParam<int>("axis2", this, &ConcentricCircle::setAxis2, &ConcentricCircle::getAxis2, "0:1:100");
+            declareParam<double>("surface_angle", this, &ConcentricCircle::setSurfaceAngle,
+                                 &ConcentricCircle::getSurfaceAngle, "-3.15:0.05:3.15");
+            declareParam<int>("hand_axis", this, &ConcentricCircle::setHandAxis, &ConcentricCircle::getHandAxis,
+                              "-1:1:100");
+        }
+
+        ConcentricCircle::~ConcentricCircle()
+        {
+            freePaths();
+        }
+
+        void ConcentricCircle::setObjective(const std::string &v)
+        {
+            if (v != "length" && v != "clearance")
+                throw ompl::Exception(getName(), "objective must be 'length' or 'clearance', got '" + v + "'");
+            objective_ = v;
+        }
+
+        void ConcentricCircle::setMode(const std::string &v)
+        {
+            if (v != "auto" && v != "jmap" && v != "projection" && v != "hierarchy" && v != "surface")
+                throw ompl::Exception(getName(),
+                                      "mode must be auto, jmap, projection, hierarchy or surface, got '" + v + "'");
+            mode_ = v;
+        }
+
+        void ConcentricCircle::setup()
+        {
+            ob::Planner::setup();
+        }
+
+        void ConcentricCircle::freePaths()
+        {
+            for (auto &p : fullPaths_)
+                for (auto *s : p)
+                    si_->freeState(s);
+            fullPaths_.clear();
+            for (auto &p : stageStates_)
+                for (auto *s : p)
+                    si_->freeState(s);
+            stageStates_.clear();
+            bestPath_ = -1;
+        }
+
+        void ConcentricCircle::clear()
+        {
+            ob::Planner::clear();
+            freePaths();
+            stages_.clear();
+            usedMode_.clear();
+        }
+
+        std::vector<ob::State *> ConcentricCircle::liftPath(const Stage &stage, std::size_t i, bool check)
+        {
+            const auto points = stage.search->pathPoints(i);
+            std::vector<ob::State *> states;
+            for (const auto &p : points)
+            {
+                states.push_back(si_->allocState());
+                stage.lift(p, states.back());
+            }
+            bool ok = true;
+            for (std::size_t j = 1; check && ok && j < states.size(); ++j)
+                ok = si_->checkMotion(states[j - 1], states[j]);
+            if (!ok)
+            {
+                for (auto *s : states)
+                    si_->freeState(s);
+                states.clear();
+            }
+            return states;
+        }
+
+        double ConcentricCircle::pathCost(const std::vector<ob::State *> &states) const
+        {
+            if (objective_ == "length")
+            {
+                double len = 0.;
+                for (std::size_t j = 1; j < states.size(); ++j)
+                    len += si_->distance(states[j - 1], states[j]);
+                return len;
+            }
+            // clearance: the smallest clearance along the path (interpolated at the validity resolution), negated
+            og::PathGeometric path(si_);
+            for (auto *s : states)
+                path.append(s);
+            path.interpolate();
+            double worst = std::numeric_limits<double>::infinity();
+            const auto &checker = si_->getStateValidityChecker();
+            for (auto *s : path.getStates())
+                worst = std::min(worst, checker->clearance(s));
+            return -worst;
+        }
+
+        bool ConcentricCircle::solveJMap(const std::vector<double> &start, const std::vector<double> &goal,
+                                         const ob::PlannerTerminationCondition &ptc)
+        {
+            auto map = makeJMapCircleMap(si_);
+            if (!map)
+                return false;
+            Stage stage;
+            stage.name = "jmap";
+            stage.map = map;
+            stage.lift = [this](const Eigen::Vector2d &p, ob::State *s)
+            {
+                setStateValues(*si_->getStateSpace(), {p.x(), p.y()}, s);
+            };
+            const Eigen::Vector2d s2(start[0], start[1]), g2(goal[0], goal[1]);
+            if (!map->isFree(s2) || !map->isFree(g2))
+            {
+                OMPL_INFORM("%s: start or goal inside the J-map polygons; using the projection of the checker",
+                            getName().c_str());
+                return false;
+            }
+            stage.search = std::make_shared<ConcentricCircleSearch>(*map, settings_);
+            bool found = stage.search->run(s2, g2, ptc);
+            stages_.push_back(stage);
+            // every path must pass the space's motion validator: drop links it rejects and look again
+            for (int round = 0; found && round < 200 && !ptc; ++round)
+            {
+                bool rejected = false;
+                for (std::size_t i = 0; i < stage.search->paths().size() && !rejected; ++i)
+                {
+                    const auto &nodes = stage.search->paths()[i];
+                    auto states = liftPath(stage, i, false);
+                    for (std::size_t j = 1; j < states.size() && !rejected; ++j)
+                        if (!si_->checkMotion(states[j - 1], states[j]))
+                        {
+                            stage.search->removeLink(nodes[j - 1], nodes[j]);
+                            rejected = true;
+                        }
+                    for (auto *s : states)
+                        si_->freeState(s);
+                }
+                if (!rejected)
+                    break;
+                found = stage.search->collectPaths();
+            }
+            if (!found || ptc)
+                return false;
+            for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
+            {
+                auto states = liftPath(stage, i, true);
+                if (!states.empty())
+                    fullPaths_.push_back(states);
+            }
+            return !fullPaths_.empty();
+        }
+
+        bool ConcentricCircle::solveProjection(const std::vector<double> &start, const std::vector<double> &goal,
+                                               const ob::PlannerTerminationCondition &ptc)
+        {
+            auto projection = std::make_shared<ProjectionLift>(si_, start, goal, axis1_, axis2_);
+            Stage stage;
+            stage.name = "projection";
+            stage.map = projection->makeMap();
+            stage.lift = [projection](const Eigen::Vector2d &p, ob::State *s)
+            {
+                projection->lift(p, s);
+            };
+            stage.search = std::make_shared<ConcentricCircleSearch>(*stage.map, settings_);
+            const bool found = stage.search->run(projection->start2(), projection->goal2(), ptc);
+            stages_.push_back(stage);
+            if (!found || ptc)
+                return false;
+            // every link of these paths was checked with the space's motion validator on the same states
+            for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
+                fullPaths_.push_back(liftPath(stage, i, false));
+            return !fullPaths_.empty();
+        }
+
+        bool ConcentricCircle::solveHierarchy(const std::vector<double> &start, const std::vector<double> &goal,
+                                              const ob::PlannerTerminationCondition &ptc)
+        {
+            const int n = static_cast<int>(start.size());
+            int hand = handAxis_;
+            for (int v = 0; hand < 0 && v < n; ++v)
+                if (v != axis1_ && v != axis2_)
+                    hand = v;
+            if (hand < 0 || hand >= n || hand == axis1_ || hand == axis2_)
+            {
+                OMPL_ERROR("%s: hierarchy mode needs a hand value that is neither axis1 nor axis2", getName().c_str());
+                return false;
+            }
+            // 1. the arm: its own map (without the hand's links when the robot is a planar arm)
+            auto arm = std::make_shared<ProjectionLift>(si_, start, goal, axis1_, axis2_);
+            Stage armStage;
+            armStage.name = "arm";
+            std::vector<int> others;
+            for (int v = 0; v < n; ++v)
+                if (v != axis1_ && v != axis2_)
+                    others.push_back(v);
+            armStage.map = makeArmCircleMap(si_, *arm, others);
+            armStage.lift = [arm](const Eigen::Vector2d &p, ob::State *s)
+            {
+                arm->lift(p, s);
+            };
+            armStage.search = std::make_shared<ConcentricCircleSearch>(*armStage.map, settings_);
+            const bool armFound = armStage.search->run(arm->start2(), arm->goal2(), ptc);
+            stages_.push_back(armStage);
+            if (!armFound || ptc)
+                return false;
+            // 2. along each arm path (shortest first): the hand map, arm-path arc length x hand value
+            for (std::size_t i = 0; i < armStage.search->paths().size() && !ptc; ++i)
+            {
+                auto handLift =
+                    std::make_shared<HandLift>(si_, start, goal, axis1_, axis2_, hand, armStage.search->pathPoints(i));
+                Stage handStage;
+                handStage.name = "hand";
+                handStage.map = handLift->makeMap();
+                handStage.lift = [handLift](const Eigen::Vector2d &p, ob::State *s)
+                {
+                    handLift->lift(p, s);
+                };
+                handStage.search = std::make_shared<ConcentricCircleSearch>(*handStage.map, settings_);
+                const bool handFound = handStage.search->run(handLift->start2(), handLift->goal2(), ptc);
+                if (!handFound)
+                {
+                    // keep the first failed hand map for pictures and diagnostics
+                    if (stages_.size() == 1)
+                        stages_.push_back(handStage);
+                    continue;
+                }
+                stages_.resize(1);
+                stages_[0].chosenPath = static_cast<int>(i);
+                stages_.push_back(handStage);
+                for (std::size_t j = 0; j < handStage.search->paths().size(); ++j)
+                    fullPaths_.push_back(liftPath(handStage, j, false));
+                if (!fullPaths_.empty())
+                    return true;
+                stages_.pop_back();
+            }
+            return false;
+        }
+
+        bool ConcentricCircle::solveSurface(const std::vector<double> &start, const std::vector<double> &goal,
+                                            const ob::PlannerTerminationCondition &ptc)
+        {
+            // the plane at surface_angle, then turned by 45, 90 and 135 degrees (angle and angle + pi give the same
+            // plane); the paper leaves switching surfaces open
+            for (int k = 0; k < 4 && !ptc; ++k)
+            {
+                auto surface = std::make_shared<SurfaceLift>(si_, start, goal, surfaceAngle_ + k * M_PI / 4.);
+                Stage stage;
+                stage.name = "surface";
+                stage.map = surface->makeMap();
+                stage.lift = [surface](const Eigen::Vector2d &p, ob::State *s)
+                {
+                    surface->lift(p, s);
+                };
+                stage.search = std::make_shared<ConcentricCircleSearch>(*stage.map, settings_);
+                const bool found = stage.search->run(surface->start2(), surface->goal2(), ptc);
+                stages_.clear();
+                stages_.push_back(stage);
+                if (!found)
+                    continue;
+                for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
+                    fullPaths_.push_back(liftPath(stage, i, false));
+                return true;
+            }
+            return false;
+        }
+
+        ob::PlannerStatus ConcentricCircle::solve(const ob::PlannerTerminationCondition &ptc)
+        {
+            checkValidity();
+            const ob::State *startState = pis_.nextStart();
+            if (startState == nullptr)
+            {
+                OMPL_ERROR("%s: no valid start state", getName().c_str());
+                return ob::PlannerStatus::INVALID_START;
+            }
+            const ob::State *goalState = nullptr;
+            const auto goal = pdef_->getGoal();
+            if (auto *gs = dynamic_cast<ob::GoalState *>(goal.get()))
+                goalState = gs->getState();
+            else
+                goalState = pis_.nextGoal(ptc);
+            if (goalState == nullptr || !si_->isValid(goalState))
+            {
+                OMPL_ERROR("%s: no valid goal state", getName().c_str());
+                return ob::PlannerStatus::INVALID_GOAL;
+            }
+            if (ptc)
+                return ob::PlannerStatus::TIMEOUT;
+
+            freePaths();
+            stages_.clear();
+            std::vector<double> start, goalValues;
+            si_->getStateSpace()->copyToReals(start, startState);
+            si_->getStateSpace()->copyToReals(goalValues, goalState);
+            const int n = static_cast<int>(start.size());
+            if (axis1_ < 0 || axis2_ < 0 || axis1_ >= n || axis2_ >= n || axis1_ == axis2_)
+            {
+                OMPL_ERROR("%s: axis1 = %d and axis2 = %d must be two different values of the %d-value state",
+                           getName().c_str(), axis1_, axis2_, n);
+                return ob::PlannerStatus::ABORT;
+            }
+
+            bool found = false;
+            usedMode_ = mode_;
+            if (mode_ == "jmap" || mode_ == "auto")
+            {
+                const bool possible = n == 2 && axis1_ == 0 && axis2_ == 1 && makeJMapCircleMap(si_) != nullptr;
+                if (possible)
+                {
+                    usedMode_ = "jmap";
+                    found = solveJMap(start, goalValues, ptc);
+                }
+                else if (mode_ == "jmap")
+                    OMPL_WARN("%s: mode jmap needs a 2-value space checked by a JMapValidityChecker; using projection",
+                              getName().c_str());
+                if (!found && !ptc)
+                {
+                    freePaths();
+                    stages_.clear();
+                    usedMode_ =
+                        (mode_ == "auto" && n >= 3) ? (isPlanarArm(si_) ? "hierarchy" : "surface") : "projection";
+                }
+            }
+            else
+                usedMode_ = mode_;
+            if (!found && !ptc)
+            {
+                if (usedMode_ == "hierarchy" && n >= 3)
+                {
+                    found = solveHierarchy(start, goalValues, ptc);
+                    if (!found && !ptc && mode_ == "auto")
+                    {
+                        // the arm -> hand split found nothing: the restriction surface through start and goal
+                        freePaths();
+                        usedMode_ = "surface";
+                        found = solveSurface(start, goalValues, ptc);
+                    }
+                }
+                else if (usedMode_ == "surface" && n >= 3)
+                    found = solveSurface(start, goalValues, ptc);
+                else
+                {
+                    usedMode_ = "projection";
+                    found = solveProjection(start, goalValues, ptc);
+                }
+            }
+            if (!found)
+            {
+                if (ptc)
+                    return ob::PlannerStatus::TIMEOUT;
+                OMPL_WARN("%s: no path (mode %s, %d recursions)", getName().c_str(), usedMode_.c_str(),
+                          stages_.empty() ? 0 : stages_.back().search->recursions());
+                return ob::PlannerStatus::ABORT;
+            }
+            // the first and last states are the exact start and goal
+            for (auto &p : fullPaths_)
+            {
+                si_->copyState(p.front(), startState);
+                si_->copyState(p.back(), goalState);
+            }
+            // the best path whose every motion the space's motion validator accepts (checked again here, with
+            // the exact start and goal states)
+            std::vector<std::pair<double, int>> ranked;
+            for (std::size_t i = 0; i < fullPaths_.size(); ++i)
+                ranked.emplace_back(pathCost(fullPaths_[i]), static_cast<int>(i));
+            std::stable_sort(ranked.begin(), ranked.end(),
+                             [](const std::pair<double, int> &a, const std::pair<double, int> &b)
+                             {
+                                 return a.first < b.first;
+                             });
+            for (const auto &r : ranked)
+            {
+                const auto &states = fullPaths_[r.second];
+                bool ok = true;
+                for (std::size_t j = 1; ok && j < states.size(); ++j)
+                    ok = si_->checkMotion(states[j - 1], states[j]);
+                if (ok)
+                {
+                    bestPath_ = r.second;
+                    break;
+                }
+                OMPL_WARN("%s: path %d failed the motion validator", getName().c_str(), r.second);
+            }
+            if (bestPath_ < 0)
+                return ob::PlannerStatus::ABORT;
+            if (!stages_.empty())
+                stages_.back().chosenPath = bestPath_;
+            auto path = std::make_shared<og::PathGeometric>(si_);
+            for (auto *s : fullPaths_[bestPath_])
+                path->append(s);
+            pdef_->addSolutionPath(path, false, 0., getName());
+            OMPL_INFORM("%s: %zu paths (mode %s), solution has %zu states", getName().c_str(), fullPaths_.size(),
+                        usedMode_.c_str(), path->getStateCount());
+            return ob::PlannerStatus::EXACT_SOLUTION;
+        }
+
+        void ConcentricCircle::getPlannerData(ob::PlannerData &data) const
+        {
+            ob::Planner::getPlannerData(data);
+            // the states stay with the planner (PlannerData keeps pointers) until the next solve or clear()
+            const bool build = stageStates_.empty();
+            for (std::size_t k = 0; k < stages_.size(); ++k)
+            {
+                const auto &stage = stages_[k];
+                const auto &nodes = stage.search->nodes();
+                if (build)
+                {
+                    std::vector<ob::State *> lifted;
+                    for (const auto &node : nodes)
+                    {
+                        lifted.push_back(si_->allocState());
+                        stage.lift(node.p, lifted.back());
+                    }
+                    stageStates_.push_back(std::move(lifted));
+                }
+                const std::vector<ob::State *> &states = stageStates_[k];
+                const unsigned int tag = static_cast<unsigned int>(k);
+                for (std::size_t v = 0; v < states.size(); ++v)
+                {
+                    if (v == 0)
+                        data.addStartVertex(ob::PlannerDataVertex(states[v], tag));
+                    else if (v == 1)
+                        data.addGoalVertex(ob::PlannerDataVertex(states[v], tag));
+                    else
+                        data.addVertex(ob::PlannerDataVertex(states[v], tag));
+                }
+                for (const auto &link : stage.search->links())
+                {
+                    const ob::PlannerDataVertex a(states[link.first], tag), b(states[link.second], tag);
+                    const ob::Cost c(si_->distance(states[link.first], states[link.second]));
+                    data.addEdge(a, b, ob::PlannerDataEdge(), c);
+                    data.addEdge(b, a, ob::PlannerDataEdge(), c);
+                }
+            }
+        }
+    }  // namespace planners
+}  // namespace michi

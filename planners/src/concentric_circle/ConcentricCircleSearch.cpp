@@ -1,0 +1,657 @@
+#include <michi/planners/concentric_circle/ConcentricCircleSearch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <functional>
+#include <limits>
+#include <queue>
+
+namespace michi
+{
+    namespace planners
+    {
+        namespace
+        {
+            constexpr double INF = std::numeric_limits<double>::infinity();
+
+            double segmentDistance(const Eigen::Vector2d &p, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                const Eigen::Vector2d ab = b - a;
+                const double len2 = ab.squaredNorm();
+                const double t = len2 > 0. ? std::clamp((p - a).dot(ab) / len2, 0., 1.) : 0.;
+                return (a + t * ab - p).norm();
+            }
+
+            /** the oval potential's obstacle term of edge AB at P */
+            double repulsion(const Eigen::Vector2d &p, const Edge2 &e, double kObstacle)
+            {
+                const double dp = std::max((p - e.a).norm() + (p - e.b).norm() - (e.a - e.b).norm(), 1e-9);
+                return kObstacle / (dp * dp);
+            }
+        }  // namespace
+
+        ConcentricCircleSearch::ConcentricCircleSearch(const CircleMap &map, ConcentricCircleSettings settings)
+            : map_(map), settings_(settings)
+        {
+            settings_.divisions = std::max(settings_.divisions, 4);
+            settings_.ringSpacing = std::max(settings_.ringSpacing, 1e-6);
+        }
+
+        Eigen::Vector2d ConcentricCircleSearch::image(const Eigen::Vector2d &from, const Eigen::Vector2d &to) const
+        {
+            Eigen::Vector2d r = to;
+            for (int i = 0; i < 2; ++i)
+                if (map_.wraps[i])
+                {
+                    const double period = map_.hi[i] - map_.lo[i];
+                    r[i] -= period * std::round((r[i] - from[i]) / period);
+                }
+            return r;
+        }
+
+        int ConcentricCircleSearch::addNode(const Eigen::Vector2d &p, int set, int ring)
+        {
+            nodes_.push_back({p, set, ring, 0.});
+            adjacency_.emplace_back();
+            return static_cast<int>(nodes_.size()) - 1;
+        }
+
+        void ConcentricCircleSearch::addLink(int a, int b)
+        {
+            for (const auto &e : adjacency_[a])
+                if (e.first == b)
+                    return;
+            const double len = (image(nodes_[a].p, nodes_[b].p) - nodes_[a].p).norm();
+            adjacency_[a].emplace_back(b, len);
+            adjacency_[b].emplace_back(a, len);
+        }
+
+        bool ConcentricCircleSearch::tryLink(int a, int b)
+        {
+            if (a == b)
+                return false;
+            const Eigen::Vector2d pa = nodes_[a].p, pb = image(pa, nodes_[b].p);
+            if (!map_.isVisible(pa, pb))
+                return false;
+            addLink(a, b);
+            return true;
+        }
+
+        void ConcentricCircleSearch::proposeLink(int a, int b)
+        {
+            if (a == b)
+                return;
+            for (const auto &e : adjacency_[a])
+                if (e.first == b)
+                    return;
+            addLink(a, b);
+            unchecked_.insert({std::min(a, b), std::max(a, b)});
+        }
+
+        bool ConcentricCircleSearch::validateLink(int a, int b)
+        {
+            const auto it = unchecked_.find({std::min(a, b), std::max(a, b)});
+            if (it == unchecked_.end())
+                return true;
+            unchecked_.erase(it);
+            const Eigen::Vector2d pa = nodes_[a].p, pb = image(pa, nodes_[b].p);
+            if (map_.isVisible(pa, pb))
+                return true;
+            removeLink(a, b);
+            return false;
+        }
+
+        bool ConcentricCircleSearch::validatePath(const std::vector<int> &path)
+        {
+            for (std::size_t i = 1; i < path.size(); ++i)
+                if (!validateLink(path[i - 1], path[i]))
+                    return false;
+            return true;
+        }
+
+        bool ConcentricCircleSearch::lazyConnect()
+        {
+            std::vector<double> dist;
+            std::vector<int> parent;
+            while (ptc_ == nullptr || !*ptc_)
+            {
+                dijkstra(0, dist, parent);
+                if (dist[1] == INF)
+                    return false;
+                std::vector<int> path;
+                for (int u = 1; u >= 0; u = parent[u])
+                    path.push_back(u);
+                std::reverse(path.begin(), path.end());
+                if (validatePath(path))
+                    return true;
+            }
+            return false;
+        }
+
+        void ConcentricCircleSearch::removeLink(int a, int b)
+        {
+            auto drop = [this](int from, int to)
+            {
+                auto &adj = adjacency_[from];
+                adj.erase(std::remove_if(adj.begin(), adj.end(),
+                                         [to](const std::pair<int, double> &e)
+                                         {
+                                             return e.first == to;
+                                         }),
+                          adj.end());
+            };
+            drop(a, b);
+            drop(b, a);
+            unchecked_.erase({std::min(a, b), std::max(a, b)});
+        }
+
+        std::vector<std::pair<int, int>> ConcentricCircleSearch::links() const
+        {
+            std::vector<std::pair<int, int>> out;
+            for (std::size_t a = 0; a < adjacency_.size(); ++a)
+                for (const auto &e : adjacency_[a])
+                    if (static_cast<int>(a) < e.first && !unchecked_.count({static_cast<int>(a), e.first}))
+                        out.emplace_back(static_cast<int>(a), e.first);
+            return out;
+        }
+
+        int ConcentricCircleSearch::addSet(int centre, int goal, double spacing, int divisions, bool cover)
+        {
+            CcSet set;
+            set.centreNode = centre;
+            set.goalNode = goal;
+            set.spacing = spacing;
+            set.divisions = divisions;
+            const Eigen::Vector2d c = nodes_[centre].p;
+            set.goalRadius = (image(c, nodes_[goal].p) - c).norm();
+            set.goalRings = std::max(1, static_cast<int>(std::ceil(set.goalRadius / spacing - 1e-9)));
+            double reach = 0.;
+            if (cover)
+            {
+                Eigen::Vector2d far;
+                for (int i = 0; i < 2; ++i)
+                    far[i] = map_.wraps[i] ? 0.5 * (map_.hi[i] - map_.lo[i])
+                                           : std::max(std::abs(c[i] - map_.lo[i]), std::abs(map_.hi[i] - c[i]));
+                reach = far.norm();
+            }
+            set.maxRings = std::max(set.goalRings + 1, static_cast<int>(std::ceil(reach / spacing)));
+            sets_.push_back(set);
+            return static_cast<int>(sets_.size()) - 1;
+        }
+
+        int ConcentricCircleSearch::sampleRing(int s, int k, const ompl::base::PlannerTerminationCondition &ptc)
+        {
+            CcSet &set = sets_[s];
+            if (static_cast<int>(set.rings.size()) >= k)
+                return set.rings[k - 1];
+            // rings are sampled in order
+            const int prevCount = static_cast<int>(set.rings.size());
+            for (int j = prevCount + 1; j <= k; ++j)
+            {
+                CcRing ring;
+                ring.set = s;
+                ring.index = j;
+                ring.radius = j * set.spacing;
+                ring.centre = nodes_[set.centreNode].p;
+                const Eigen::Vector2d towards = image(ring.centre, nodes_[set.goalNode].p) - ring.centre;
+                // the first point faces the goal, so the straight way is always sampled
+                const double phase = towards.norm() > 0. ? std::atan2(towards.y(), towards.x()) : 0.;
+                // the paper's fixed number of points, or more on large circles so that neighbouring points stay
+                // within pointSpacing of each other
+                const double pointSpacing = settings_.pointSpacing * set.spacing / settings_.ringSpacing;
+                const int n =
+                    pointSpacing > 0.
+                        ? std::max(set.divisions, static_cast<int>(std::ceil(2. * M_PI * ring.radius / pointSpacing)))
+                        : set.divisions;
+                ring.points.resize(n);
+                ring.free.assign(n, 0);
+                ring.potential.assign(n, 0.);
+                for (int i = 0; i < n; ++i)
+                {
+                    if (i % 8 == 0 && ptc)
+                        return -1;
+                    const double a = phase + 2. * M_PI * i / n;
+                    ring.points[i] = ring.centre + ring.radius * Eigen::Vector2d(std::cos(a), std::sin(a));
+                    ring.free[i] = map_.isFree(ring.points[i]) ? 1 : 0;
+                }
+                // chords of the blocked runs (at most 6 steps each): the obstacle edges the circles see
+                int firstFree = -1;
+                for (int i = 0; i < n && firstFree < 0; ++i)
+                    if (ring.free[i])
+                        firstFree = i;
+                if (firstFree < 0)
+                {
+                    for (int i = 0; i < n; i += 6)
+                        ring.blockedEdges.push_back({ring.points[i], ring.points[std::min(i + 6, n) % n]});
+                }
+                else
+                {
+                    for (int step = 1; step <= n; ++step)
+                    {
+                        const int i = (firstFree + step) % n;
+                        if (ring.free[i] || !ring.free[(i + n - 1) % n])
+                            continue;
+                        // a blocked run starts at i
+                        int len = 0;
+                        while (!ring.free[(i + len) % n])
+                            ++len;
+                        for (int from = 0; from < len; from += 6)
+                        {
+                            const int to = std::min(from + 6, len - 1);
+                            ring.blockedEdges.push_back({ring.points[(i + from) % n], ring.points[(i + to) % n]});
+                            if (to == len - 1)
+                                break;
+                        }
+                    }
+                }
+                rings_.push_back(std::move(ring));
+                sets_[s].rings.push_back(static_cast<int>(rings_.size()) - 1);
+            }
+            return sets_[s].rings[k - 1];
+        }
+
+        double ConcentricCircleSearch::potential(const Eigen::Vector2d &p, const Eigen::Vector2d &goal, int s,
+                                                 int k) const
+        {
+            double phi = -settings_.kGoal / std::max((p - goal).norm(), 1e-9);
+            std::vector<Edge2> edges;
+            if (!map_.obstacleEdges(p, settings_.potentialRange, edges))
+            {
+                // no polygons: the blocked runs of this circle and its neighbours stand for the obstacle edges
+                const CcSet &set = sets_[s];
+                for (int j = std::max(1, k - 1); j <= std::min(k + 1, static_cast<int>(set.rings.size())); ++j)
+                    for (const Edge2 &e : rings_[set.rings[j - 1]].blockedEdges)
+                        if (segmentDistance(p, e.a, e.b) <= settings_.potentialRange)
+                            edges.push_back(e);
+            }
+            for (const Edge2 &e : edges)
+                phi += repulsion(p, e, settings_.kObstacle);
+            return phi;
+        }
+
+        bool ConcentricCircleSearch::linkRing(int s, int k, const ompl::base::PlannerTerminationCondition &ptc)
+        {
+            if (sampleRing(s, k, ptc) < 0)
+                return false;
+            if (k < sets_[s].maxRings && sampleRing(s, k + 1, ptc) < 0)
+                return false;
+            const int r = sets_[s].rings[k - 1];
+            if (rings_[r].linked)
+                return true;
+            const CcSet set = sets_[s];
+            const Eigen::Vector2d goal = image(nodes_[set.centreNode].p, nodes_[set.goalNode].p);
+            const int n = static_cast<int>(rings_[r].points.size());
+            // free arcs: maximal runs of free points (cyclic); the minimum-potential point of each is a candidate
+            std::vector<char> freeMask = rings_[r].free;
+            int firstBlocked = -1;
+            for (int i = 0; i < n && firstBlocked < 0; ++i)
+                if (!freeMask[i])
+                    firstBlocked = i;
+            std::vector<std::vector<int>> arcs;
+            if (firstBlocked < 0)
+            {
+                arcs.emplace_back();
+                for (int i = 0; i < n; ++i)
+                    arcs.back().push_back(i);
+            }
+            else
+            {
+                for (int step = 1; step <= n; ++step)
+                {
+                    const int i = (firstBlocked + step) % n;
+                    if (!freeMask[i])
+                        continue;
+                    if (!freeMask[(i + n - 1) % n])
+                        arcs.emplace_back();
+                    arcs.back().push_back(i);
+                }
+            }
+            // Candidates of each free arc, in order along it: the minimum-potential point of the arc (the paper);
+            // with maxArcPoints > 0 a long arc is cut into pieces of at most that many points (an angle: finer
+            // circles of a recursion get proportionally more points per piece), one minimum each; with arcEnds
+            // the arc's two end points (next to the obstacles) as well. Neighbours along one arc are linked when
+            // their chord is free, so chains can follow an arc around an obstacle.
+            const int piecePoints = settings_.maxArcPoints > 0
+                                        ? std::max(1, settings_.maxArcPoints * set.divisions / settings_.divisions)
+                                        : n;
+            auto candidate = [&](int i)
+            {
+                const int node = addNode(rings_[r].points[i], s, r);
+                nodes_[node].potential = rings_[r].potential[i];
+                rings_[r].candidates.push_back(node);
+                return node;
+            };
+            std::vector<std::vector<int>> chains;
+            for (const auto &arc : arcs)
+            {
+                if (ptc)
+                    return false;
+                for (const int i : arc)
+                    rings_[r].potential[i] = potential(rings_[r].points[i], goal, s, k);
+                const bool closed = static_cast<int>(arc.size()) == n;
+                const bool ends = settings_.arcEnds && !closed && arc.size() >= 3;
+                std::vector<int> chain;
+                if (ends)
+                    chain.push_back(candidate(arc.front()));
+                const int count = (static_cast<int>(arc.size()) + piecePoints - 1) / piecePoints;
+                const int size = (static_cast<int>(arc.size()) + count - 1) / count;
+                for (std::size_t from = 0; from < arc.size(); from += size)
+                {
+                    int best = -1;
+                    double bestPhi = INF;
+                    for (std::size_t j = from; j < std::min(arc.size(), from + size); ++j)
+                        if (rings_[r].potential[arc[j]] < bestPhi)
+                        {
+                            bestPhi = rings_[r].potential[arc[j]];
+                            best = arc[j];
+                        }
+                    if (ends && (best == arc.front() || best == arc.back()))
+                        continue;  // already a candidate
+                    chain.push_back(candidate(best));
+                }
+                if (ends)
+                    chain.push_back(candidate(arc.back()));
+                if (closed && chain.size() > 2)
+                    chain.push_back(chain.front());
+                chains.push_back(std::move(chain));
+            }
+            for (const auto &chain : chains)
+                for (std::size_t j = 1; j < chain.size(); ++j)
+                {
+                    if (ptc)
+                        return false;
+                    proposeLink(chain[j - 1], chain[j]);
+                }
+            // links: to the centre (first circle) or to the candidates of the circle inside, and to the goal when
+            // this circle is next to the goal's radius
+            const std::vector<int> candidates = rings_[r].candidates;
+            for (const int c : candidates)
+            {
+                if (ptc)
+                    return false;
+                if (k == 1)
+                    proposeLink(set.centreNode, c);
+                else
+                    for (const int d : rings_[set.rings[k - 2]].candidates)
+                    {
+                        // with cut arcs, only candidates within two pieces' angle of each other are tried
+                        if (settings_.maxArcPoints > 0)
+                        {
+                            const Eigen::Vector2d centre = rings_[r].centre;
+                            const Eigen::Vector2d u = nodes_[c].p - centre, v = nodes_[d].p - centre;
+                            const double angle = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+                            if (std::abs(angle) > 2. * 2. * M_PI * std::min(piecePoints, n / 4) / n + 1e-9)
+                                continue;
+                        }
+                        proposeLink(d, c);
+                    }
+                // the paper's rule (the circle passes the goal), or the goal (another image of it on a wrapping
+                // axis) lies within two spacings
+                const Eigen::Vector2d pc = nodes_[c].p;
+                if (std::abs(rings_[r].radius - set.goalRadius) <= set.spacing + 1e-12 ||
+                    (image(pc, nodes_[set.goalNode].p) - pc).norm() <= 2. * set.spacing)
+                    proposeLink(c, set.goalNode);
+            }
+            rings_[r].linked = true;
+            return true;
+        }
+
+        std::vector<char> ConcentricCircleSearch::component(int from) const
+        {
+            std::vector<char> seen(nodes_.size(), 0);
+            std::deque<int> open{from};
+            seen[from] = 1;
+            while (!open.empty())
+            {
+                const int v = open.front();
+                open.pop_front();
+                for (const auto &e : adjacency_[v])
+                    if (!seen[e.first])
+                    {
+                        seen[e.first] = 1;
+                        open.push_back(e.first);
+                    }
+            }
+            return seen;
+        }
+
+        bool ConcentricCircleSearch::connected()
+        {
+            return lazyConnect();
+        }
+
+        void ConcentricCircleSearch::dijkstra(int source, std::vector<double> &dist, std::vector<int> &parent) const
+        {
+            dist.assign(nodes_.size(), INF);
+            parent.assign(nodes_.size(), -1);
+            using Item = std::pair<double, int>;
+            std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+            dist[source] = 0.;
+            open.emplace(0., source);
+            while (!open.empty())
+            {
+                const auto [d, v] = open.top();
+                open.pop();
+                if (d > dist[v])
+                    continue;
+                for (const auto &e : adjacency_[v])
+                    if (d + e.second < dist[e.first])
+                    {
+                        dist[e.first] = d + e.second;
+                        parent[e.first] = v;
+                        open.emplace(dist[e.first], e.first);
+                    }
+            }
+        }
+
+        bool ConcentricCircleSearch::collectPaths()
+        {
+            paths_.clear();
+            if (!lazyConnect())
+                return false;
+            std::vector<double> distS, distG;
+            std::vector<int> parS, parG;
+            std::vector<std::pair<double, std::vector<int>>> found;
+            auto fromStart = [&](int v)
+            {
+                std::vector<int> p;
+                for (int u = v; u >= 0; u = parS[u])
+                    p.push_back(u);
+                std::reverse(p.begin(), p.end());
+                return p;
+            };
+            auto toGoal = [&](int v)
+            {
+                std::vector<int> p;
+                for (int u = v; u >= 0; u = parG[u])
+                    p.push_back(u);
+                return p;
+            };
+            // a new path (no node twice, not yet found) whose links all pass the visibility check
+            auto add = [&](std::vector<int> p)
+            {
+                if (p.size() < 2 || p.front() != 0 || p.back() != 1)
+                    return true;
+                std::vector<int> sorted = p;
+                std::sort(sorted.begin(), sorted.end());
+                if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+                    return true;
+                for (const auto &f : found)
+                    if (f.second == p)
+                        return true;
+                if (!validatePath(p))
+                    return false;
+                double len = 0.;
+                for (std::size_t i = 1; i < p.size(); ++i)
+                    len += (image(nodes_[p[i - 1]].p, nodes_[p[i]].p) - nodes_[p[i - 1]].p).norm();
+                found.emplace_back(len, std::move(p));
+                return true;
+            };
+            dijkstra(0, distS, parS);
+            add(fromStart(1));
+            // alternatives: the shortest path through each link of the goal and through each link of the start
+            // (left and right of an obstacle, ...); a path whose link fails its check is looked for again
+            std::vector<int> goalLinks, startLinks;
+            for (const auto &e : adjacency_[1])
+                goalLinks.push_back(e.first);
+            for (const auto &e : adjacency_[0])
+                startLinks.push_back(e.first);
+            for (const int v : goalLinks)
+                for (int attempt = 0; attempt < 8 && static_cast<int>(found.size()) < settings_.maxPaths; ++attempt)
+                {
+                    dijkstra(0, distS, parS);
+                    if (distS[v] == INF || std::none_of(adjacency_[v].begin(), adjacency_[v].end(),
+                                                        [](const std::pair<int, double> &e)
+                                                        {
+                                                            return e.first == 1;
+                                                        }))
+                        break;
+                    auto p = fromStart(v);
+                    p.push_back(1);
+                    if (add(p))
+                        break;
+                }
+            for (const int u : startLinks)
+                for (int attempt = 0; attempt < 8 && static_cast<int>(found.size()) < settings_.maxPaths; ++attempt)
+                {
+                    dijkstra(1, distG, parG);
+                    if (distG[u] == INF || std::none_of(adjacency_[u].begin(), adjacency_[u].end(),
+                                                        [](const std::pair<int, double> &e)
+                                                        {
+                                                            return e.first == 0;
+                                                        }))
+                        break;
+                    auto p = toGoal(u);
+                    p.insert(p.begin(), 0);
+                    if (add(p))
+                        break;
+                }
+            std::stable_sort(found.begin(), found.end(),
+                             [](const auto &a, const auto &b)
+                             {
+                                 return a.first < b.first;
+                             });
+            for (std::size_t i = 0; i < found.size() && static_cast<int>(i) < settings_.maxPaths; ++i)
+                paths_.push_back(found[i].second);
+            return !paths_.empty();
+        }
+
+        bool ConcentricCircleSearch::run(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,
+                                         const ompl::base::PlannerTerminationCondition &ptc)
+        {
+            ptc_ = &ptc;
+            const bool found = runCircles(start, goal, ptc);
+            ptc_ = nullptr;
+            return found;
+        }
+
+        bool ConcentricCircleSearch::runCircles(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,
+                                                const ompl::base::PlannerTerminationCondition &ptc)
+        {
+            nodes_.clear();
+            rings_.clear();
+            sets_.clear();
+            adjacency_.clear();
+            unchecked_.clear();
+            paths_.clear();
+            tried_.clear();
+            recursions_ = 0;
+            addNode(start, -1, -1);
+            addNode(image(start, goal), -1, -1);
+            if (ptc || !map_.isFree(nodes_[0].p) || !map_.isFree(nodes_[1].p))
+                return false;
+            proposeLink(0, 1);  // the straight segment, when free, is one of the paths
+            // 1. the paper's circles: from the start until the goal is reached
+            const int main = addSet(0, 1, settings_.ringSpacing, settings_.divisions, settings_.outerRings);
+            for (int k = 1; k <= sets_[main].goalRings + 1 && k <= sets_[main].maxRings; ++k)
+                if (!linkRing(main, k, ptc))
+                    return collectPaths();
+            // 2. more circles around the start until they cover the map
+            for (int k = sets_[main].goalRings + 2; !connected() && k <= sets_[main].maxRings; ++k)
+                if (!linkRing(main, k, ptc))
+                    return collectPaths();
+            // 3. recursion: the closest pair of unlinked nodes (one reached from the start, one reaching the goal)
+            //    becomes a new start and goal, with finer circles
+            std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> triedPositions;
+            while (!connected() && recursions_ < settings_.maxRecursions && !ptc)
+            {
+                const std::vector<char> fromS = component(0), fromG = component(1);
+                int bestA = -1, bestB = -1;
+                double bestD = INF;
+                // a pair next to one already tried (both ends within two spacings) would repeat it: skipped
+                auto nearTried = [&](const Eigen::Vector2d &pa, const Eigen::Vector2d &pb)
+                {
+                    const double near = 2. * settings_.ringSpacing;
+                    for (const auto &t : triedPositions)
+                        if (((t.first - pa).norm() < near && (t.second - pb).norm() < near))
+                            return true;
+                    return false;
+                };
+                for (std::size_t a = 0; a < nodes_.size(); ++a)
+                    if (fromS[a])
+                        for (std::size_t b = 0; b < nodes_.size(); ++b)
+                            if (fromG[b] && !tried_.count({static_cast<int>(a), static_cast<int>(b)}) &&
+                                !nearTried(nodes_[a].p, nodes_[b].p))
+                            {
+                                const double d = (image(nodes_[a].p, nodes_[b].p) - nodes_[a].p).norm();
+                                if (d < bestD)
+                                {
+                                    bestD = d;
+                                    bestA = static_cast<int>(a);
+                                    bestB = static_cast<int>(b);
+                                }
+                            }
+                if (bestA < 0)
+                    break;
+                tried_.insert({bestA, bestB});
+                triedPositions.emplace_back(nodes_[bestA].p, nodes_[bestB].p);
+                ++recursions_;
+                if (tryLink(bestA, bestB))
+                    continue;  // the new start sees the new goal
+                // finer circles as the recursions go on (1/2, 1/4, 1/8 of the spacing, as many more points), and
+                // centred alternately on the goal's side and on the start's side: a goal at the end of a narrow
+                // channel is found from its own circles, whose small radii see the channel's way out
+                const int level = std::min((recursions_ + 1) / 2, 3);
+                const double spacing = settings_.ringSpacing / (1 << level);
+                const int divisions = settings_.divisions * (1 << level);
+                const bool fromGoalSide = recursions_ % 2 == 1;
+                const int s = fromGoalSide ? addSet(bestB, bestA, spacing, divisions, false)
+                                           : addSet(bestA, bestB, spacing, divisions, false);
+                for (int k = 1; k <= sets_[s].goalRings + 2 && k <= sets_[s].maxRings; ++k)
+                    if (!linkRing(s, k, ptc))
+                        return collectPaths();
+            }
+            return collectPaths();
+        }
+
+        std::vector<Eigen::Vector2d> ConcentricCircleSearch::pathPoints(std::size_t i) const
+        {
+            std::vector<Eigen::Vector2d> out;
+            const auto &path = paths_.at(i);
+            for (std::size_t j = 0; j < path.size(); ++j)
+            {
+                if (j == 0)
+                {
+                    out.push_back(nodes_[path[0]].p);
+                    continue;
+                }
+                const Eigen::Vector2d from = out.back();
+                const Eigen::Vector2d to = image(from, nodes_[path[j]].p);
+                for (const auto &b : map_.breakpoints(from, to))
+                    out.push_back(b);
+                out.push_back(to);
+            }
+            return out;
+        }
+
+        double ConcentricCircleSearch::pathLength(std::size_t i) const
+        {
+            const auto pts = pathPoints(i);
+            double len = 0.;
+            for (std::size_t j = 1; j < pts.size(); ++j)
+                len += (pts[j] - pts[j - 1]).norm();
+            return len;
+        }
+    }  // namespace planners
+}  // namespace michi

@@ -1,0 +1,479 @@
+#include <michi/planners/dual_roadmap/NonStopExecutor.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace michi
+{
+    namespace planners
+    {
+        namespace
+        {
+            const double EPS = 1e-9;
+        }
+
+        NonStopExecutor::NonStopExecutor(NonStopHooks hooks, NonStopSettings settings)
+            : hooks_(std::move(hooks)), settings_(settings)
+        {
+            if (!hooks_.plan || !hooks_.distance || !hooks_.interpolate || !hooks_.firstInterference ||
+                !hooks_.clearance)
+                throw std::invalid_argument(
+                    "NonStopExecutor: plan, distance, interpolate, firstInterference and "
+                    "clearance hooks are required");
+            if (!(settings_.speed > 0.) || !(settings_.deceleration > 0.))
+                throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive");
+            if (!(settings_.planningDelay >= 0.))
+                throw std::invalid_argument("NonStopExecutor: planningDelay must not be negative");
+            thread_ = std::thread(
+                [this]
+                {
+                    planningThread();
+                });
+        }
+
+        NonStopExecutor::~NonStopExecutor()
+        {
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                quit_ = true;
+                cancel_ = true;
+            }
+            cv_.notify_all();
+            thread_.join();
+        }
+
+        const char *NonStopExecutor::name(ExecState s)
+        {
+            switch (s)
+            {
+                case ExecState::IDLE:
+                    return "Idle";
+                case ExecState::EXECUTE:
+                    return "Execute";
+                case ExecState::UPDATE_PROBLEM:
+                    return "Update problem";
+                case ExecState::REPLANNING:
+                    return "Replanning";
+                case ExecState::STOPPING:
+                    return "Stopping";
+                case ExecState::STOPPED:
+                    return "Stopped";
+                case ExecState::FINISHED:
+                    return "Finished";
+            }
+            return "?";
+        }
+
+        const char *NonStopExecutor::name(PlanState s)
+        {
+            return s == PlanState::PLANNING ? "Planning" : "Wait query";
+        }
+
+        const char *NonStopExecutor::name(Signal s)
+        {
+            switch (s)
+            {
+                case Signal::START:
+                    return "Start";
+                case Signal::STOP:
+                    return "Stop";
+                case Signal::GEO_CHANGE:
+                    return "Geo. change";
+                case Signal::QUERY:
+                    return "Query";
+                case Signal::FINISHED:
+                    return "Finished";
+                case Signal::CANCELLED:
+                    return "Cancelled";
+                case Signal::PATH_FOUND:
+                    return "Path found";
+                case Signal::STEP:
+                    return "Step";
+            }
+            return "?";
+        }
+
+        NonStopExecutor::PlanState NonStopExecutor::planState() const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            return busy_ || !queries_.empty() ? PlanState::PLANNING : PlanState::WAIT_QUERY;
+        }
+
+        void NonStopExecutor::planningThread()
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            while (true)
+            {
+                cv_.wait(lock,
+                         [this]
+                         {
+                             return quit_ || !queries_.empty();
+                         });
+                if (quit_)
+                    return;
+                Query query = std::move(queries_.front());
+                queries_.pop_front();
+                busy_ = true;
+                cancel_ = false;
+                lock.unlock();
+
+                Reply reply;
+                reply.id = query.id;
+                const auto begin = std::chrono::steady_clock::now();
+                reply.found = hooks_.plan(query.from, query.goal, query.snapshot, cancel_, reply.path);
+                reply.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+
+                lock.lock();
+                if (cancel_ || reply.path.empty())
+                    reply.found = false;
+                replies_.push_back(std::move(reply));
+                busy_ = false;
+                cv_.notify_all();
+            }
+        }
+
+        void NonStopExecutor::waitForPlanner()
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            cv_.wait(lock,
+                     [this]
+                     {
+                         return queries_.empty() && !busy_;
+                     });
+        }
+
+        bool NonStopExecutor::waitForPlanner(double seconds)
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            return cv_.wait_for(lock, std::chrono::duration<double>(seconds),
+                                [this]
+                                {
+                                    return queries_.empty() && !busy_;
+                                });
+        }
+
+        void NonStopExecutor::transition(ExecState to, Signal signal)
+        {
+            transitions_.push_back(Transition{exec_, signal, to});
+            exec_ = to;
+        }
+
+        void NonStopExecutor::sendQuery(const Configuration &from, double planStartArc)
+        {
+            cancelQuery();
+            Query query;
+            query.from = from;
+            query.goal = goal_;
+            query.snapshot = hooks_.sensedWorld ? hooks_.sensedWorld() : 0;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                query.id = ++nextId_;
+                activeQuery_ = query.id;
+                activeSentAt_ = time_;
+                queries_.push_back(std::move(query));
+            }
+            cv_.notify_all();
+            if (settings_.synchronous)
+                waitForPlanner();
+            planStartArc_ = planStartArc;
+            pendingPath_ = false;
+            ++stats_.queries;
+            transitions_.push_back(Transition{exec_, Signal::QUERY, exec_});
+        }
+
+        void NonStopExecutor::cancelQuery()
+        {
+            if (activeQuery_ == 0)
+                return;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                // a query still waiting is dropped; the one being planned is told to stop
+                for (auto it = queries_.begin(); it != queries_.end();)
+                {
+                    if (it->id == activeQuery_)
+                    {
+                        Reply reply;
+                        reply.id = it->id;
+                        replies_.push_back(std::move(reply));
+                        it = queries_.erase(it);
+                    }
+                    else
+                        ++it;
+                }
+                if (busy_)
+                    cancel_ = true;
+            }
+            activeQuery_ = 0;
+            pendingPath_ = false;
+            ++stats_.cancelled;
+        }
+
+        double NonStopExecutor::pathLength() const
+        {
+            return arc_.empty() ? 0. : arc_.back();
+        }
+
+        void NonStopExecutor::setPath(ConfigurationPath path)
+        {
+            path_ = std::move(path);
+            arc_.assign(path_.size(), 0.);
+            for (std::size_t i = 1; i < path_.size(); ++i)
+                arc_[i] = arc_[i - 1] + hooks_.distance(path_[i - 1], path_[i]);
+            s_ = 0.;
+            if (!path_.empty())
+                current_ = path_.front();
+        }
+
+        Configuration NonStopExecutor::at(double s) const
+        {
+            if (path_.empty())
+                return current_;
+            if (s <= 0.)
+                return path_.front();
+            if (s >= arc_.back())
+                return path_.back();
+            const auto it = std::upper_bound(arc_.begin(), arc_.end(), s);
+            const std::size_t i = static_cast<std::size_t>(it - arc_.begin());  // arc_[i-1] <= s < arc_[i]
+            const double length = arc_[i] - arc_[i - 1];
+            Configuration q;
+            hooks_.interpolate(path_[i - 1], path_[i], length > 0. ? (s - arc_[i - 1]) / length : 0., q);
+            return q;
+        }
+
+        ConfigurationPath NonStopExecutor::segment(double a, double b) const
+        {
+            ConfigurationPath out;
+            out.push_back(at(a));
+            if (b > a)
+            {
+                for (std::size_t i = 0; i < path_.size(); ++i)
+                    if (arc_[i] > a + EPS && arc_[i] < b - EPS)
+                        out.push_back(path_[i]);
+            }
+            else
+            {
+                for (std::size_t i = path_.size(); i-- > 0;)
+                    if (arc_[i] < a - EPS && arc_[i] > b + EPS)
+                        out.push_back(path_[i]);
+            }
+            if (std::fabs(b - a) > EPS)
+                out.push_back(at(b));
+            return out;
+        }
+
+        ConfigurationPath NonStopExecutor::remainingPath() const
+        {
+            return segment(s_, pathLength());
+        }
+
+        void NonStopExecutor::start(const Configuration &current, const Configuration &goal)
+        {
+            if (exec_ != ExecState::IDLE && exec_ != ExecState::FINISHED)
+                throw std::logic_error("NonStopExecutor::start: already running");
+            goal_ = goal;
+            velocity_ = 0.;
+            setPath({current});
+            transition(ExecState::STOPPED, Signal::START);
+            sendQuery(current, 0.);
+        }
+
+        void NonStopExecutor::stop()
+        {
+            cancelQuery();
+            velocity_ = 0.;
+            setPath({current_});
+            transition(ExecState::IDLE, Signal::STOP);
+        }
+
+        void NonStopExecutor::geoChange()
+        {
+            if (exec_ == ExecState::IDLE || exec_ == ExecState::FINISHED)
+                return;
+            takeReplies();
+            const double hit = hooks_.firstInterference(remainingPath());
+            const bool free = std::isinf(hit);
+            switch (exec_)
+            {
+                case ExecState::EXECUTE:
+                {
+                    transition(ExecState::UPDATE_PROBLEM, Signal::GEO_CHANGE);
+                    if (free)
+                    {
+                        transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                        return;
+                    }
+                    if (hooks_.deform)
+                    {
+                        ConfigurationPath deformed = remainingPath();
+                        if (hooks_.deform(deformed))
+                        {
+                            setPath(std::move(deformed));
+                            ++stats_.deformations;
+                            transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                            return;
+                        }
+                    }
+                    // replan from the point where a safe stop would begin, and keep moving until there
+                    const double room = hit - settings_.stopMargin - brakingDistance();
+                    if (room > EPS)
+                    {
+                        stopArc_ = s_ + room;
+                        transition(ExecState::REPLANNING, Signal::GEO_CHANGE);
+                        sendQuery(at(stopArc_), stopArc_);
+                    }
+                    else
+                    {
+                        // too close already: brake now and plan from where the robot will stand
+                        stopArc_ = s_;
+                        const double stand = std::min(pathLength(), s_ + brakingDistance());
+                        transition(ExecState::STOPPING, Signal::GEO_CHANGE);
+                        sendQuery(at(stand), stand);
+                    }
+                    return;
+                }
+                case ExecState::REPLANNING:
+                case ExecState::STOPPING:
+                case ExecState::STOPPED:
+                    if (free)
+                    {
+                        // the predicted interference is gone: cancel replanning, go on with the original path
+                        cancelQuery();
+                        transitions_.push_back(Transition{exec_, Signal::CANCELLED, exec_});
+                        transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                        return;
+                    }
+                    if (exec_ == ExecState::REPLANNING)
+                        stopArc_ =
+                            std::min(stopArc_, s_ + std::max(0., hit - settings_.stopMargin - brakingDistance()));
+                    if (exec_ == ExecState::STOPPED && activeQuery_ == 0)
+                        sendQuery(current_, s_);
+                    return;
+                default:
+                    return;
+            }
+        }
+
+        void NonStopExecutor::takeReplies()
+        {
+            std::deque<Reply> replies;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                replies.swap(replies_);
+            }
+            for (auto &reply : replies)
+            {
+                if (reply.id != activeQuery_)
+                    continue;  // a cancelled query's answer
+                if (time_ < activeSentAt_ + settings_.planningDelay - EPS)
+                {
+                    // not yet due on the simulated clock: keep it for a later step
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    replies_.push_front(std::move(reply));
+                    continue;
+                }
+                activeQuery_ = 0;
+                if (!reply.found)
+                {
+                    ++stats_.failures;
+                    transitions_.push_back(Transition{exec_, Signal::CANCELLED, exec_});
+                    // try again: from the robot when it stands, else from the stop point
+                    if (exec_ == ExecState::STOPPED)
+                        sendQuery(current_, s_);
+                    else if (exec_ == ExecState::REPLANNING)
+                        sendQuery(at(stopArc_), stopArc_);
+                    else if (exec_ == ExecState::STOPPING)
+                        sendQuery(at(std::min(pathLength(), s_ + brakingDistance())),
+                                  std::min(pathLength(), s_ + brakingDistance()));
+                    continue;
+                }
+                stats_.latencies.push_back(reply.seconds);
+                onPathFound(reply);
+            }
+        }
+
+        void NonStopExecutor::onPathFound(Reply &reply)
+        {
+            if (exec_ == ExecState::STOPPING)
+            {
+                // finish the stop first (the new path may start behind the robot)
+                pendingPath_ = true;
+                pending_ = std::move(reply.path);
+                return;
+            }
+            ConfigurationPath candidate = segment(s_, planStartArc_);
+            for (std::size_t i = 1; i < reply.path.size(); ++i)
+                candidate.push_back(reply.path[i]);
+            if (reply.path.size() == 1)
+                candidate.push_back(reply.path[0]);
+            ++stats_.pathsFound;
+            if (!std::isinf(hooks_.firstInterference(candidate)))
+            {
+                // the world moved on while planning: ask again
+                transitions_.push_back(Transition{exec_, Signal::PATH_FOUND, exec_});
+                if (exec_ == ExecState::REPLANNING)
+                    sendQuery(at(stopArc_), stopArc_);
+                else if (exec_ == ExecState::STOPPED)
+                    sendQuery(current_, s_);
+                return;
+            }
+            setPath(std::move(candidate));
+            transition(ExecState::EXECUTE, Signal::PATH_FOUND);
+        }
+
+        void NonStopExecutor::step(double dt)
+        {
+            time_ += dt;
+            if (exec_ == ExecState::IDLE || exec_ == ExecState::FINISHED)
+                return;
+            takeReplies();
+            switch (exec_)
+            {
+                case ExecState::EXECUTE:
+                case ExecState::REPLANNING:
+                    velocity_ = std::min(settings_.speed, velocity_ + settings_.deceleration * dt);
+                    break;
+                case ExecState::STOPPING:
+                    velocity_ = std::max(0., velocity_ - settings_.deceleration * dt);
+                    break;
+                default:
+                    velocity_ = 0.;
+            }
+            s_ = std::min(pathLength(), s_ + velocity_ * dt);
+            current_ = at(s_);
+
+            if (exec_ == ExecState::EXECUTE && s_ >= pathLength() - EPS)
+            {
+                velocity_ = 0.;
+                cancelQuery();
+                if (hooks_.distance(current_, goal_) <= 1e-6)
+                {
+                    transition(ExecState::FINISHED, Signal::FINISHED);
+                    return;
+                }
+                // the end of a partial path (an escape that did not reach the goal): wait there for a path
+                transition(ExecState::STOPPED, Signal::STEP);
+                sendQuery(current_, s_);
+                return;
+            }
+            if (exec_ == ExecState::REPLANNING &&
+                (s_ >= stopArc_ - EPS || hooks_.clearance(current_) < settings_.safetyDistance))
+                transition(ExecState::STOPPING, Signal::STEP);
+            if (exec_ == ExecState::STOPPING && velocity_ <= 0.)
+            {
+                ++stats_.stops;
+                transition(ExecState::STOPPED, Signal::STEP);
+                if (pendingPath_)
+                {
+                    pendingPath_ = false;
+                    Reply reply;
+                    reply.path = std::move(pending_);
+                    onPathFound(reply);
+                }
+                else if (activeQuery_ == 0)
+                    sendQuery(current_, s_);
+            }
+        }
+    }  // namespace planners
+}  // namespace michi

@@ -1,0 +1,408 @@
+#include <michi/planners/path_seed/PathSeed.h>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/geometric/PathSimplifier.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Exception.h>
+
+#include <stdexcept>
+#include <thread>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace planners
+    {
+        namespace
+        {
+            enum Source
+            {
+                NONE = 0,
+                RECALL,
+                STITCH,
+                REPAIR,
+                SCRATCH
+            };
+        }
+
+        PathSeed::PathSeed(const ob::SpaceInformationPtr &si)
+            : ob::Planner(si, "PathSeed"), library_(std::make_shared<PathSeedLibrary>())
+        {
+            specs_.approximateSolutions = false;
+            specs_.optimizingPaths = false;
+            specs_.multithreaded = true;
+            specs_.directed = false;
+            specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
+            declareParam<std::string>("library_file", this, &PathSeed::setLibraryFile, &PathSeed::getLibraryFile);
+            declareParam<unsigned int>("candidates", this, &PathSeed::setCandidates, &PathSeed::getCandidates,
+                                       "0:1:50");
+            declareParam<std::string>("repair", this, &PathSeed::setRepair, &PathSeed::getRepair);
+            declareParam<std::string>("variant", this, &PathSeed::setVariant, &PathSeed::getVariant);
+            declareParam<bool>("race", this, &PathSeed::setRace, &PathSeed::getRace, "0,1");
+            declareParam<bool>("learn", this, &PathSeed::setLearn, &PathSeed::getLearn, "0,1");
+            declareParam<double>("range", this, &PathSeed::setRange, &PathSeed::getRange, "0.:0.1:10.");
+            declareParam<bool>("stitch", this, &PathSeed::setStitch, &PathSeed::getStitch, "0,1");
+            declareParam<unsigned int>("check_threads", this, &PathSeed::setCheckThreads, &PathSeed::getCheckThreads,
+                                       "1:1:8");
+            declareParam<bool>("anchored", this, &PathSeed::setAnchored, &PathSeed::getAnchored, "0,1");
+            declareParam<unsigned int>("stitch_neighbours", this, &PathSeed::setStitchNeighbours,
+                                       &PathSeed::getStitchNeighbours, "1:1:20");
+            declareParam<unsigned int>("shortcut_steps", this, &PathSeed::setShortcutSteps, &PathSeed::getShortcutSteps,
+                                       "0:1:1000");
+            addPlannerProgressProperty("library seeds INTEGER",
+                                       [this]
+                                       {
+                                           return std::to_string(library_->size());
+                                       });
+        }
+
+        PathSeed::~PathSeed() = default;
+
+        void PathSeed::setLibraryFile(const std::string &file)
+        {
+            if (file.empty() || file == libraryFile_)
+            {
+                libraryFile_ = file;
+                return;
+            }
+            auto lib = PathSeedLibrary::load(file);  // throws PathSeedFileError naming file and line
+            if (lib->size() > 0 && lib->dimension() != si_->getStateDimension())
+                throw std::invalid_argument(file + ": path seeds of dimension " + std::to_string(lib->dimension()) +
+                                            ", the state space has " + std::to_string(si_->getStateDimension()));
+            library_ = lib;
+            libraryFile_ = file;
+        }
+
+        void PathSeed::saveLibrary(const std::string &file) const
+        {
+            library_->save(file);
+        }
+
+        void PathSeed::setLibrary(PathSeedLibraryPtr library)
+        {
+            if (!library)
+                throw std::invalid_argument("PathSeed: null library");
+            library_ = std::move(library);
+        }
+
+        void PathSeed::setRepair(const std::string &method)
+        {
+            if (method != "rrtconnect" && method != "stomp" && method != "none")
+                throw std::invalid_argument("PathSeed: repair must be rrtconnect, stomp or none, got '" + method + "'");
+            repair_ = method;
+        }
+
+        void PathSeed::setVariant(const std::string &variant)
+        {
+            const SeedVariant v = seedVariantFromName(variant);  // throws for an unknown name
+            if (v != library_->variant())
+                library_ = std::make_shared<PathSeedLibrary>(v);
+        }
+
+        std::string PathSeed::getVariant() const
+        {
+            return seedVariantName(library_->variant());
+        }
+
+        std::string PathSeed::getLastSource() const
+        {
+            switch (lastSource_.load())
+            {
+                case RECALL:
+                    return "recall";
+                case STITCH:
+                    return "stitch";
+                case REPAIR:
+                    return "repair";
+                case SCRATCH:
+                    return "scratch";
+                default:
+                    return "";
+            }
+        }
+
+        std::size_t PathSeed::experienceCount() const
+        {
+            return library_->size();
+        }
+
+        bool PathSeed::loadExperience(const std::string &file)
+        {
+            setLibraryFile(file);
+            return true;
+        }
+
+        Eigen::VectorXd PathSeed::toVector(const ob::State *state) const
+        {
+            std::vector<double> reals;
+            si_->getStateSpace()->copyToReals(reals, state);
+            return Eigen::Map<const Eigen::VectorXd>(reals.data(), reals.size());
+        }
+
+        void PathSeed::addExperience(const og::PathGeometric &path)
+        {
+            if (path.getStateCount() < 2)
+                return;
+            std::vector<Eigen::VectorXd> p;
+            for (const auto *s : const_cast<og::PathGeometric &>(path).getStates())
+                p.push_back(toVector(s));
+            library_->add(p);
+        }
+
+        void PathSeed::setup()
+        {
+            Planner::setup();
+        }
+
+        void PathSeed::clear()
+        {
+            Planner::clear();
+            decoded_.clear();
+            solution_.clear();
+            scratch_.reset();
+            lastSource_ = NONE;
+            lastChecks_ = 0;
+        }
+
+        bool PathSeed::recall(const ob::State *start, const ob::State *goal, const ob::PlannerTerminationCondition &ptc,
+                              og::PathGeometric &out)
+        {
+            decoded_.clear();
+            anchoredPaths_.clear();
+            if (library_->size() == 0 || candidates_ == 0)
+                return false;
+            const Eigen::VectorXd s = toVector(start), g = toVector(goal);
+            const auto seeds = library_->candidates(s, g, candidates_);
+            const auto space = si_->getStateSpace();
+            std::vector<Eigen::VectorXd> decoded;
+            std::vector<double> reals(s.size());
+            unsigned long checks = 0;
+            bool found = false;
+            for (const auto &seed : seeds)
+            {
+                if (ptc)
+                    break;
+                decodePath(seed.code, s, g, decoded);
+                og::PathGeometric path(si_, start);
+                ob::State *state = si_->allocState();
+                for (std::size_t i = 1; i + 1 < decoded.size(); ++i)
+                {
+                    for (std::size_t k = 0; k < reals.size(); ++k)
+                        reals[k] = decoded[i][k];
+                    space->copyFromReals(state, reals);
+                    space->enforceBounds(state);  // joint limits clamp, continuous joints wrap
+                    path.append(state);
+                }
+                si_->freeState(state);
+                path.append(goal);
+                decoded_.push_back(path);
+                // for stitching only: the seed's own path moved to end at the new goal, and to start at the new
+                // start (exact reproduction gives it back from the seed); near a narrow goal or start the seed's
+                // absolute approach often fits where the decoded one, turned with the new line, does not
+                if (anchored_)
+                {
+                    decodePath(seed.code, seed.start, seed.goal, decoded);
+                    for (const Eigen::VectorXd *shift : {&g, &s})
+                    {
+                        const Eigen::VectorXd delta = *shift - (shift == &g ? seed.goal : seed.start);
+                        og::PathGeometric moved(si_, start);
+                        ob::State *m = si_->allocState();
+                        for (std::size_t i = 1; i + 1 < decoded.size(); ++i)
+                        {
+                            for (std::size_t k = 0; k < reals.size(); ++k)
+                                reals[k] = decoded[i][k] + delta[k];
+                            space->copyFromReals(m, reals);
+                            space->enforceBounds(m);
+                            moved.append(m);
+                        }
+                        si_->freeState(m);
+                        moved.append(goal);
+                        anchoredPaths_.push_back(moved);
+                    }
+                }
+            }
+            // nearest query first
+            std::vector<std::pair<double, std::size_t>> order;
+            for (std::size_t i = 0; i < decoded_.size(); ++i)
+                order.emplace_back(static_cast<double>(i), i);
+            std::stable_sort(order.begin(), order.end());
+            for (const auto &o : order)
+            {
+                if (ptc)
+                    break;
+                if (checkPathFailFast(si_, decoded_[o.second], ptc, &checks, threads_))
+                {
+                    out = decoded_[o.second];
+                    lastSource_ = RECALL;
+                    found = true;
+                    break;
+                }
+            }
+            lastChecks_ += checks;
+            return found;
+        }
+
+        bool PathSeed::stitch(const ob::PlannerTerminationCondition &ptc, og::PathGeometric &out)
+        {
+            std::vector<og::PathGeometric> all(decoded_);
+            all.insert(all.end(), anchoredPaths_.begin(), anchoredPaths_.end());
+            unsigned long checks = 0;
+            const bool found =
+                stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
+            if (found)
+                lastSource_ = STITCH;
+            lastChecks_ += checks;
+            return found;
+        }
+
+        bool PathSeed::repair(const ob::PlannerTerminationCondition &ptc, og::PathGeometric &out)
+        {
+            bool repaired = false;
+            if (repair_ != "none")
+                for (std::size_t i = 0; i < decoded_.size() && !ptc && !repaired; ++i)
+                {
+                    og::PathGeometric path = decoded_[i];
+                    if (repair_ == "stomp")
+                        repaired = repairWithStomp(si_, path, ptc, stomp_);
+                    else
+                        repaired = repairWithRRTConnect(si_, path, ptc, range_, shortcutSteps_);
+                    if (repaired)
+                    {
+                        out = path;
+                        lastSource_ = REPAIR;
+                    }
+                }
+            return repaired;
+        }
+
+        bool PathSeed::fromScratch(const ob::State *start, const ob::PlannerTerminationCondition &ptc,
+                                   og::PathGeometric &out)
+        {
+            auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
+            pdef->addStartState(start);
+            pdef->setGoal(pdef_->getGoal());
+            auto rrt = std::make_shared<og::RRTConnect>(si_);
+            if (range_ > 0.)
+                rrt->setRange(range_);
+            rrt->setProblemDefinition(pdef);
+            rrt->setup();
+            scratch_ = rrt;
+            if (rrt->solve(ptc) != ob::PlannerStatus::EXACT_SOLUTION)
+                return false;
+            out = *pdef->getSolutionPath()->as<og::PathGeometric>();
+            return true;
+        }
+
+        void PathSeed::learn(const og::PathGeometric &path)
+        {
+            og::PathGeometric copy(path);
+            og::PathSimplifier simplifier(si_);
+            simplifier.reduceVertices(copy);  // fewer waypoints: a smaller seed that decodes to fewer motions
+            addExperience(copy);
+        }
+
+        ob::PlannerStatus PathSeed::solve(const ob::PlannerTerminationCondition &ptc)
+        {
+            checkValidity();
+            lastSource_ = NONE;
+            lastChecks_ = 0;
+            decoded_.clear();
+            solution_.clear();
+            const ob::State *start = pis_.nextStart();
+            if (start == nullptr)
+            {
+                OMPL_ERROR("%s: no valid start state", getName().c_str());
+                return ob::PlannerStatus::INVALID_START;
+            }
+            const ob::State *goal = nullptr;
+            if (auto *gs = dynamic_cast<const ob::GoalState *>(pdef_->getGoal().get()))
+                goal = gs->getState();
+            else
+                goal = pis_.nextGoal(ptc);
+            if (goal == nullptr)
+            {
+                OMPL_ERROR("%s: no valid goal state", getName().c_str());
+                return ptc ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::INVALID_GOAL;
+            }
+
+            std::atomic<bool> done{false};
+            const ob::PlannerTerminationCondition inner =
+                ob::plannerOrTerminationCondition(ptc, ob::PlannerTerminationCondition(
+                                                           [&done]
+                                                           {
+                                                               return done.load();
+                                                           }));
+            // recall first, alone: decoding, the fail-fast checks of the candidates and stitching are cheap, and a
+            // racer would only halve the CPU they get; if they give no valid path, repair races RRT-Connect
+            og::PathGeometric recalled(si_), scratch(si_);
+            bool recallSolved = recall(start, goal, ptc, recalled) || (!ptc && stitch(ptc, recalled));
+            bool scratchSolved = false;
+            if (!recallSolved && !ptc)
+            {
+                std::thread racer;
+                if (race_)
+                    racer = std::thread(
+                        [&]
+                        {
+                            scratchSolved = fromScratch(start, inner, scratch);
+                            if (scratchSolved)
+                                done = true;
+                        });
+                recallSolved = repair(inner, recalled);
+                if (recallSolved)
+                    done = true;
+                if (racer.joinable())
+                    racer.join();
+                else if (!recallSolved && !ptc)
+                    scratchSolved = fromScratch(start, ptc, scratch);
+            }
+
+            og::PathGeometric *result = nullptr;
+            if (recallSolved)
+                result = &recalled;
+            else if (scratchSolved)
+            {
+                result = &scratch;
+                lastSource_ = SCRATCH;
+            }
+            if (result == nullptr)
+                return ptc ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT;
+            solution_.push_back(*result);
+            auto path = std::make_shared<og::PathGeometric>(*result);
+            ob::PlannerSolution solution(path);
+            solution.setPlannerName(getName());
+            pdef_->addSolutionPath(solution);
+            if (learn_ && lastSource_ != RECALL && lastSource_ != STITCH)
+                learn(*result);
+            return ob::PlannerStatus::EXACT_SOLUTION;
+        }
+
+        void PathSeed::getPlannerData(ob::PlannerData &data) const
+        {
+            Planner::getPlannerData(data);
+            if (scratch_)
+                scratch_->getPlannerData(data);
+            auto addPath = [&](const og::PathGeometric &path)
+            {
+                const auto &states =
+                    const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
+                for (std::size_t i = 0; i + 1 < states.size(); ++i)
+                    data.addEdge(ob::PlannerDataVertex(states[i]), ob::PlannerDataVertex(states[i + 1]));
+                if (!states.empty())
+                {
+                    data.addStartVertex(ob::PlannerDataVertex(states.front()));
+                    data.addGoalVertex(ob::PlannerDataVertex(states.back()));
+                }
+            };
+            for (const auto &p : decoded_)
+                addPath(p);
+            for (const auto &p : solution_)
+                addPath(p);
+        }
+    }  // namespace planners
+}  // namespace michi

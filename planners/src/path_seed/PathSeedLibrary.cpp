@@ -1,0 +1,273 @@
+#include <michi/planners/path_seed/PathSeedLibrary.h>
+#include <michi/validity/InputFile.h>
+
+#include <ompl/datastructures/NearestNeighborsLinear.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace michi
+{
+    namespace planners
+    {
+        PathSeedLibrary::PathSeedLibrary(SeedVariant variant) : variant_(variant)
+        {
+        }
+
+        void PathSeedLibrary::add(const std::vector<Eigen::VectorXd> &path)
+        {
+            SeedRecord record;
+            record.code = encodePath(path, variant_);
+            record.start = path.front();
+            record.goal = path.back();
+            for (std::size_t i = 0; i + 1 < path.size(); ++i)
+                record.length += (path[i + 1] - path[i]).norm();
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (dimension_ != 0 && record.code.dimension != dimension_)
+                throw std::invalid_argument("PathSeedLibrary: a path of dimension " +
+                                            std::to_string(record.code.dimension) + " in a library of dimension " +
+                                            std::to_string(dimension_));
+            dimension_ = record.code.dimension;
+            seeds_.push_back(std::move(record));
+        }
+
+        std::vector<SeedRecord> PathSeedLibrary::candidates(const Eigen::VectorXd &start, const Eigen::VectorXd &goal,
+                                                            std::size_t k) const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            std::vector<SeedRecord> out;
+            if (seeds_.empty() || k == 0 || start.size() != dimension_ || goal.size() != dimension_)
+                return out;
+            // OMPL's nearest-neighbour structure over seed indices; index seeds_.size() stands for the query
+            const std::size_t query = seeds_.size();
+            ompl::NearestNeighborsLinear<std::size_t> nn;
+            nn.setDistanceFunction(
+                [&](const std::size_t a, const std::size_t b)
+                {
+                    const Eigen::VectorXd &sa = a == query ? start : seeds_[a].start;
+                    const Eigen::VectorXd &ga = a == query ? goal : seeds_[a].goal;
+                    const Eigen::VectorXd &sb = b == query ? start : seeds_[b].start;
+                    const Eigen::VectorXd &gb = b == query ? goal : seeds_[b].goal;
+                    return std::sqrt((sa - sb).squaredNorm() + (ga - gb).squaredNorm());
+                });
+            std::vector<std::size_t> all(seeds_.size());
+            for (std::size_t i = 0; i < all.size(); ++i)
+                all[i] = i;
+            nn.add(all);
+            std::vector<std::size_t> nearest;
+            nn.nearestK(query, k, nearest);
+            for (std::size_t i : nearest)
+                out.push_back(seeds_[i]);
+            return out;
+        }
+
+        std::size_t PathSeedLibrary::size() const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            return seeds_.size();
+        }
+
+        unsigned int PathSeedLibrary::dimension() const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            return dimension_;
+        }
+
+        SeedRecord PathSeedLibrary::seed(std::size_t i) const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            return seeds_.at(i);
+        }
+
+        void PathSeedLibrary::clear()
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            seeds_.clear();
+            dimension_ = 0;
+        }
+
+        namespace
+        {
+            void writeValues(std::ostream &out, const char *name, const double *v, std::size_t n)
+            {
+                out << name << ' ' << n;
+                for (std::size_t i = 0; i < n; ++i)
+                    out << ' ' << v[i];
+                out << '\n';
+            }
+
+            /** Reads the library file line by line; every failure names the file and the line. */
+            class LineReader
+            {
+            public:
+                LineReader(std::istream &in, std::string file) : in_(in), file_(std::move(file))
+                {
+                }
+
+                [[noreturn]] void fail(const std::string &message) const
+                {
+                    throw PathSeedFileError(file_ + ": line " + std::to_string(line_) + ": " + message);
+                }
+
+                std::istringstream next(const std::string &expected)
+                {
+                    std::string text;
+                    if (!std::getline(in_, text))
+                    {
+                        ++line_;
+                        fail("unexpected end of file (expected " + expected + ")");
+                    }
+                    ++line_;
+                    return std::istringstream(text);
+                }
+
+                /** A line "<name> <count> v1 ... v<count>"; \e count must equal \e expected when non-zero. */
+                std::vector<double> values(const std::string &name, std::size_t expected, bool fixed)
+                {
+                    auto line = next(name);
+                    std::string word;
+                    std::size_t n = 0;
+                    if (!(line >> word) || word != name || !(line >> n))
+                        fail("expected '" + name + " <count> <values>'");
+                    if (fixed && n != expected)
+                        fail("'" + name + "' has " + std::to_string(n) + " values, expected " +
+                             std::to_string(expected));
+                    if (n > 100000000)
+                        fail("'" + name + "' count too large");
+                    std::vector<double> v(n);
+                    for (std::size_t i = 0; i < n; ++i)
+                        if (!(line >> v[i]) || !std::isfinite(v[i]))
+                            fail("'" + name + "': value " + std::to_string(i + 1) + " of " + std::to_string(n) +
+                                 " missing or not a finite number");
+                    if (line >> word)
+                        fail("'" + name + "': more values than its count " + std::to_string(n));
+                    return v;
+                }
+
+            private:
+                std::istream &in_;
+                std::string file_;
+                int line_{0};
+            };
+        }  // namespace
+
+        void PathSeedLibrary::save(const std::string &file) const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            const std::string tmp = file + ".tmp";
+            {
+                std::ofstream out(tmp);
+                if (!out)
+                    throw std::runtime_error(file + ": cannot write the path seed library");
+                out << std::setprecision(17);
+                out << FILE_MAGIC << ' ' << FILE_VERSION << '\n';
+                out << "variant " << seedVariantName(variant_) << '\n';
+                out << "dimension " << dimension_ << '\n';
+                out << "seeds " << seeds_.size() << '\n';
+                for (const auto &s : seeds_)
+                {
+                    out << "seed " << s.code.waypoints() << ' ' << s.length << '\n';
+                    writeValues(out, "start", s.start.data(), s.start.size());
+                    writeValues(out, "goal", s.goal.data(), s.goal.size());
+                    writeValues(out, "axis", s.code.axis.data(), s.code.axis.size());
+                    writeValues(out, "ratio", s.code.ratio.data(), s.code.ratio.size());
+                    writeValues(out, "deviation", s.code.deviation.data(), s.code.deviation.size());
+                    writeValues(out, "direction", s.code.direction.data(), s.code.direction.size());
+                }
+                out.close();
+                if (!out)
+                {
+                    std::remove(tmp.c_str());
+                    throw std::runtime_error(file + ": cannot write the path seed library");
+                }
+            }
+            if (std::rename(tmp.c_str(), file.c_str()) != 0)
+            {
+                std::remove(tmp.c_str());
+                throw std::runtime_error(file + ": cannot write the path seed library (rename failed)");
+            }
+        }
+
+        std::shared_ptr<PathSeedLibrary> PathSeedLibrary::load(const std::string &file)
+        {
+            try
+            {
+                validity::requireInputFile(file);
+            }
+            catch (const validity::InputFileError &e)
+            {
+                throw PathSeedFileError(file + ": cannot open the path seed library: " + e.reason());
+            }
+            std::ifstream in(file);
+            if (!in)
+                throw PathSeedFileError(file + ": cannot open the path seed library");
+            LineReader r(in, file);
+            {
+                auto line = r.next(FILE_MAGIC);
+                std::string magic;
+                int version = 0;
+                if (!(line >> magic) || magic != FILE_MAGIC)
+                    r.fail(std::string("not a path seed library (expected '") + FILE_MAGIC + " <version>')");
+                if (!(line >> version) || version != FILE_VERSION)
+                    r.fail("unsupported version (this michi reads version " + std::to_string(FILE_VERSION) + ")");
+            }
+            std::string word, variantName;
+            auto line = r.next("variant");
+            if (!(line >> word >> variantName) || word != "variant")
+                r.fail("expected 'variant blocks|rotation'");
+            SeedVariant variant;
+            try
+            {
+                variant = seedVariantFromName(variantName);
+            }
+            catch (const std::invalid_argument &e)
+            {
+                r.fail(e.what());
+            }
+            auto lib = std::make_shared<PathSeedLibrary>(variant);
+            unsigned int dimension = 0;
+            line = r.next("dimension");
+            if (!(line >> word >> dimension) || word != "dimension")
+                r.fail("expected 'dimension <N>'");
+            std::size_t count = 0;
+            line = r.next("seeds");
+            if (!(line >> word >> count) || word != "seeds")
+                r.fail("expected 'seeds <count>'");
+            if (count > 0 && dimension == 0)
+                r.fail("seeds in a library of dimension 0");
+            for (std::size_t i = 0; i < count; ++i)
+            {
+                SeedRecord s;
+                s.code.variant = variant;
+                s.code.dimension = dimension;
+                std::size_t M = 0;
+                line = r.next("seed");
+                if (!(line >> word >> M >> s.length) || word != "seed" || M > 10000000)
+                    r.fail("expected 'seed <waypoints> <length>' (seed " + std::to_string(i + 1) + " of " +
+                           std::to_string(count) + ")");
+                const auto start = r.values("start", dimension, true);
+                const auto goal = r.values("goal", dimension, true);
+                s.start = Eigen::Map<const Eigen::VectorXd>(start.data(), dimension);
+                s.goal = Eigen::Map<const Eigen::VectorXd>(goal.data(), dimension);
+                const std::size_t B = s.code.blocks();
+                s.code.axis = r.values("axis", s.code.directionWidth(), true);
+                s.code.ratio = r.values("ratio", M * B, true);
+                s.code.deviation = r.values("deviation", M * B, true);
+                s.code.direction = r.values("direction", M * s.code.directionWidth(), true);
+                for (double t : s.code.deviation)
+                    if (t < 0.)
+                        r.fail("'deviation' values must not be negative");
+                lib->seeds_.push_back(std::move(s));
+            }
+            lib->dimension_ = count > 0 ? dimension : 0;
+            std::string rest;
+            while (std::getline(in, rest))
+                if (rest.find_first_not_of(" \t\r") != std::string::npos)
+                    r.fail("data after the last seed");
+            return lib;
+        }
+    }  // namespace planners
+}  // namespace michi

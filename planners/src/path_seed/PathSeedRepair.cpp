@@ -1,0 +1,485 @@
+#include <michi/planners/path_seed/PathSeedRepair.h>
+
+#include <michi/validity/fcl/WorkspaceMotionValidator.h>
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/geometric/PathSimplifier.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace planners
+    {
+        namespace
+        {
+            /** Motions (a_i, b_i), endpoints already valid: the validator's intermediate states round-robin over the
+                motions in bisection order (WorkspaceMotionValidator), else checkMotion one by one. Returns the
+                index of an invalid motion, motions.size() when all are valid, or -1 when \e ptc fired. */
+            long checkMotionsFailFast(const ob::SpaceInformationPtr &si,
+                                      const std::vector<std::pair<const ob::State *, const ob::State *>> &motions,
+                                      const ob::PlannerTerminationCondition &ptc, unsigned long &count,
+                                      unsigned int threads)
+            {
+                const auto *wmv =
+                    dynamic_cast<const validity::WorkspaceMotionValidator *>(si->getMotionValidator().get());
+                if (!wmv)
+                {
+                    for (std::size_t i = 0; i < motions.size(); ++i)
+                    {
+                        if (ptc)
+                            return -1;
+                        if (!si->checkMotion(motions[i].first, motions[i].second))
+                            return static_cast<long>(i);
+                    }
+                    return static_cast<long>(motions.size());
+                }
+                // the validator's own states (j / n, j = 1 .. n - 1, n = stepCount), bisection order per motion,
+                // round-robin over the motions; the order does not depend on the results, so it is listed first
+                struct Segment
+                {
+                    std::size_t index;
+                    unsigned int n;
+                    std::deque<std::pair<unsigned int, unsigned int>> intervals;
+                };
+                std::vector<Segment> segments;
+                for (std::size_t i = 0; i < motions.size(); ++i)
+                {
+                    const unsigned int n = wmv->stepCount(motions[i].first, motions[i].second);
+                    if (n > 1)
+                        segments.push_back(Segment{i, n, {{1u, n - 1}}});
+                }
+                std::vector<std::pair<std::size_t, double>> items;  // (motion, fraction)
+                for (bool pending = true; pending;)
+                {
+                    pending = false;
+                    for (auto &seg : segments)
+                    {
+                        while (!seg.intervals.empty() && seg.intervals.front().first > seg.intervals.front().second)
+                            seg.intervals.pop_front();
+                        if (seg.intervals.empty())
+                            continue;
+                        const auto [lo, hi] = seg.intervals.front();
+                        seg.intervals.pop_front();
+                        const unsigned int mid = (lo + hi) / 2;
+                        items.emplace_back(seg.index, static_cast<double>(mid) / seg.n);
+                        if (mid > lo)
+                            seg.intervals.emplace_back(lo, mid - 1);
+                        seg.intervals.emplace_back(mid + 1, hi);
+                        pending = true;
+                    }
+                }
+                // threads take every threads-th item; the first failure stops all
+                const long all = static_cast<long>(motions.size());
+                std::atomic<long> failed{all};
+                std::atomic<bool> stopped{false};
+                std::atomic<unsigned long> checked{0};
+                auto work = [&](std::size_t first, std::size_t stride)
+                {
+                    ob::State *state = si->allocState();
+                    for (std::size_t i = first; i < items.size(); i += stride)
+                    {
+                        if (failed.load() != all || stopped.load())
+                            break;
+                        if (ptc)
+                        {
+                            stopped = true;
+                            break;
+                        }
+                        const auto &item = items[i];
+                        si->getStateSpace()->interpolate(motions[item.first].first, motions[item.first].second,
+                                                         item.second, state);
+                        ++checked;
+                        if (!si->isValid(state))
+                        {
+                            failed = static_cast<long>(item.first);
+                            break;
+                        }
+                    }
+                    si->freeState(state);
+                };
+                const std::size_t T = std::max<std::size_t>(1, std::min<std::size_t>(threads, items.size() / 8 + 1));
+                std::vector<std::thread> helpers;
+                for (std::size_t t = 1; t < T; ++t)
+                    helpers.emplace_back(work, t, T);
+                work(0, T);
+                for (auto &h : helpers)
+                    h.join();
+                count += checked.load();
+                if (failed.load() != all)
+                    return failed.load();
+                return stopped.load() ? -1 : all;
+            }
+        }  // namespace
+
+        bool checkPathFailFast(const ob::SpaceInformationPtr &si, const og::PathGeometric &path,
+                               const ob::PlannerTerminationCondition &ptc, unsigned long *checks, unsigned int threads)
+        {
+            const auto &states = const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
+            unsigned long count = 0;
+            bool ok = true;
+            for (const auto *s : states)
+            {
+                if (ptc)
+                {
+                    ok = false;
+                    break;
+                }
+                ++count;
+                if (!si->satisfiesBounds(s) || !si->isValid(s))
+                {
+                    ok = false;
+                    break;
+                }
+            }
+            if (ok)
+            {
+                std::vector<std::pair<const ob::State *, const ob::State *>> motions;
+                for (std::size_t i = 0; i + 1 < states.size(); ++i)
+                    motions.emplace_back(states[i], states[i + 1]);
+                ok = checkMotionsFailFast(si, motions, ptc, count, threads) == static_cast<long>(motions.size());
+            }
+            if (checks)
+                *checks += count;
+            return ok;
+        }
+
+        std::size_t PathValidity::invalidStates() const
+        {
+            return std::count(state.begin(), state.end(), 0);
+        }
+
+        std::size_t PathValidity::invalidSegments() const
+        {
+            return std::count(segment.begin(), segment.end(), 0);
+        }
+
+        PathValidity checkPathFull(const ob::SpaceInformationPtr &si, const og::PathGeometric &path,
+                                   const ob::PlannerTerminationCondition &ptc)
+        {
+            const auto &states = const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
+            PathValidity v;
+            v.state.assign(states.size(), 0);
+            v.segment.assign(states.empty() ? 0 : states.size() - 1, 0);
+            for (std::size_t i = 0; i < states.size() && !ptc; ++i)
+                v.state[i] = si->satisfiesBounds(states[i]) && si->isValid(states[i]);
+            for (std::size_t i = 0; i + 1 < states.size() && !ptc; ++i)
+                v.segment[i] = v.state[i] && v.state[i + 1] && si->checkMotion(states[i], states[i + 1]);
+            return v;
+        }
+
+        bool stitchPaths(const ob::SpaceInformationPtr &si, const std::vector<og::PathGeometric> &paths,
+                         const ob::PlannerTerminationCondition &ptc, og::PathGeometric &out, unsigned int neighbours,
+                         unsigned long *checks, unsigned int threads)
+        {
+            if (paths.empty())
+                return false;
+            // vertices: 0 start, 1 goal, then the interior states of every path
+            std::vector<const ob::State *> states{paths.front().getState(0),
+                                                  paths.front().getState(paths.front().getStateCount() - 1)};
+            std::vector<int> owner{-1, -1};
+            std::map<std::pair<std::size_t, std::size_t>, char> edges;  // (a < b) -> 0 unknown, 1 valid, 2 invalid
+            auto addEdge = [&](std::size_t a, std::size_t b)
+            {
+                if (a != b)
+                    edges.emplace(std::make_pair(std::min(a, b), std::max(a, b)), 0);
+            };
+            for (std::size_t p = 0; p < paths.size(); ++p)
+            {
+                const auto &path = paths[p];
+                std::size_t previous = 0;
+                for (std::size_t i = 1; i + 1 < path.getStateCount(); ++i)
+                {
+                    states.push_back(path.getState(i));
+                    owner.push_back(static_cast<int>(p));
+                    addEdge(previous, states.size() - 1);
+                    previous = states.size() - 1;
+                }
+                addEdge(previous, 1);
+            }
+            const std::size_t V = states.size();
+            // neighbours and edge weights by the Euclidean distance of the states' reals (a heuristic for the
+            // search only; every edge used is checked by the motion validator): far cheaper than
+            // StateSpace::distance on a compound joint space, and the graph is rebuilt in every iteration
+            std::vector<Eigen::VectorXd> reals(V);
+            {
+                std::vector<double> r;
+                for (std::size_t v = 0; v < V; ++v)
+                {
+                    si->getStateSpace()->copyToReals(r, states[v]);
+                    reals[v] = Eigen::Map<const Eigen::VectorXd>(r.data(), r.size());
+                }
+            }
+            for (std::size_t a = 2; a < V; ++a)  // each interior state to its nearest states of other paths
+            {
+                std::vector<std::pair<double, std::size_t>> near;
+                for (std::size_t b = 2; b < V; ++b)
+                    if (owner[b] != owner[a])
+                        near.emplace_back((reals[a] - reals[b]).norm(), b);
+                const std::size_t k = std::min<std::size_t>(neighbours, near.size());
+                std::partial_sort(near.begin(), near.begin() + k, near.end());
+                for (std::size_t i = 0; i < k; ++i)
+                    addEdge(a, near[i].second);
+            }
+            std::vector<char> vertex(V, 0);  // 0 unknown, 1 valid, 2 invalid
+            vertex[0] = vertex[1] = 1;       // start and goal are the query's
+            unsigned long count = 0;
+            using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                                                boost::property<boost::edge_weight_t, double>>;
+            bool found = false;
+            while (!found && !ptc)
+            {
+                Graph graph(V);
+                for (const auto &e : edges)
+                    if (e.second != 2 && vertex[e.first.first] != 2 && vertex[e.first.second] != 2)
+                        boost::add_edge(e.first.first, e.first.second,
+                                        (reals[e.first.first] - reals[e.first.second]).norm(), graph);
+                std::vector<Graph::vertex_descriptor> parent(V);
+                std::vector<double> distance(V);
+                boost::dijkstra_shortest_paths(graph, 0,
+                                               boost::predecessor_map(parent.data()).distance_map(distance.data()));
+                if (parent[1] == 1)
+                    break;  // goal unreachable
+                std::vector<std::size_t> route{1};
+                while (route.back() != 0)
+                    route.push_back(parent[route.back()]);
+                std::reverse(route.begin(), route.end());
+                // states first, then the unchecked edges as one path (fail-fast order)
+                bool ok = true;
+                for (std::size_t v : route)
+                    if (vertex[v] == 0)
+                    {
+                        ++count;
+                        vertex[v] = si->satisfiesBounds(states[v]) && si->isValid(states[v]) ? 1 : 2;
+                        ok = ok && vertex[v] == 1;
+                    }
+                if (!ok)
+                    continue;
+                og::PathGeometric candidate(si);
+                for (std::size_t v : route)
+                    candidate.append(states[v]);
+                std::vector<std::pair<std::size_t, std::size_t>> unknown;
+                for (std::size_t i = 0; i + 1 < route.size(); ++i)
+                {
+                    const auto key = std::make_pair(std::min(route[i], route[i + 1]), std::max(route[i], route[i + 1]));
+                    if (edges[key] == 0)
+                        unknown.push_back(key);
+                }
+                // all unchecked edges at once, round-robin bisection
+                std::vector<std::pair<const ob::State *, const ob::State *>> motions;
+                for (const auto &key : unknown)
+                    motions.emplace_back(states[key.first], states[key.second]);
+                const long failed = checkMotionsFailFast(si, motions, ptc, count, threads);
+                if (failed < 0)
+                    break;
+                const bool allValid = failed == static_cast<long>(motions.size());
+                if (!allValid)
+                    edges[unknown[failed]] = 2;
+                else
+                    for (const auto &key : unknown)
+                        edges[key] = 1;
+                if (allValid && !ptc)
+                {
+                    out = candidate;
+                    found = true;
+                }
+            }
+            if (checks)
+                *checks += count;
+            return found;
+        }
+
+        namespace
+        {
+            /** RRT-Connect from \e a to \e b; appends the states after \e a (b included) to \e out. */
+            bool connect(const ob::SpaceInformationPtr &si, const ob::State *a, const ob::State *b, double range,
+                         const ob::PlannerTerminationCondition &ptc, og::PathGeometric &out)
+            {
+                auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+                pdef->addStartState(a);
+                auto goal = std::make_shared<ob::GoalState>(si);
+                goal->setState(b);
+                pdef->setGoal(goal);
+                og::RRTConnect rrt(si);
+                if (range > 0.)
+                    rrt.setRange(range);
+                rrt.setProblemDefinition(pdef);
+                rrt.setup();
+                if (rrt.solve(ptc) != ob::PlannerStatus::EXACT_SOLUTION)
+                    return false;
+                const auto *p = pdef->getSolutionPath()->as<og::PathGeometric>();
+                for (std::size_t i = 1; i < p->getStateCount(); ++i)
+                    out.append(p->getState(i));
+                return true;
+            }
+        }  // namespace
+
+        bool repairWithRRTConnect(const ob::SpaceInformationPtr &si, og::PathGeometric &path,
+                                  const ob::PlannerTerminationCondition &ptc, double range, unsigned int shortcutSteps)
+        {
+            const PathValidity v = checkPathFull(si, path, ptc);
+            const auto &states = const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
+            if (ptc || states.size() < 2 || !v.state.front() || !v.state.back())
+                return false;
+            og::PathGeometric out(si, states.front());
+            std::size_t i = 0;
+            while (i + 1 < states.size())
+            {
+                if (ptc)
+                    return false;
+                if (v.segment[i])
+                {
+                    out.append(states[i + 1]);
+                    ++i;
+                    continue;
+                }
+                // the invalid stretch ends at the next valid waypoint j
+                std::size_t j = i + 1;
+                while (!v.state[j])
+                    ++j;
+                if (si->checkMotion(states[i], states[j]))
+                    out.append(states[j]);
+                else if (!connect(si, states[i], states[j], range, ptc, out))
+                    return false;
+                i = j;
+            }
+            if (shortcutSteps > 0 && !ptc)
+            {
+                og::PathSimplifier simplifier(si);
+                simplifier.shortcutPath(out, shortcutSteps, shortcutSteps);
+            }
+            path = out;
+            return true;
+        }
+
+        bool repairWithStomp(const ob::SpaceInformationPtr &si, og::PathGeometric &path,
+                             const ob::PlannerTerminationCondition &ptc, const StompSettings &settings)
+        {
+            if (path.getStateCount() < 2 || settings.timesteps < 3 || settings.rollouts < 1)
+                return false;
+            if (checkPathFailFast(si, path, ptc))
+                return true;
+            const auto space = si->getStateSpace();
+            const int T = static_cast<int>(settings.timesteps), n = T - 2;
+            path.interpolate(settings.timesteps);
+            // theta: T x N joint values
+            std::vector<double> reals;
+            space->copyToReals(reals, path.getState(0));
+            const int N = static_cast<int>(reals.size());
+            Eigen::MatrixXd theta(T, N);
+            for (int t = 0; t < T; ++t)
+            {
+                space->copyToReals(reals, path.getState(t));
+                for (int k = 0; k < N; ++k)
+                    theta(t, k) = reals[k];
+            }
+            // accelerations at the interior time steps: a = D x + c (x: interior states, c: the fixed ends);
+            // R = D^T D; noise ~ N(0, R^-1) scaled so its largest standard deviation is settings.noise
+            Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+            for (int i = 0; i < n; ++i)
+            {
+                D(i, i) = -2.;
+                if (i > 0)
+                    D(i, i - 1) = 1.;
+                if (i + 1 < n)
+                    D(i, i + 1) = 1.;
+            }
+            const Eigen::MatrixXd R = D.transpose() * D;
+            const Eigen::MatrixXd Rinv = R.inverse();
+            const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Rinv).matrixL();
+            const double noiseScale = settings.noise / std::sqrt(Rinv.diagonal().maxCoeff());
+            Eigen::MatrixXd M = Rinv;  // STOMP's smoothing of the update: columns of R^-1, largest entry 1
+            for (int i = 0; i < n; ++i)
+                M.col(i) /= M.col(i).cwiseAbs().maxCoeff();
+            Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, N);
+            c.row(0) += theta.row(0);
+            c.row(n - 1) += theta.row(T - 1);
+
+            ompl::RNG rng;
+            ob::State *state = si->allocState();
+            const auto stateCost = [&](const Eigen::RowVectorXd &q)
+            {
+                for (int k = 0; k < N; ++k)
+                    reals[k] = q[k];
+                space->copyFromReals(state, reals);
+                if (!si->satisfiesBounds(state))
+                    return 2.;
+                const bool valid = si->isValid(state);
+                const double d = si->getStateValidityChecker()->clearance(state);
+                return (valid ? 0. : 1.) + std::max(0., settings.margin - std::max(d, 0.)) / settings.margin;
+            };
+            const unsigned int K = settings.rollouts;
+            std::vector<Eigen::MatrixXd> eps(K, Eigen::MatrixXd(n, N));
+            Eigen::MatrixXd S(K, n);
+            bool solved = false;
+            og::PathGeometric candidate(si);
+            for (unsigned int it = 0; it < settings.iterations && !ptc && !solved; ++it)
+            {
+                for (unsigned int k = 0; k < K && !ptc; ++k)
+                {
+                    for (int j = 0; j < N; ++j)
+                    {
+                        Eigen::VectorXd z(n);
+                        for (int i = 0; i < n; ++i)
+                            z[i] = rng.gaussian01();
+                        eps[k].col(j) = noiseScale * (L * z);
+                    }
+                    for (int i = 0; i < n; ++i)
+                        S(k, i) = stateCost(theta.row(i + 1) + eps[k].row(i));
+                }
+                if (ptc)
+                    break;
+                // probability-weighted noise per time step
+                Eigen::MatrixXd update = Eigen::MatrixXd::Zero(n, N);
+                for (int i = 0; i < n; ++i)
+                {
+                    const double lo = S.col(i).minCoeff(), hi = S.col(i).maxCoeff();
+                    Eigen::VectorXd p(K);
+                    for (unsigned int k = 0; k < K; ++k)
+                        p[k] = hi - lo > 1e-12 ? std::exp(-settings.sensitivity * (S(k, i) - lo) / (hi - lo)) : 1.;
+                    p /= p.sum();
+                    for (unsigned int k = 0; k < K; ++k)
+                        update.row(i) += p[k] * eps[k].row(i);
+                }
+                update = M * update;
+                // covariant gradient step on the acceleration cost: R^-1 D^T (D x + c)
+                const Eigen::MatrixXd x = theta.middleRows(1, n);
+                const Eigen::MatrixXd step = Rinv * (D.transpose() * (D * x + c));
+                theta.middleRows(1, n) += update - settings.smoothness * step;
+                // write back, bounded, and check
+                candidate = og::PathGeometric(si);
+                for (int t = 0; t < T; ++t)
+                {
+                    for (int k = 0; k < N; ++k)
+                        reals[k] = theta(t, k);
+                    space->copyFromReals(state, reals);
+                    space->enforceBounds(state);
+                    candidate.append(state);
+                }
+                solved = checkPathFailFast(si, candidate, ptc);
+            }
+            si->freeState(state);
+            if (solved)
+                path = candidate;
+            return solved;
+        }
+    }  // namespace planners
+}  // namespace michi

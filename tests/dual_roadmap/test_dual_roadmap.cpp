@@ -1,0 +1,198 @@
+// Tests of michi::planners::DualRoadmap (paper 002): the learning roadmap persists across queries, clear() and scene
+// changes; a scene change reseeds the working roadmap only with learning edges that are valid in the new scene; the
+// change counter decides when the working roadmap is rebuilt; the learning roadmap survives a save/load round trip
+// and bad files are rejected with their name; the ablation (use_learning = 0) learns nothing.
+#include "support/TestScenes.h"
+
+#include <michi/planners/dual_roadmap/DualRoadmap.h>
+#include <michi/validity/fcl/WorkspaceMotionValidator.h>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace michi;
+namespace ob = ompl::base;
+
+namespace
+{
+    /** A 0.4 m square robot in a 10 m x 10 m room split by a wall at x = 5 with two gaps (y 2..3 and 7..8). */
+    struct Fixture
+    {
+        test::CheckerSetup setup;
+        ob::ProblemDefinitionPtr pdef;
+        std::shared_ptr<planners::DualRoadmap> planner;
+
+        Fixture()
+        {
+            const test::Outline robot = test::boxOutline({-0.2, -0.2}, {0.2, 0.2});
+            setup = test::planarRigidBodySetup(
+                robot,
+                {test::boxOutline({4.8, 0.}, {5.2, 2.}), test::boxOutline({4.8, 3.}, {5.2, 7.}),
+                 test::boxOutline({4.8, 8.}, {5.2, 10.})},
+                {0., 0.}, {10., 10.});
+            setup.si->setMotionValidator(
+                std::make_shared<validity::WorkspaceMotionValidator>(setup.si, setup.checker, 0.02));
+            setup.si->setup();
+            planner = std::make_shared<planners::DualRoadmap>(setup.si);
+            auto scene = setup.scene;
+            planner->setSceneChangeCounter(
+                [scene]
+                {
+                    return scene->changeCount();
+                });
+            query({1., 5., 0.}, {9., 5., 0.});
+        }
+
+        void query(const std::vector<double> &from, const std::vector<double> &to)
+        {
+            pdef = std::make_shared<ob::ProblemDefinition>(setup.si);
+            ob::ScopedState<> s(setup.si), g(setup.si);
+            setup.si->getStateSpace()->copyFromReals(s.get(), from);
+            setup.si->getStateSpace()->copyFromReals(g.get(), to);
+            pdef->setStartAndGoalStates(s, g);
+            planner->setProblemDefinition(pdef);
+        }
+
+        ob::PlannerStatus solve()
+        {
+            return planner->ob::Planner::solve(5.);
+        }
+
+        /** Learning edges (both ends tag 1 in the planner data) whose states and motion are valid now. */
+        std::size_t validLearningEdges() const
+        {
+            ob::PlannerData data(setup.si);
+            planner->getPlannerData(data);
+            std::size_t valid = 0;
+            for (unsigned int i = 0; i < data.numVertices(); ++i)
+            {
+                if (data.getVertex(i).getTag() != 1)
+                    continue;
+                std::vector<unsigned int> out;
+                data.getEdges(i, out);
+                for (unsigned int j : out)
+                    if (j > i && data.getVertex(j).getTag() == 1 && setup.si->isValid(data.getVertex(i).getState()) &&
+                        setup.si->isValid(data.getVertex(j).getState()) &&
+                        setup.si->checkMotion(data.getVertex(i).getState(), data.getVertex(j).getState()))
+                        ++valid;
+            }
+            return valid;
+        }
+    };
+}  // namespace
+
+TEST(DualRoadmap, LearningRoadmapPersistsAcrossQueriesAndClear)
+{
+    ompl::RNG::setSeed(3);
+    Fixture f;
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    const std::size_t learned = f.planner->learningEdgeCount();
+    EXPECT_GT(learned, 0u);
+    EXPECT_GT(f.planner->learningVertexCount(), 1u);
+    f.planner->clear();
+    EXPECT_EQ(f.planner->workingVertexCount(), 0u);
+    EXPECT_EQ(f.planner->learningEdgeCount(), learned);
+    f.query({1., 1., 0.}, {9., 9., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_GT(f.planner->seededEdgeCount(), 0u) << "a new working roadmap is seeded from experience";
+    EXPECT_GE(f.planner->learningEdgeCount(), learned);
+    f.planner->clearLearningRoadmap();
+    EXPECT_EQ(f.planner->learningEdgeCount(), 0u);
+}
+
+TEST(DualRoadmap, SceneChangeSeedsOnlyEdgesValidInTheNewScene)
+{
+    ompl::RNG::setSeed(5);
+    Fixture f;
+    f.planner->setSeedEdges(100000);   // try every learning edge
+    f.planner->setLazySeeding(false);  // and check each at once
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    // close the lower gap and block the middle of the left half: some learned edges become invalid
+    validity::Obstacle door;
+    door.name = "door";
+    door.shape = validity::Shape::box({0.4, 1.2, 1.});
+    door.pose.translation() = Eigen::Vector3d(5., 2.5, 0.);
+    f.setup.scene->add(door);
+    validity::Obstacle block;
+    block.name = "block";
+    block.shape = validity::Shape::box({2., 2., 1.});
+    block.pose.translation() = Eigen::Vector3d(3., 5., 0.);
+    f.setup.scene->add(block);
+    const std::size_t expected = f.validLearningEdges();
+    f.query({1., 8.5, 0.}, {9., 1., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_GT(expected, 0u);
+    EXPECT_EQ(f.planner->seededEdgeCount(), expected);
+    auto path = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+    EXPECT_TRUE(path->check());
+}
+
+TEST(DualRoadmap, WorkingRoadmapKeptWhileTheSceneDoesNotChange)
+{
+    ompl::RNG::setSeed(7);
+    Fixture f;
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    const std::size_t vertices = f.planner->workingVertexCount();
+    f.query({1., 2., 0.}, {9., 8., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_GE(f.planner->workingVertexCount(), vertices + 2) << "same scene: roadmap kept, the query added";
+    f.setup.scene->setPose("polygon0", Eigen::Isometry3d::Identity());  // a change
+    f.query({1., 2., 0.}, {9., 8., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    f.planner->notifySceneChanged();
+    f.query({1., 5., 0.}, {9., 5., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_GT(f.planner->seededEdgeCount(), 0u);
+}
+
+TEST(DualRoadmap, AblationLearnsNothing)
+{
+    ompl::RNG::setSeed(9);
+    Fixture f;
+    ASSERT_TRUE(f.planner->params().setParam("use_learning", "0"));
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    f.planner->notifySceneChanged();
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(f.planner->learningEdgeCount(), 0u);
+    EXPECT_EQ(f.planner->seededEdgeCount(), 0u);
+}
+
+TEST(DualRoadmap, SaveAndLoadLearningRoadmap)
+{
+    ompl::RNG::setSeed(11);
+    test::TempDir dir;
+    Fixture f;
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    const std::string file = dir.path() + "/learning.txt";
+    f.planner->saveLearningRoadmap(file);
+
+    Fixture g;
+    g.planner->loadLearningRoadmap(file);
+    EXPECT_EQ(g.planner->learningEdgeCount(), f.planner->learningEdgeCount());
+    EXPECT_EQ(g.planner->learningVertexCount(), f.planner->learningVertexCount());
+    ASSERT_EQ(g.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_GT(g.planner->seededEdgeCount(), 0u) << "the loaded experience is used";
+    const std::size_t learned = g.planner->learningEdgeCount();
+
+    const std::string bad = dir.write("bad.txt", "michi-dual-roadmap 1\nspace 3 3 SE2\nvertices 2\n1 2\n");
+    try
+    {
+        g.planner->loadLearningRoadmap(bad);
+        FAIL() << "a truncated file must be rejected";
+    }
+    catch (const std::runtime_error &e)
+    {
+        EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(g.planner->learningEdgeCount(), learned) << "a bad file changes nothing";
+    const std::string other = dir.write("other.txt", "michi-dual-roadmap 1\nspace 7 7 Joints\nvertices 0\nedges 0\n");
+    EXPECT_THROW(g.planner->loadLearningRoadmap(other), std::runtime_error);
+    EXPECT_THROW(g.planner->loadLearningRoadmap(dir.path() + "/missing.txt"), std::runtime_error);
+}

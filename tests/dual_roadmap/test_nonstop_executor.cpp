@@ -1,0 +1,438 @@
+// Tests of michi::planners::NonStopExecutor (paper 002, Fig. 1): every transition of the execution state machine, driven
+// by a simulated clock the test controls and a planner the test releases. The world is the plane: the robot is a
+// point moving from (0, 0) to (10, 0); obstacles are boxes the test puts down and removes; the planner's path makes
+// a detour through y = 2. Nothing here depends on timing (the planner thread is waited for, never raced against).
+// Also built with -fsanitize=thread (CMake option MICHI_TSAN, see docs/dual-roadmap.md).
+#include <michi/planners/dual_roadmap/NonStopExecutor.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <mutex>
+
+using michi::planners::Configuration;
+using michi::planners::ConfigurationPath;
+using michi::planners::NonStopExecutor;
+using Exec = NonStopExecutor::ExecState;
+using Sig = NonStopExecutor::Signal;
+
+namespace
+{
+    struct Box
+    {
+        double x0, x1, y0, y1;
+    };
+
+    /** A planner the test holds until it says how the query ends. */
+    struct Gate
+    {
+        std::mutex mutex;
+        std::condition_variable cv;
+        int released{0};     // number of queries allowed to finish
+        bool succeed{true};  // how they finish
+        int started{0};      // queries that reached the planner
+        int sawCancel{0};    // queries that ended because they were cancelled
+    };
+
+    struct World
+    {
+        std::vector<Box> boxes;
+
+        static double boxDistance(const Box &b, const Configuration &q)
+        {
+            const double dx = std::max({b.x0 - q[0], 0., q[0] - b.x1});
+            const double dy = std::max({b.y0 - q[1], 0., q[1] - b.y1});
+            return std::hypot(dx, dy);
+        }
+        double clearance(const Configuration &q) const
+        {
+            double d = std::numeric_limits<double>::infinity();
+            for (const auto &b : boxes)
+                d = std::min(d, boxDistance(b, q));
+            return d;
+        }
+    };
+
+    struct Harness
+    {
+        World world;
+        Gate gate;
+        std::unique_ptr<NonStopExecutor> exec;
+        bool deformOk{false};
+        int deformCalls{0};
+
+        explicit Harness(double safety = 0., double planningDelay = 0., bool synchronous = false)
+        {
+            michi::planners::NonStopHooks hooks;
+            hooks.distance = [](const Configuration &a, const Configuration &b)
+            {
+                return std::hypot(a[0] - b[0], a[1] - b[1]);
+            };
+            hooks.interpolate = [](const Configuration &a, const Configuration &b, double t, Configuration &out)
+            {
+                out = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+            };
+            hooks.clearance = [this](const Configuration &q)
+            {
+                return world.clearance(q);
+            };
+            hooks.firstInterference = [this](const ConfigurationPath &path)
+            {
+                double arc = 0.;
+                for (std::size_t i = 0; i + 1 < path.size(); ++i)
+                {
+                    const double len = std::hypot(path[i + 1][0] - path[i][0], path[i + 1][1] - path[i][1]);
+                    const int n = std::max(1, static_cast<int>(len / 0.01));
+                    for (int k = 0; k <= n; ++k)
+                    {
+                        const double t = static_cast<double>(k) / n;
+                        const Configuration q{path[i][0] + t * (path[i + 1][0] - path[i][0]),
+                                              path[i][1] + t * (path[i + 1][1] - path[i][1])};
+                        if (world.clearance(q) <= 0.)
+                            return arc + t * len;
+                    }
+                    arc += len;
+                }
+                return std::numeric_limits<double>::infinity();
+            };
+            hooks.deform = [this](ConfigurationPath &path)
+            {
+                ++deformCalls;
+                if (!deformOk)
+                    return false;
+                // "deformed": a dent down to y = 1.7 between 1.5 m and 3 m ahead of the robot
+                const double x0 = path.front()[0];
+                path.insert(path.begin() + 1, {{x0 + 1.5, 2.}, {x0 + 1.8, 1.7}, {x0 + 2.7, 1.7}, {x0 + 3., 2.}});
+                return true;
+            };
+            hooks.plan = [this](const Configuration &from, const Configuration &goal, std::uint64_t,
+                                const std::atomic<bool> &cancel, ConfigurationPath &path)
+            {
+                std::unique_lock<std::mutex> lock(gate.mutex);
+                ++gate.started;
+                gate.cv.notify_all();
+                while (gate.released == 0 && !cancel)
+                    gate.cv.wait_for(lock, std::chrono::milliseconds(1));
+                if (cancel)
+                {
+                    ++gate.sawCancel;
+                    return false;
+                }
+                --gate.released;
+                if (!gate.succeed)
+                    return false;
+                // a detour 2 m to the side of where the query starts
+                path = {from, {from[0], from[1] + 2.}, {goal[0], from[1] + 2.}, goal};
+                return true;
+            };
+            hooks.sensedWorld = []
+            {
+                return std::uint64_t(0);
+            };
+            michi::planners::NonStopSettings settings;
+            settings.speed = 1.;
+            settings.deceleration = 2.;  // braking distance at full speed: 0.25
+            settings.safetyDistance = safety;
+            settings.stopMargin = 0.1;
+            settings.planningDelay = planningDelay;
+            settings.synchronous = synchronous;
+            exec = std::make_unique<NonStopExecutor>(hooks, settings);
+        }
+
+        /** Let one query finish (found or failed) and wait until its answer is queued. */
+        void release(bool succeed = true)
+        {
+            {
+                std::lock_guard<std::mutex> lock(gate.mutex);
+                gate.released = 1;
+                gate.succeed = succeed;
+            }
+            gate.cv.notify_all();
+            exec->waitForPlanner();
+        }
+        void waitStarted(int n)
+        {
+            std::unique_lock<std::mutex> lock(gate.mutex);
+            gate.cv.wait(lock,
+                         [&]
+                         {
+                             return gate.started >= n;
+                         });
+        }
+        void steps(int n, double dt = 0.01)
+        {
+            for (int i = 0; i < n; ++i)
+                exec->step(dt);
+        }
+        /** Start and get going on the straight path (the first query answered by a straight line). */
+        void startStraight()
+        {
+            // the first path: straight, since nothing is in the way the planner's detour is not wanted: give a
+            // box-free world and then replace the path by the direct one through a free Geo. change
+            exec->start({0., 0.}, {10., 0.});
+            release();
+            exec->step(0.01);
+        }
+        bool saw(Exec from, Sig signal, Exec to) const
+        {
+            for (const auto &t : exec->transitions())
+                if (t.from == from && t.signal == signal && t.to == to)
+                    return true;
+            return false;
+        }
+    };
+}  // namespace
+
+TEST(NonStopExecutor, StartPathFoundExecuteFinished)
+{
+    Harness h;
+    EXPECT_EQ(h.exec->execState(), Exec::IDLE);
+    h.exec->start({0., 0.}, {10., 0.});
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_TRUE(h.saw(Exec::IDLE, Sig::START, Exec::STOPPED));
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::QUERY, Exec::STOPPED));
+    h.waitStarted(1);
+    EXPECT_EQ(h.exec->planState(), NonStopExecutor::PlanState::PLANNING);
+    h.steps(10);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED) << "no path yet: the robot waits";
+    EXPECT_EQ(h.exec->configuration(), (Configuration{0., 0.}));
+    h.release();
+    EXPECT_EQ(h.exec->planState(), NonStopExecutor::PlanState::WAIT_QUERY);
+    h.exec->step(0.01);
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::PATH_FOUND, Exec::EXECUTE));
+    h.steps(20000);
+    EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+    EXPECT_TRUE(h.saw(Exec::EXECUTE, Sig::FINISHED, Exec::FINISHED));
+    EXPECT_NEAR(h.exec->configuration()[0], 10., 1e-9);
+    EXPECT_NEAR(h.exec->configuration()[1], 0., 1e-9);
+    EXPECT_EQ(h.exec->statistics().latencies.size(), 1u);
+}
+
+TEST(NonStopExecutor, GeoChangeWithFreePathGoesBackToExecute)
+{
+    Harness h;
+    h.startStraight();
+    h.world.boxes.push_back({3., 4., 5., 6.});  // far from the path (which runs along y = 2)
+    h.exec->geoChange();
+    EXPECT_TRUE(h.saw(Exec::EXECUTE, Sig::GEO_CHANGE, Exec::UPDATE_PROBLEM));
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::EXECUTE));
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_EQ(h.exec->statistics().queries, 1u);
+}
+
+TEST(NonStopExecutor, InterferenceStartsReplanningFromTheStopPointWhileMoving)
+{
+    Harness h;
+    h.startStraight();  // path: up to (0, 2), along y = 2, down to (10, 0)
+    h.steps(300);       // at about (0, 2) -> moving along x
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});  // 2 m ahead on the path
+    h.exec->geoChange();
+    EXPECT_EQ(h.exec->execState(), Exec::REPLANNING);
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::REPLANNING));
+    EXPECT_EQ(h.exec->statistics().queries, 2u);
+    h.steps(50);
+    EXPECT_EQ(h.exec->execState(), Exec::REPLANNING) << "keeps moving while the planner works";
+    EXPECT_GT(h.exec->velocity(), 0.9);
+    h.release();
+    h.exec->step(0.01);
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_TRUE(h.saw(Exec::REPLANNING, Sig::PATH_FOUND, Exec::EXECUTE));
+    // the new path avoids the box all the way to the goal
+    for (int i = 0; i < 30000 && h.exec->execState() != Exec::FINISHED; ++i)
+    {
+        h.exec->step(0.01);
+        ASSERT_GT(h.world.clearance(h.exec->configuration()), 0.) << "step " << i;
+    }
+    EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+    EXPECT_EQ(h.exec->statistics().stops, 0u);
+}
+
+TEST(NonStopExecutor, InterferenceGoneWhileReplanningCancelsAndContinues)
+{
+    Harness h;
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});
+    h.exec->geoChange();
+    ASSERT_EQ(h.exec->execState(), Exec::REPLANNING);
+    h.waitStarted(2);
+    h.world.boxes.clear();
+    h.exec->geoChange();
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_TRUE(h.saw(Exec::REPLANNING, Sig::CANCELLED, Exec::REPLANNING));
+    EXPECT_TRUE(h.saw(Exec::REPLANNING, Sig::GEO_CHANGE, Exec::EXECUTE));
+    h.exec->waitForPlanner();
+    EXPECT_EQ(h.gate.sawCancel, 1) << "the planner was told to stop";
+    EXPECT_EQ(h.exec->remainingPath().back(), (Configuration{10., 0.})) << "original path kept";
+    h.steps(30000);
+    EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+}
+
+TEST(NonStopExecutor, NoPathByTheStopPointDeceleratesStopsAndResumes)
+{
+    Harness h;
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});
+    h.exec->geoChange();
+    ASSERT_EQ(h.exec->execState(), Exec::REPLANNING);
+    // stop point: 2 - 0.1 (margin) - 0.25 (braking) = 1.65 m ahead
+    h.steps(170);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPING);
+    EXPECT_TRUE(h.saw(Exec::REPLANNING, Sig::STEP, Exec::STOPPING));
+    h.steps(60);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_TRUE(h.saw(Exec::STOPPING, Sig::STEP, Exec::STOPPED));
+    EXPECT_EQ(h.exec->velocity(), 0.);
+    EXPECT_GT(h.world.clearance(h.exec->configuration()), 0.05) << "stopped before the obstacle";
+    EXPECT_EQ(h.exec->statistics().stops, 1u);
+    h.release();
+    h.exec->step(0.01);
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    h.steps(30000);
+    EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+}
+
+TEST(NonStopExecutor, PathFoundWhileStoppingIsTakenOnceStopped)
+{
+    Harness h;
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});
+    h.exec->geoChange();
+    h.steps(172);
+    ASSERT_EQ(h.exec->execState(), Exec::STOPPING);
+    h.release();
+    h.exec->step(0.01);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPING);
+    h.steps(60);
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::PATH_FOUND, Exec::EXECUTE));
+    h.steps(30000);
+    EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+}
+
+TEST(NonStopExecutor, CloserThanSafetyDistanceStops)
+{
+    Harness h(0.5);
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 3., x0 + 4., 1.5, 2.5});
+    h.exec->geoChange();
+    ASSERT_EQ(h.exec->execState(), Exec::REPLANNING);
+    // an obstacle comes up beside the robot (not on the path)
+    h.world.boxes.push_back({x0 + 0.5, x0 + 0.7, 2.3, 2.5});
+    h.steps(30);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPING);
+    h.steps(100);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    h.exec->stop();
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::STOP, Exec::IDLE));
+}
+
+TEST(NonStopExecutor, TooCloseToTheInterferenceBrakesAtOnce)
+{
+    Harness h;
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 0.3, x0 + 1., 1.5, 2.5});
+    h.exec->geoChange();
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::STOPPING));
+    h.steps(100);
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_GT(h.world.clearance(h.exec->configuration()), 0.);
+}
+
+TEST(NonStopExecutor, InterferenceGoneWhileStoppingOrStoppedContinues)
+{
+    for (const bool waitUntilStopped : {false, true})
+    {
+        Harness h;
+        h.startStraight();
+        h.steps(300);
+        const double x0 = h.exec->configuration()[0];
+        h.world.boxes.push_back({x0 + 0.3, x0 + 1., 1.5, 2.5});
+        h.exec->geoChange();
+        ASSERT_EQ(h.exec->execState(), Exec::STOPPING);
+        if (waitUntilStopped)
+            h.steps(100);
+        const Exec before = h.exec->execState();
+        EXPECT_EQ(before, waitUntilStopped ? Exec::STOPPED : Exec::STOPPING);
+        h.world.boxes.clear();
+        h.exec->geoChange();
+        EXPECT_TRUE(h.saw(before, Sig::GEO_CHANGE, Exec::EXECUTE));
+        h.steps(30000);
+        EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+    }
+}
+
+TEST(NonStopExecutor, SmallInterferenceIsDeformedWithoutAQuery)
+{
+    Harness h;
+    h.deformOk = true;
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 2., x0 + 2.5, 1.9, 2.5});
+    h.exec->geoChange();
+    EXPECT_EQ(h.deformCalls, 1);
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::EXECUTE));
+    EXPECT_EQ(h.exec->statistics().deformations, 1u);
+    EXPECT_EQ(h.exec->statistics().queries, 1u);
+    h.steps(30000);
+    EXPECT_EQ(h.exec->execState(), Exec::FINISHED);
+}
+
+TEST(NonStopExecutor, FailedQueryIsRetriedAndStopCancels)
+{
+    Harness h;
+    h.exec->start({0., 0.}, {10., 0.});
+    h.release(false);
+    h.exec->step(0.01);
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::CANCELLED, Exec::STOPPED));
+    EXPECT_EQ(h.exec->statistics().failures, 1u);
+    EXPECT_EQ(h.exec->statistics().queries, 2u) << "asked again";
+    h.waitStarted(2);
+    h.exec->stop();
+    EXPECT_EQ(h.exec->execState(), Exec::IDLE);
+    h.exec->waitForPlanner();
+    EXPECT_EQ(h.gate.sawCancel, 1);
+    h.steps(10);
+    EXPECT_EQ(h.exec->execState(), Exec::IDLE);
+    // stop while executing
+    h.exec->start({0., 0.}, {10., 0.});
+    h.release();
+    h.exec->step(0.01);
+    ASSERT_EQ(h.exec->execState(), Exec::EXECUTE);
+    h.exec->stop();
+    EXPECT_TRUE(h.saw(Exec::EXECUTE, Sig::STOP, Exec::IDLE));
+}
+
+TEST(NonStopExecutor, PlanningDelayIsChargedOnTheSimulatedClockAndSynchronousQueriesRunToTheEnd)
+{
+    Harness h(0., 0.5, true);
+    {
+        std::lock_guard<std::mutex> lock(h.gate.mutex);
+        h.gate.released = 1;  // the planner may answer the first query at once
+    }
+    h.exec->start({0., 0.}, {10., 0.});
+    // synchronous: the query has been planned when start() returns
+    EXPECT_EQ(h.exec->planState(), NonStopExecutor::PlanState::WAIT_QUERY);
+    EXPECT_EQ(h.gate.started, 1);
+    h.steps(49);  // 0.49 s of simulated time: the answer is not due yet
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_EQ(h.exec->configuration(), (Configuration{0., 0.}));
+    h.steps(1);  // 0.5 s: due
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::PATH_FOUND, Exec::EXECUTE));
+}

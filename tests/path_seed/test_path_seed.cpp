@@ -1,0 +1,328 @@
+// Path seed library, fail-fast path check, repairs and the michi::PathSeed planner (paper 001).
+#include "support/ConformanceProblem.h"
+
+#include <michi/planners/path_seed/PathSeed.h>
+#include <michi/planners/path_seed/PathSeedLibrary.h>
+#include <michi/planners/path_seed/PathSeedRepair.h>
+#include <michi/tools/problem/ExperienceQueries.h>
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/problem/Problem.h>
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <gtest/gtest.h>
+
+#include <boost/filesystem.hpp>
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+using michi::planners::PathSeed;
+using michi::planners::PathSeedFileError;
+using michi::planners::PathSeedLibrary;
+using michi::planners::SeedVariant;
+
+namespace
+{
+    Eigen::VectorXd vec(std::initializer_list<double> v)
+    {
+        Eigen::VectorXd out(v.size());
+        int i = 0;
+        for (double x : v)
+            out[i++] = x;
+        return out;
+    }
+
+    std::string tempFile(const std::string &name)
+    {
+        const fs::path dir = fs::temp_directory_path() / fs::unique_path("michi-path-seed-%%%%%%");
+        fs::create_directories(dir);
+        return (dir / name).string();
+    }
+
+    void writeText(const std::string &file, const std::string &text)
+    {
+        std::ofstream out(file);
+        out << text;
+    }
+
+    std::string loadError(const std::string &file)
+    {
+        try
+        {
+            PathSeedLibrary::load(file);
+        }
+        catch (const PathSeedFileError &e)
+        {
+            return e.what();
+        }
+        return "";
+    }
+
+    og::PathGeometric makePath(const ob::SpaceInformationPtr &si, const std::vector<std::vector<double>> &values)
+    {
+        og::PathGeometric path(si);
+        ob::ScopedState<> s(si->getStateSpace());
+        for (const auto &v : values)
+        {
+            s = v;
+            path.append(s.get());
+        }
+        return path;
+    }
+}  // namespace
+
+TEST(PathSeedLibrary, SavesAndLoadsTheSameSeeds)
+{
+    for (SeedVariant variant : {SeedVariant::BLOCKS, SeedVariant::ROTATION})
+    {
+        PathSeedLibrary lib(variant);
+        ompl::RNG rng(2);
+        for (int i = 0; i < 4; ++i)
+        {
+            std::vector<Eigen::VectorXd> path;
+            for (int k = 0; k < 3 + i; ++k)
+                path.push_back(vec({rng.uniformReal(-2, 2), rng.uniformReal(-2, 2), rng.uniformReal(-2, 2),
+                                    rng.uniformReal(-2, 2), rng.uniformReal(-2, 2)}));
+            lib.add(path);
+        }
+        const std::string file = tempFile("lib.seeds");
+        lib.save(file);
+        const auto loaded = PathSeedLibrary::load(file);
+        ASSERT_EQ(loaded->size(), lib.size());
+        EXPECT_EQ(loaded->variant(), variant);
+        EXPECT_EQ(loaded->dimension(), 5u);
+        const Eigen::VectorXd s = vec({0.1, 0.2, 0.3, 0.4, 0.5}), g = vec({-1, 1, -1, 1, -1});
+        for (std::size_t i = 0; i < lib.size(); ++i)
+        {
+            const auto a = michi::planners::decodePath(lib.seed(i).code, s, g);
+            const auto b = michi::planners::decodePath(loaded->seed(i).code, s, g);
+            ASSERT_EQ(a.size(), b.size());
+            for (std::size_t k = 0; k < a.size(); ++k)
+                EXPECT_EQ((a[k] - b[k]).norm(), 0.);  // 17 significant digits: bit-exact
+        }
+    }
+}
+
+TEST(PathSeedLibrary, BadFilesGiveClearErrors)
+{
+    EXPECT_NE(loadError("/no/such/file.seeds").find("cannot open"), std::string::npos);
+    const std::string file = tempFile("bad.seeds");
+    writeText(file, "hello 1\n");
+    EXPECT_NE(loadError(file).find(file + ": line 1: not a path seed library"), std::string::npos) << loadError(file);
+    writeText(file, "michi-path-seed-library 99\n");
+    EXPECT_NE(loadError(file).find("line 1: unsupported version"), std::string::npos) << loadError(file);
+    // a valid library, then cut short and then corrupted
+    PathSeedLibrary lib;
+    lib.add({vec({0, 0, 0}), vec({1, 1, 0}), vec({2, 0, 0})});
+    lib.save(file);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    writeText(file, text.substr(0, text.find("deviation")));
+    EXPECT_NE(loadError(file).find("unexpected end of file"), std::string::npos) << loadError(file);
+    std::string corrupt = text;
+    corrupt.replace(corrupt.find("ratio 1 ") + 8, 1, "x");
+    writeText(file, corrupt);
+    EXPECT_NE(loadError(file).find("'ratio': value 1 of 1 missing or not a finite number"), std::string::npos)
+        << loadError(file);
+    // the planner names the file too, and keeps its library
+    auto problem = michi::test::makeConformanceProblem();
+    PathSeed planner(problem.setup->getSpaceInformation());
+    EXPECT_THROW(planner.setLibraryFile(file), PathSeedFileError);
+    EXPECT_EQ(planner.experienceCount(), 0u);
+}
+
+TEST(PathSeedLibrary, CandidatesAreTheNearestQueries)
+{
+    PathSeedLibrary lib;
+    for (double x : {0., 1., 2., 3.})
+        lib.add({vec({x, 0, 0}), vec({x, 1, 0}), vec({x, 2, 0})});
+    const auto c = lib.candidates(vec({2.1, 0, 0}), vec({2.1, 2, 0}), 2);
+    ASSERT_EQ(c.size(), 2u);
+    EXPECT_DOUBLE_EQ(c[0].start[0], 2.);
+    EXPECT_DOUBLE_EQ(c[1].start[0], 3.);
+    EXPECT_EQ(lib.candidates(vec({0, 0}), vec({0, 0}), 2).size(), 0u);  // wrong dimension: nothing
+    EXPECT_THROW(lib.add({vec({0, 0}), vec({1, 1})}), std::invalid_argument);
+}
+
+TEST(PathSeedRepair, FailFastCheckAgreesWithPathCheck)
+{
+    // xarm6_ring: workspace motion validator, so the round-robin bisection order is used
+    const auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/xarm6_ring.yaml");
+    const auto ctx = michi::tools::makePlanningContext(problem);
+    const auto si = ctx.setup->getSpaceInformation();
+    ompl::RNG::setSeed(4);
+    auto sampler = si->allocValidStateSampler();
+    int valid = 0, invalid = 0;
+    for (int i = 0; i < 20; ++i)
+    {
+        og::PathGeometric path(si);
+        ob::State *s = si->allocState();
+        for (int k = 0; k < 3; ++k)
+        {
+            sampler->sample(s);
+            path.append(s);
+        }
+        si->freeState(s);
+        const bool fast = michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition());
+        EXPECT_EQ(fast, path.check()) << i;
+        // two threads sharing the checks: the same answer
+        EXPECT_EQ(michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition(), nullptr, 2), fast)
+            << i;
+        (fast ? valid : invalid)++;
+    }
+    EXPECT_GT(invalid, 0);
+    // a known valid path: the main query's start and goal through a waypoint is at least checked consistently
+    const auto v = michi::planners::checkPathFull(si, makePath(si, {problem.queries[0].start, problem.queries[0].goal}),
+                                                  ob::plannerNonTerminatingCondition());
+    EXPECT_EQ(v.state.size(), 2u);
+    EXPECT_EQ(v.invalidStates(), 0u);
+}
+
+TEST(PathSeedRepair, RRTConnectRepairsAnInvalidStretch)
+{
+    ompl::RNG::setSeed(3);
+    auto problem = michi::test::makeConformanceProblem();
+    problem.setup->setup();
+    const auto si = problem.setup->getSpaceInformation();
+    // the straight motion from start to goal sweeps link 2 through the upper-right box
+    auto path = makePath(si, {{0.2, 0.3}, {0.7, -0.05}, {1.2, -0.4}});
+    EXPECT_FALSE(path.check());
+    const auto before = michi::planners::checkPathFull(si, path, ob::plannerNonTerminatingCondition());
+    EXPECT_GT(before.invalidStates() + before.invalidSegments(), 0u);
+    ASSERT_TRUE(michi::planners::repairWithRRTConnect(si, path, ob::timedPlannerTerminationCondition(10.)));
+    EXPECT_TRUE(path.check());
+    EXPECT_EQ(michi::test::independentPathCheck(path), "");
+    EXPECT_TRUE(si->equalStates(path.getState(0), problem.setup->getProblemDefinition()->getStartState(0)));
+}
+
+TEST(PathSeedRepair, StompRepairsAnInvalidStraightPath)
+{
+    ompl::RNG::setSeed(3);
+    auto problem = michi::test::makeConformanceProblem();
+    problem.setup->setup();
+    const auto si = problem.setup->getSpaceInformation();
+    auto path = makePath(si, {{0.2, 0.3}, {1.2, -0.4}});
+    ASSERT_FALSE(path.check());
+    michi::planners::StompSettings settings;
+    settings.noise = 0.3;
+    ASSERT_TRUE(michi::planners::repairWithStomp(si, path, ob::timedPlannerTerminationCondition(20.), settings));
+    EXPECT_TRUE(path.check());
+    EXPECT_EQ(michi::test::independentPathCheck(path), "");
+    EXPECT_EQ(path.getStateCount(), settings.timesteps);
+}
+
+TEST(PathSeedPlanner, RecallsALearnedPathForANearbyQuery)
+{
+    ompl::RNG::setSeed(5);
+    auto problem = michi::test::makeConformanceProblem();
+    auto si = problem.setup->getSpaceInformation();
+    auto planner = std::make_shared<PathSeed>(si);
+    planner->setRace(false);
+    problem.setup->setPlanner(planner);
+    ASSERT_EQ(problem.setup->solve(10.), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(planner->getLastSource(), "scratch");
+    EXPECT_EQ(planner->experienceCount(), 1u);  // learned
+    // the same query again: the seed decodes to the learned path, which is valid
+    planner->clear();
+    problem.setup->getProblemDefinition()->clearSolutionPaths();
+    ASSERT_EQ(problem.setup->solve(10.), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(planner->getLastSource(), "recall");
+    EXPECT_EQ(planner->experienceCount(), 1u);  // a valid recall is not learned again
+    // a nearby query: recalled or repaired, never from scratch, and valid
+    planner->clear();
+    ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
+    start = std::vector<double>{0.25, 0.25};
+    goal = std::vector<double>{1.15, -0.35};
+    problem.setup->setStartAndGoalStates(start, goal);
+    ASSERT_EQ(problem.setup->solve(10.), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_NE(planner->getLastSource(), "scratch");
+    EXPECT_TRUE(problem.setup->getSolutionPath().check());
+    EXPECT_EQ(michi::test::independentPathCheck(problem.setup->getSolutionPath()), "");
+    // the library survives clear() and can be saved and loaded by parameter
+    const std::string file = tempFile("conformance.seeds");
+    planner->saveLibrary(file);
+    auto other = std::make_shared<PathSeed>(si);
+    ASSERT_TRUE(other->params().setParam("library_file", file));
+    EXPECT_EQ(other->experienceCount(), planner->experienceCount());
+}
+
+TEST(ExperienceQueries, BadFilesAreNamedWithTheirKey)
+{
+    // xarm6_ring.yaml with absolute paths, written elsewhere, pointing at experience files we break on purpose
+    const fs::path source = fs::path(MICHI_SOURCE_DIR) / "problems";
+    std::ifstream in((source / "xarm6_ring.yaml").string());
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const std::string key : {"urdf: ", "file: "})  // the robot's URDF and the ring's mesh
+    {
+        const std::size_t at = text.find(key + (key == "urdf: " ? "robots/" : "meshes/")) + key.size();
+        text.insert(at, source.string() + "/");
+    }
+    const std::string problemFile = tempFile("ring.yaml");
+    const fs::path dir = fs::path(problemFile).parent_path();
+    auto withQueries = [&](const std::string &queries)
+    {
+        std::string t = text;
+        const std::string key = "experience/ring_task_queries.yaml";
+        t.replace(t.find(key), key.size(), "queries.yaml");
+        writeText(problemFile, t);
+        writeText((dir / "queries.yaml").string(), queries);
+    };
+    auto error = [&]() -> std::string
+    {
+        try
+        {
+            michi::tools::loadProblem(problemFile);
+        }
+        catch (const michi::tools::ProblemError &e)
+        {
+            return e.what();
+        }
+        return "";
+    };
+    withQueries(
+        "training: []\nheld_out:\n  - {start: [0, 0, 0, 0, 0, 0], goal: [0, 0.6842, -1.4954, 0, -0.7596, 0]}\n");
+    ASSERT_EQ(error(), "");
+    const auto problem = michi::tools::loadProblem(problemFile);
+    EXPECT_EQ(problem.experience.training.size(), 0u);
+    ASSERT_EQ(problem.experience.heldOut.size(), 1u);
+    withQueries("held_out:\n  - {start: [0, 0, 0], goal: [0, 0, 0, 0, 0, 0]}\n");
+    EXPECT_NE(error().find("held_out[0].start: expected 6 numbers, got 3"), std::string::npos) << error();
+    withQueries("held_out:\n  - {start: [9, 0, 0, 0, 0, 0], goal: [0, 0, 0, 0, 0, 0]}\n");
+    EXPECT_NE(error().find("held_out[0].start[0]: value 9 outside the limits"), std::string::npos) << error();
+    withQueries("trainig: []\n");
+    EXPECT_NE(error().find("trainig: unknown key"), std::string::npos) << error();
+    fs::remove(dir / "queries.yaml");
+    EXPECT_NE(error().find("experience.queries: file"), std::string::npos) << error();
+    // a held-out goal in collision is found before a benchmark: find a colliding state, then use it
+    withQueries("held_out:\n  - {start: [0, 0, 0, 0, 0, 0], goal: [0, 0, 0, 0, 0, 0]}\n");
+    const auto p2 = michi::tools::loadProblem(problemFile);
+    const auto ctx = michi::tools::makePlanningContext(p2);
+    ompl::RNG rng(9);
+    std::vector<double> colliding(6);
+    do
+        for (int k = 0; k < 6; ++k)
+            colliding[k] = rng.uniformReal(-1., 1.);
+    while (ctx.checker->describeCollision(colliding.data()).empty());
+    std::ostringstream q;
+    q << "held_out:\n  - {start: [0, 0, 0, 0, 0, 0], goal: [";
+    for (int k = 0; k < 6; ++k)
+        q << (k ? ", " : "") << std::setprecision(17) << colliding[k];
+    q << "]}\n";
+    withQueries(q.str());
+    const auto p3 = michi::tools::loadProblem(problemFile);
+    try
+    {
+        michi::tools::checkHeldOutQueries(p3, ctx);
+        ADD_FAILURE() << "a colliding held-out goal was accepted";
+    }
+    catch (const michi::tools::ProblemError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("held_out[0].goal: in collision"), std::string::npos) << e.what();
+    }
+}

@@ -1,0 +1,165 @@
+// Issue 13 through the `michi` command, as a careless user would meet it: each bad input gives a one-line error
+// naming the file (and key), a non-zero exit without a signal, and no output; a 10,000-obstacle map loads.
+#include "support/MichiCommand.h"
+#include "support/TestScenes.h"
+
+#include <boost/filesystem.hpp>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+using michi::test::CommandRun;
+using michi::test::runMichi;
+
+namespace
+{
+    std::string slurp(const fs::path &p)
+    {
+        std::ifstream in(p.string(), std::ios::binary);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+
+    void spit(const fs::path &p, const std::string &text)
+    {
+        std::ofstream(p.string(), std::ios::binary) << text;
+    }
+
+    std::string lastLine(const std::string &output)
+    {
+        std::string s = output;
+        while (!s.empty() && s.back() == '\n')
+            s.pop_back();
+        const auto nl = s.rfind('\n');
+        return nl == std::string::npos ? s : s.substr(nl + 1);
+    }
+
+    /** A copy of problems/ to break. */
+    class BadCommands : public ::testing::Test
+    {
+    protected:
+        void SetUp() override
+        {
+            dir_ = fs::temp_directory_path() / fs::unique_path("michi-bad-%%%%%%%%");
+            copyTree(michi::test::sourcePath("problems"), dir_ / "p");
+        }
+        void TearDown() override
+        {
+            fs::remove_all(dir_);
+        }
+        static void copyTree(const fs::path &from, const fs::path &to)
+        {
+            fs::create_directories(to);
+            for (const auto &e : fs::directory_iterator(from))
+            {
+                if (fs::is_directory(e.path()))
+                    copyTree(e.path(), to / e.path().filename());
+                else
+                    fs::copy_file(e.path(), to / e.path().filename());
+            }
+        }
+        /** Runs michi; expects exit 1 or 2 (no signal), the last line naming \e fragment, no raw library text, and
+            nothing written to --out. */
+        void expectCleanError(const std::string &args, const std::string &fragment, const fs::path &out)
+        {
+            const CommandRun run = runMichi(args);
+            EXPECT_TRUE(run.exitCode == 1 || run.exitCode == 2) << "exit " << run.exitCode << "\n" << run.output;
+            const std::string last = lastLine(run.output);
+            EXPECT_NE(last.find(fragment), std::string::npos) << last;
+            EXPECT_FALSE(std::regex_search(last, std::regex("std::bad_alloc|basic_filebuf|boost::filesystem")))
+                << last;
+            EXPECT_FALSE(fs::exists(out)) << out << " written";
+            // no staging folder left beside the output (nor in the test's folder, when --out lies under a file)
+            fs::path beside = out.parent_path();
+            while (!fs::is_directory(beside))
+                beside = beside.parent_path();
+            for (const auto &e : fs::directory_iterator(beside))
+                EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos) << e.path();
+        }
+        fs::path dir_;
+    };
+
+    const std::string PLAN = " --planner geometric::RRTConnect --time 0.3 --out ";
+}  // namespace
+
+TEST_F(BadCommands, UrdfCollisionOriginNanIsAnErrorNotAPathThroughAnObstacle)
+{
+    const fs::path urdf = dir_ / "p/robots/planar_2link.urdf";
+    std::string text = slurp(urdf);
+    const auto at = text.find("<origin xyz=\"0.2 0 0\"");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 21, "<origin xyz=\"nan 0 0\"");
+    spit(urdf, text);
+    expectCleanError("plan " + (dir_ / "p/planar_2link.yaml").string() + PLAN + (dir_ / "o").string(),
+                     "planar_2link.urdf", dir_ / "o");
+}
+
+TEST_F(BadCommands, UrdfJointCycle)
+{
+    const fs::path urdf = dir_ / "p/robots/planar_2link.urdf";
+    std::string text = slurp(urdf);
+    text.replace(text.find("</robot>"), 8,
+                 "<joint name=\"loop\" type=\"fixed\"><parent link=\"link2\"/><child link=\"link2\"/></joint></robot>");
+    spit(urdf, text);
+    expectCleanError("plan " + (dir_ / "p/planar_2link.yaml").string() + PLAN + (dir_ / "o").string(),
+                     "planar_2link.urdf", dir_ / "o");
+}
+
+TEST_F(BadCommands, HugeObstacleCoordinate)
+{
+    const fs::path file = dir_ / "p/dynamic_mobile_passage.yaml";
+    const std::string text = std::regex_replace(slurp(file), std::regex(R"(xyz:\s*\[[^\]]*\])"),
+                                                "xyz: [1e308, 1e308, 1e308]", std::regex_constants::format_first_only);
+    spit(file, text);
+    expectCleanError("plan " + file.string() + PLAN + (dir_ / "o").string(), "dynamic_mobile_passage", dir_ / "o");
+}
+
+TEST_F(BadCommands, StlWithAnInfiniteVertex)
+{
+    const fs::path stl = dir_ / "p/meshes/ring.stl";
+    spit(stl, std::regex_replace(slurp(stl), std::regex(R"((vertex\s+)(\S+))"), "$1inf",
+                                 std::regex_constants::format_first_only));
+    expectCleanError("plan " + (dir_ / "p/xarm6_ring.yaml").string() + PLAN + (dir_ / "o").string(), "ring.stl",
+                     dir_ / "o");
+}
+
+TEST_F(BadCommands, PgmWhoseHeaderClaimsMoreThanItHolds)
+{
+    spit(dir_ / "p/maps/se2_corridor.pgm", std::string("P5\n50000 50000\n255\n\0\0", 21));
+    expectCleanError("plan " + (dir_ / "p/se2_corridor_pgm.yaml").string() + PLAN + (dir_ / "o").string(),
+                     "se2_corridor.pgm", dir_ / "o");
+}
+
+TEST_F(BadCommands, MoveItSceneThatIsAFolder)
+{
+    const fs::path file = dir_ / "p/panda_table_pick.yaml";
+    spit(file, std::regex_replace(slurp(file), std::regex(R"((\n\s*moveit:\s*)\S+)"), "$1/"));
+    expectCleanError("plan " + file.string() + PLAN + (dir_ / "o").string(), "scene.moveit", dir_ / "o");
+}
+
+TEST_F(BadCommands, OutputFolderUnderAFile)
+{
+    spit(dir_ / "afile", "");
+    expectCleanError("bench " + (dir_ / "p/planar_2link.yaml").string() +
+                         " --planners geometric::RRTConnect --runs 1 --time 0.1 --out " + (dir_ / "afile/sub").string(),
+                     "afile", dir_ / "afile/sub");
+}
+
+TEST_F(BadCommands, TenThousandObstacleMapLoads)
+{
+    // a 141 x 141 checkerboard: 9,940 one-cell boxes (loading was quadratic: 28 s); the run ends normally
+    std::string pgm = "P5\n141 141\n255\n";
+    for (int y = 0; y < 141; ++y)
+        for (int x = 0; x < 141; ++x)
+            pgm += static_cast<char>((x + y) % 2 == 0 ? 0 : 255);
+    spit(dir_ / "checker.pgm", pgm);
+    spit(dir_ / "checker.yaml", "robot:\n  type: se2\n  footprint: [[-0.01, -0.01], [0.01, -0.01], [0.01, 0.01], "
+                                "[-0.01, 0.01]]\n  bounds: {x: [0, 20], y: [0, 20]}\nscene:\n  map: {pgm: checker.pgm, "
+                                "resolution: 0.05, origin: [10, 10]}\nstart: [1, 1, 0]\ngoal: [2, 2, 0]\n");
+    const CommandRun run = runMichi("plan " + (dir_ / "checker.yaml").string() + PLAN + (dir_ / "o").string());
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+}

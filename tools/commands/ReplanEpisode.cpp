@@ -1,0 +1,248 @@
+#include "ReplanMethodRun.h"
+
+#include <michi/planners/dual_roadmap/DualRoadmap.h>
+#include <michi/tools/bench/PlannerRegistry.h>
+
+#include <ompl/base/ScopedState.h>
+
+#include <cstdlib>
+#include <iostream>
+
+namespace ob = ompl::base;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace replan
+        {
+            MethodRun::MethodRun(const Problem &problem, const std::vector<validity::Obstacle> &statics,
+                                 const std::vector<Mover> &movers, const ReplanSettings &settings, const Method &method)
+                : problem_(problem), movers_(movers), settings_(settings), method_(method)
+            {
+                const int copies = static_cast<int>(settings.predictionCopies);
+                planSensed_.build(statics, movers, copies, settings.predictionHorizon);
+                execSensed_.build(statics, movers, copies, settings.predictionHorizon);
+                planNow_.build(statics, movers, 3, settings.escapeHorizon, false);
+                moving_.build({}, movers, 3, settings.escapeHorizon, false);
+                world_ = std::make_shared<validity::Scene>();
+                for (const auto &o : statics)
+                    world_->add(o);
+                for (const auto &m : movers)
+                {
+                    validity::Obstacle o;
+                    o.name = m.name;
+                    o.shape = m.shape;
+                    o.trajectory = m.trajectory;
+                    world_->add(o);
+                }
+                for (const auto &m : movers)
+                {
+                    // one scene per mover (true shape), to ask whether it would move into a standing robot
+                    auto scene = std::make_shared<validity::Scene>();
+                    validity::Obstacle o;
+                    o.name = m.name;
+                    o.shape = m.shape;
+                    o.pose = validity::Scene::poseAt(m.trajectory, 0.);
+                    scene->add(o);
+                    yieldScenes_.push_back(scene);
+                    yieldCtx_.push_back(context(scene));
+                }
+                planCtx_ = context(planSensed_.scene);
+                planNowCtx_ = context(planNow_.scene);
+                execCtx_ = context(execSensed_.scene);
+                worldCtx_ = context(world_);
+                movingCtx_ = context(moving_.scene);
+                planner_ = allocatePlanner(method.planner, planCtx_.setup->getSpaceInformation());
+                std::map<std::string, std::string> params = method.params;
+                if (method.reuse == Method::Reuse::DUAL)
+                    for (const auto &kv : settings.dualParams)
+                        params.insert(kv);
+                applyPlannerParams(*planner_, PlannerSpec{method.planner, params}, problem.file);
+                if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
+                {
+                    auto scene = planSensed_.scene;
+                    dual->setSceneChangeCounter(
+                        [scene]
+                        {
+                            return scene->changeCount();
+                        });
+                }
+            }
+
+            void MethodRun::setMoverTrajectory(std::size_t k, const std::vector<validity::TimedPose> &trajectory)
+            {
+                world_->remove(movers_[k].name);
+                validity::Obstacle o;
+                o.name = movers_[k].name;
+                o.shape = movers_[k].shape;
+                o.trajectory = trajectory;
+                world_->add(o);
+            }
+
+            void MethodRun::episode(const std::vector<std::vector<validity::TimedPose>> &trajectories, Results &results,
+                                    std::vector<Frame> *frames)
+            {
+                for (std::size_t k = 0; k < movers_.size(); ++k)
+                    setMoverTrajectory(k, trajectories[k]);
+                trajectories_ = trajectories;
+                {
+                    std::lock_guard<std::mutex> lock(snapshotMutex_);
+                    snapshots_.clear();
+                }
+                lastPoses_.clear();
+
+                NonStopExecutor exec(hooks(), executorSettings());
+                double t = 0.;
+                world_->setTime(0.);
+                sense(0.);
+                const auto &q = problem_.queries[0];
+                exec.start(q.start, q.goal);
+                const auto &worldSi = worldCtx_.setup->getSpaceInformation();
+                ob::ScopedState<> prev(worldSi), cur(worldSi);
+                toState(worldSi, q.start, prev.get());
+                bool collided = false, reached = false;
+                double nextSense = settings_.sensePeriod;
+                std::vector<Configuration> executed{q.start};
+                double nextFrame = 0.;
+                while (t < settings_.episodeTime)
+                {
+                    const bool reproducible = settings_.realTime <= 0.;
+                    if (exec.planState() == NonStopExecutor::PlanState::PLANNING)
+                    {
+                        if (reproducible)
+                            exec.waitForPlanner();  // the planner's time is charged on the simulated clock
+                        else
+                            exec.waitForPlanner(settings_.dt * settings_.realTime);
+                    }
+                    t += settings_.dt;
+                    if (settings_.obstaclesYield)
+                        for (std::size_t k = 0; k < movers_.size(); ++k)
+                        {
+                            // a mover that would move into the robot (where it is, at prev) waits this step; the
+                            // robot's own motion is checked below against the movers where they then are
+                            const auto &ysi = yieldCtx_[k].setup->getSpaceInformation();
+                            yieldScenes_[k]->setPose(movers_[k].name,
+                                                     validity::Scene::poseAt(trajectories_[k], t - settings_.dt));
+                            const bool before = ysi->isValid(prev.get());
+                            yieldScenes_[k]->setPose(movers_[k].name, validity::Scene::poseAt(trajectories_[k], t));
+                            if (!before || ysi->isValid(prev.get()))
+                                continue;
+                            for (auto &key : trajectories_[k])
+                                key.time += settings_.dt;
+                            setMoverTrajectory(k, trajectories_[k]);
+                            ++results.obstacleWaits;
+                        }
+                    world_->setTime(t);
+                    exec.step(settings_.dt);
+                    toState(worldSi, exec.configuration(), cur.get());
+                    // the swept motion of this step against the obstacles where they are now
+                    if (!worldSi->isValid(prev.get()) || !worldSi->isValid(cur.get()) ||
+                        !worldSi->checkMotion(prev.get(), cur.get()))
+                    {
+                        if (!collided && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
+                        {
+                            const auto c = exec.configuration();
+                            std::cerr << "\ncollision at t=" << t << " state "
+                                      << NonStopExecutor::name(exec.execState()) << " q=(" << c[0] << "," << c[1] << ","
+                                      << c[2] << ") v=" << exec.velocity() << ": "
+                                      << worldCtx_.checker->describeCollision(c.data())
+                                      << " | sensed: " << execCtx_.checker->describeCollision(c.data()) << "\n";
+                            for (const auto &o : execSensed_.scene->obstacles())
+                                std::cerr << "   " << o.name << " " << o.pose.translation().transpose() << "\n";
+                            const auto &trs = exec.transitions();
+                            for (std::size_t ti = trs.size() > 10 ? trs.size() - 10 : 0; ti < trs.size(); ++ti)
+                                std::cerr << "  " << NonStopExecutor::name(trs[ti].from) << " -"
+                                          << NonStopExecutor::name(trs[ti].signal) << "-> "
+                                          << NonStopExecutor::name(trs[ti].to) << "\n";
+                        }
+                        collided = true;
+                        ++results.collisionSteps;
+                    }
+                    worldSi->copyState(prev.get(), cur.get());
+                    if (frames != nullptr)
+                        executed.push_back(exec.configuration());
+                    if (exec.execState() == NonStopExecutor::ExecState::FINISHED)
+                    {
+                        reached = true;
+                        break;
+                    }
+                    if (t >= nextSense - 1e-9)
+                    {
+                        sense(t);
+                        exec.geoChange();
+                        nextSense += settings_.sensePeriod;
+                        if (frames != nullptr && t >= nextFrame)
+                        {
+                            frames->push_back(Frame{t, executed, exec.remainingPath(), lastPoses_});
+                            nextFrame += 1.;
+                        }
+                    }
+                }
+                if (frames != nullptr)
+                    frames->push_back(Frame{t, executed, exec.remainingPath(), lastPoses_});
+                exec.stop();
+                exec.waitForPlanner();
+
+                const auto &st = exec.statistics();
+                ++results.episodes;
+                results.reached += reached ? 1 : 0;
+                results.collisions += collided ? 1 : 0;
+                results.stops += st.stops;
+                results.deformations += st.deformations;
+                results.replans += st.queries > 0 ? st.queries - 1 : 0;
+                results.failures += st.failures;
+                results.cancelled += st.cancelled;
+                for (std::size_t i = 0; i < st.latencies.size(); ++i)
+                    (i == 0 ? results.initialLatency : results.replanLatency).push_back(1000. * st.latencies[i]);
+                if (reached)
+                    results.timeToGoal.push_back(t);
+                results.episodeEnd.push_back(t);
+                if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
+                    results.learningEdges = dual->learningEdgeCount();
+            }
+
+            PlanningContext MethodRun::context(const validity::ScenePtr &scene) const
+            {
+                ContextOptions options;
+                options.scene = scene;
+                return makePlanningContext(problem_, options);
+            }
+
+            NonStopSettings MethodRun::executorSettings() const
+            {
+                NonStopSettings s;
+                s.speed = settings_.speed;
+                s.deceleration = settings_.deceleration;
+                s.safetyDistance = settings_.safetyDistance;
+                s.stopMargin = settings_.stopMargin;
+                if (settings_.realTime <= 0.)
+                {
+                    s.planningDelay = settings_.planningDelay;
+                    s.synchronous = true;
+                }
+                return s;
+            }
+
+            void MethodRun::sense(double t)
+            {
+                Snapshot snap;
+                for (std::size_t k = 0; k < movers_.size(); ++k)
+                {
+                    const Eigen::Isometry3d pose = validity::Scene::poseAt(trajectories_[k], t);
+                    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+                    if (lastPoses_.size() == movers_.size() && t > lastSenseTime_)
+                        v = (pose.translation() - lastPoses_[k].translation()) / (t - lastSenseTime_);
+                    snap.poses.push_back(pose);
+                    snap.velocities.push_back(v);
+                }
+                lastPoses_ = snap.poses;
+                lastSenseTime_ = t;
+                execSensed_.update(movers_, snap.poses, snap.velocities);
+                moving_.update(movers_, snap.poses, snap.velocities);
+                std::lock_guard<std::mutex> lock(snapshotMutex_);
+                snapshots_[++snapshotId_] = std::move(snap);
+            }
+        }  // namespace replan
+    }      // namespace tools
+}  // namespace michi

@@ -1,0 +1,173 @@
+#ifndef MICHI_TOOLS_SRC_REPLAN_TYPES_
+#define MICHI_TOOLS_SRC_REPLAN_TYPES_
+
+// Private to michi_tools (not installed): what the pieces of `michi replan` share (ReplanCommand.cpp,
+// ReplanSettings.cpp, ReplanMethods.cpp, ReplanEpisode.cpp, ReplanHooks.cpp, ReplanReport.cpp, ReplanFrames.cpp).
+
+#include <michi/planners/dual_roadmap/NonStopExecutor.h>
+#include <michi/planners/dual_roadmap/PathDeformation.h>
+#include <michi/tools/problem/Problem.h>
+
+#include <Eigen/Geometry>
+
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace replan
+        {
+            // paper 002's executor and path deformation live beside DualRoadmap (michi::planners), usable from a
+            // user's own OMPL code; the scenario runner uses them by these names
+            using planners::Configuration;
+            using planners::ConfigurationPath;
+            using planners::DeformationSettings;
+            using planners::NonStopExecutor;
+            using planners::NonStopHooks;
+            using planners::NonStopSettings;
+            using planners::deformPath;
+            using planners::pointJacobian;
+
+            /** extras.replan of the problem file (docs/dual-roadmap.md). */
+            struct ReplanSettings
+            {
+                double dt{0.02};               ///< simulation step, seconds
+                double sensePeriod{0.1};       ///< Geo. change every this many seconds
+                double speed{1.};              ///< cruise speed along the path (state space distance / s)
+                double deceleration{2.};       ///< and acceleration
+                double safetyDistance{0.15};   ///< metres
+                double margin{0.15};           ///< moving obstacles are grown by this for planning and checks
+                double predictionHorizon{1.};  ///< seconds of constant-velocity prediction of moving obstacles
+                double predictionCopies{3.};   ///< copies of each moving obstacle along the prediction
+                double lookahead{4.};          ///< path length checked after a Geo. change
+                double stopMargin{0.05};       ///< path length between the stop and the interference
+                double planningTime{1.};       ///< seconds per query
+                double episodeTime{60.};       ///< simulated seconds before an episode counts as failed
+                double timingJitter{1.};       ///< moving obstacles start up to this many seconds earlier / later
+                double speedJitter{0.3};       ///< and move up to this fraction faster / slower
+                double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
+                /** real_time 0: reproducible runs. Every query is charged planning_delay simulated seconds, the
+                    simulation waits for the planner (in wall time) before it steps on, and the planner stops after
+                    planning_work evaluations of its termination condition (a work count, not wall time). */
+                double planningDelay{0.1};
+                double planningWork{200000.};
+                double escapeHorizon{0.};  ///< escapes avoid the obstacles' true shapes over this many seconds
+                double crossTime{0.6};  ///< s: a robot inside a predicted region keeps going if it leaves it this fast
+                bool deformation{true};
+                /** obstacles_yield: a moving obstacle that would move into the robot waits (its key frames are
+                    delayed by a step) instead; a robot that moves into an obstacle still collides. */
+                bool obstaclesYield{false};
+                DeformationSettings deform;
+                double frames{8.};
+                std::map<std::string, std::string> dualParams;  ///< dual_roadmap_params: set on both DualRoadmap runs
+            };
+
+            /** extras.replan of problem file \e file (defaults where absent); throws ProblemError. */
+            ReplanSettings readSettings(const std::string &file);
+
+            /** \e shape grown by \e m on every side (a moving obstacle, for planning and checks); \e file, \e key
+                name it in the error for a shape that cannot be grown. */
+            validity::ShapePtr grow(const validity::Shape &shape, double m, const std::string &file,
+                                    const std::string &key);
+
+            struct Mover
+            {
+                std::string name;
+                validity::ShapePtr shape;
+                validity::ShapePtr grown;
+                std::vector<validity::TimedPose> trajectory;  ///< as in the file
+            };
+
+            /** The world as the robot senses it: static obstacles, and each moving obstacle grown by the margin
+                and repeated along its observed velocity over the prediction horizon. */
+            struct SensedWorld
+            {
+                validity::ScenePtr scene{std::make_shared<validity::Scene>()};
+                int copies{1};
+                double horizon{0.};
+
+                /** \e grown false: the movers' true shapes. */
+                void build(const std::vector<validity::Obstacle> &statics, const std::vector<Mover> &movers, int n,
+                           double h, bool grown = true)
+                {
+                    copies = n;
+                    horizon = h;
+                    for (const auto &o : statics)
+                        scene->add(o);
+                    for (const auto &m : movers)
+                        for (int i = 0; i < copies; ++i)
+                        {
+                            validity::Obstacle o;
+                            o.name = m.name + "~" + std::to_string(i);
+                            o.shape = grown ? m.grown : m.shape;
+                            o.pose = validity::Scene::poseAt(m.trajectory, 0.);
+                            scene->add(o);
+                        }
+                }
+                void update(const std::vector<Mover> &movers, const std::vector<Eigen::Isometry3d> &poses,
+                            const std::vector<Eigen::Vector3d> &velocities)
+                {
+                    for (std::size_t k = 0; k < movers.size(); ++k)
+                        for (int i = 0; i < copies; ++i)
+                        {
+                            Eigen::Isometry3d pose = poses[k];
+                            const double f = copies > 1 ? static_cast<double>(i) / (copies - 1) : 0.;
+                            pose.translation() += velocities[k] * horizon * f;
+                            scene->setPose(movers[k].name + "~" + std::to_string(i), pose);
+                        }
+                }
+            };
+
+            struct Snapshot
+            {
+                std::vector<Eigen::Isometry3d> poses;
+                std::vector<Eigen::Vector3d> velocities;
+            };
+
+            struct Method
+            {
+                std::string id;  ///< for --methods
+                std::string label;
+                std::string planner;
+                std::map<std::string, std::string> params;
+                enum class Reuse
+                {
+                    SCRATCH,       ///< clear() before every query
+                    KEEP_ROADMAP,  ///< LazyPRM: clearQuery() + clearValidity(), the roadmap stays
+                    DUAL           ///< DualRoadmap: clear() keeps the learning roadmap
+                } reuse{Reuse::SCRATCH};
+                bool simplify{true};
+            };
+
+            /** michi::DualRoadmap first, then the baselines. */
+            std::vector<Method> allMethods();
+
+            struct Results
+            {
+                unsigned int episodes{0}, reached{0}, collisions{0}, collisionSteps{0}, stops{0}, deformations{0},
+                    replans{0}, cancelled{0}, failures{0}, obstacleWaits{0};
+                std::vector<double> replanLatency;   ///< ms
+                std::vector<double> initialLatency;  ///< ms
+                std::vector<double> timeToGoal;      ///< simulated s
+                std::vector<double> episodeEnd;      ///< simulated s at which each episode ended
+                double wallSeconds{0.};
+                std::size_t learningEdges{0};
+            };
+
+            /** One frame of the picture: time, robot trajectory so far, remaining plan, obstacle poses. */
+            struct Frame
+            {
+                double time;
+                std::vector<Configuration> executed;
+                ConfigurationPath plan;
+                std::vector<Eigen::Isometry3d> poses;
+            };
+        }  // namespace replan
+    }      // namespace tools
+}  // namespace michi
+
+#endif

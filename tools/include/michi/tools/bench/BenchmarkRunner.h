@@ -1,0 +1,67 @@
+#ifndef MICHI_TOOLS_BENCHMARK_RUNNER_
+#define MICHI_TOOLS_BENCHMARK_RUNNER_
+
+#include <michi/tools/problem/Problem.h>
+#include <michi/tools/pictures/SvgPlot.h>
+
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace michi
+{
+    namespace tools
+    {
+        /** \brief Overrides of a problem's benchmark settings (0 / empty: keep the problem's). */
+        struct BenchOptions
+        {
+            std::vector<std::string> planners;
+            unsigned int runs{0};
+            double timeLimit{0.};
+            std::size_t query{0};
+            bool heldOut{true};  ///< cycle the problem's held-out experience queries (if any) instead of \e query
+            /** \brief Run every planner twice in the same Benchmark: with the FCL checker and the problem's motion
+                validator, and with the J-map checker and JMapMotionValidator (planner names suffixed "_jmap"), so
+                the two are compared under the same conditions. For arms only. */
+            bool compareCheckers{false};
+            std::string outDir;
+            std::ostream *progress{nullptr};  ///< progress lines (stderr in the command), or none
+        };
+
+        /** \brief Per-planner figures of one benchmark, as in summary.md. */
+        struct PlannerSummary
+        {
+            std::string name;  ///< as OMPL's Benchmark names it (geometric_RRTConnect)
+            unsigned int runs{0};
+            unsigned int solved{0};
+            double medianTime{0.};       ///< over all runs, seconds
+            double medianLength{0.};     ///< over solved runs, NaN if none
+            double medianClearance{0.};  ///< over solved runs, NaN if none
+        };
+
+        struct BenchResult
+        {
+            std::string log;
+            std::string database;
+            std::string summary;
+            std::string picture;
+            std::vector<PlannerSummary> planners;
+            std::vector<PlotPath> paths;  ///< one solution per planner that solved
+        };
+
+        /** \brief Run OMPL's Benchmark over the planners on query \e options.query of \e problem and write, in
+            options.outDir: `<name>.log` (OMPL's log format), `<name>.db` (Debian's ompl_benchmark_statistics,
+            for Planner Arena), `summary.md`, `<name>.svg` (one solution of each planner) and its PNG rendering
+           `<name>.png`. Everything is checked (planner names, parameters, start and goal) before the first run, and the
+           files are written to a staging folder and moved into outDir only when all of them exist: on failure nothing
+           is left behind. Throws ProblemError / std::runtime_error. */
+        BenchResult runBenchmark(const Problem &problem, const BenchOptions &options);
+
+        /** \brief Markdown table of planner summaries. */
+        std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
+                                    double timeLimit, unsigned int runs, bool compareCheckers = false);
+    }  // namespace tools
+}  // namespace michi
+
+#endif

@@ -1,0 +1,74 @@
+#ifndef MICHI_TOOLS_PLANNING_CONTEXT_
+#define MICHI_TOOLS_PLANNING_CONTEXT_
+
+#include <michi/tools/problem/Problem.h>
+#include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/jmap/JMapValidityChecker.h>
+
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace michi
+{
+    namespace tools
+    {
+        /** \brief A problem made ready for OMPL: state space, FCL validity checker, the problem's motion
+            validator (workspace-resolution by default), start and goal of one query. */
+        struct PlanningContext
+        {
+            ompl::geometric::SimpleSetupPtr setup;
+            validity::FclValidityCheckerPtr checker;  ///< the exact checker (also inside the J-map checker)
+            /** \brief The J-map checker when the problem's collision.checker is "jmap" (then it is the space's
+                state validity checker), else null. */
+            std::shared_ptr<validity::JMapValidityChecker> jmap;
+            validity::CollisionBodiesPtr bodies;
+            validity::ScenePtr scene;          ///< the scene checked (the problem's unless the options gave one)
+            std::vector<double> fixedValues;   ///< the robot's other joints (ARM; the problem's unless given)
+        };
+
+        /** \brief What makePlanningContext() may take from elsewhere than the problem, so callers never copy a
+            Problem to change one field. Empty members mean "as the problem says". */
+        struct ContextOptions
+        {
+            std::size_t query{0};                 ///< which of the problem's queries (ignored when start/goal given)
+            std::vector<double> start, goal;      ///< a query of the caller's own (both or neither)
+            std::string checker;                  ///< "fcl" or "jmap"
+            std::string motionValidator;          ///< "workspace", "conservative" or "discrete"
+            validity::ScenePtr scene;             ///< another scene (replanning's world at one moment)
+            std::vector<double> fixedValues;      ///< the other joints' values (a dual-arm task's configuration)
+        };
+
+        /** \brief The state space of a problem (joint space of the group, or SE(2) on the map's bounds). */
+        ompl::base::StateSpacePtr makeStateSpace(const Problem &problem);
+
+        /** \brief Build the context for query \e query. Throws ProblemError (key "start"/"goal" or
+            "queries[i].start") when a start or goal is out of bounds or in collision, naming what collides. */
+        PlanningContext makePlanningContext(const Problem &problem, std::size_t query = 0);
+
+        /** \brief The same with \e options in place of the problem's fields. Errors name the problem file; keys of a
+            caller's own query are "start"/"goal". */
+        PlanningContext makePlanningContext(const Problem &problem, const ContextOptions &options);
+
+        /** \brief Why \e value lies outside an OMPL range suggestion ("lower:upper" or "lower:step:upper"), or ""
+            when it lies inside or the suggestion is not numeric. */
+        std::string outsideDeclaredRange(const std::string &value, const std::string &range);
+
+        /** \brief Set planner parameters by name; throws ProblemError naming the parameter and the planner's
+            known parameters when one is unknown or rejects the value.
+            Values outside the parameter's declared range are rejected too. */
+        void applyPlannerParams(ompl::base::Planner &planner, const PlannerSpec &spec, const std::string &file);
+
+        /** \brief The one way `plan`, `bench` and the method commands make a planner: the registry's allocator for
+            \e name on \e si, then the parameters the problem's `planners:` entry of that name gives it, then
+            \e extra (a command line's --set). Throws std::invalid_argument for an unknown name and ProblemError
+            for a bad parameter. */
+        ompl::base::PlannerPtr makePlanner(const Problem &problem, const std::string &name,
+                                           const ompl::base::SpaceInformationPtr &si,
+                                           const std::map<std::string, std::string> &extra = {});
+    }  // namespace tools
+}  // namespace michi
+
+#endif

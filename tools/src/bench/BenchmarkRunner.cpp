@@ -1,0 +1,300 @@
+#include <michi/tools/bench/BenchmarkRunner.h>
+#include <michi/validity/jmap/JMapMotionValidator.h>
+#include <michi/tools/problem/ExperienceQueries.h>
+#include <michi/tools/FileOutput.h>
+
+#include <michi/tools/bench/PlannerRegistry.h>
+#include <michi/tools/bench/PlanningContext.h>
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/filesystem.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <mutex>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+namespace ot = ompl::tools;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            double median(std::vector<double> v)
+            {
+                if (v.empty())
+                    return std::nan("");
+                std::sort(v.begin(), v.end());
+                const std::size_t n = v.size();
+                return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+            }
+
+            double property(const ot::Benchmark::RunProperties &run, const std::string &key)
+            {
+                auto it = run.find(key);
+                if (it == run.end() || it->second.empty())
+                    return std::nan("");
+                try
+                {
+                    return std::stod(it->second);
+                }
+                catch (const std::exception &)
+                {
+                    return std::nan("");
+                }
+            }
+        }  // namespace
+
+        std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
+                                    double timeLimit, unsigned int runs, bool compareCheckers)
+        {
+            std::ostringstream md;
+            md << "# " << problem.name << "\n\n";
+            if (!problem.description.empty())
+                md << problem.description << "\n\n";
+            md << "OMPL Benchmark, " << runs << " runs per planner, time limit " << timeLimit << " s per run, "
+               << (compareCheckers ? "FCL validity checker and " + problem.motionValidator +
+                                         " motion validator; planners suffixed _jmap: J-map validity checker and J-map "
+                                         "motion validator (" +
+                                         problem.motionValidator + " where the map cannot decide)"
+                   : problem.checker == "jmap"
+                       ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
+                             " for what the map cannot decide)"
+                       : "FCL validity checker, " + problem.motionValidator + " motion validator")
+               << ". Median time over all runs (failures count at the time they gave up); length"
+                  " and clearance over solved runs.\n\n";
+            md << "| planner | runs | success | median time (s) | median length | median clearance |\n";
+            md << "|---|---:|---:|---:|---:|---:|\n";
+            auto num = [](double v, int precision)
+            {
+                if (std::isnan(v))
+                    return std::string("–");
+                std::ostringstream s;
+                s << std::setprecision(precision) << v;
+                return s.str();
+            };
+            for (const auto &p : planners)
+                md << "| " << p.name << " | " << p.runs << " | " << num(100. * p.solved / std::max(1u, p.runs), 3)
+                   << " % | " << num(p.medianTime, 4) << " | " << num(p.medianLength, 4) << " | "
+                   << num(p.medianClearance, 3) << " |\n";
+            return md.str();
+        }
+
+        BenchResult runBenchmark(const Problem &problem, const BenchOptions &options)
+        {
+            if (options.outDir.empty())
+                throw std::invalid_argument("no output folder given");
+            const double timeLimit = options.timeLimit > 0. ? options.timeLimit : problem.benchmark.timeLimit;
+            const unsigned int runs = options.runs > 0 ? options.runs : problem.benchmark.runs;
+            std::vector<PlannerSpec> specs;
+            if (options.planners.empty())
+                specs = problem.planners;
+            else
+                for (const auto &name : options.planners)
+                {
+                    auto it = std::find_if(problem.planners.begin(), problem.planners.end(),
+                                           [&](const PlannerSpec &s)
+                                           {
+                                               return s.name == name;
+                                           });
+                    specs.push_back(it != problem.planners.end() ? *it : PlannerSpec{name, {}});
+                }
+
+            ompl::RNG::setSeed(problem.benchmark.seed);
+            ContextOptions contextOptions;
+            contextOptions.query = options.query;
+            if (options.compareCheckers)
+                contextOptions.checker = "jmap";  // the context then holds both checkers and both motion validators
+            PlanningContext ctx = makePlanningContext(problem, contextOptions);  // checks start and goal
+            auto si = ctx.setup->getSpaceInformation();
+            // checker and motion validator of each planner instance (compareCheckers: FCL ones, then J-map ones)
+            std::map<const ob::Planner *, std::pair<ob::StateValidityCheckerPtr, ob::MotionValidatorPtr>> checking;
+            const ob::StateValidityCheckerPtr jmapChecker = si->getStateValidityChecker();
+            const ob::MotionValidatorPtr jmapMotions = si->getMotionValidator();
+            ob::MotionValidatorPtr fclMotions;
+            if (options.compareCheckers)
+            {
+                auto mv = std::dynamic_pointer_cast<validity::JMapMotionValidator>(jmapMotions);
+                if (!mv)
+                    throw std::logic_error("the J-map context has no J-map motion validator");
+                fclMotions = mv->fallback();
+            }
+
+            ot::Benchmark benchmark(*ctx.setup, problem.name);
+            std::vector<ob::PlannerPtr> planners;
+            for (const auto &spec : specs)
+            {
+                auto make = [&]
+                {
+                    try
+                    {
+                        return makePlanner(problem, spec.name, si, spec.params);
+                    }
+                    catch (const std::invalid_argument &e)
+                    {
+                        throw ProblemError(problem.file, "planners", e.what());
+                    }
+                };
+                ob::PlannerPtr planner = make();
+                benchmark.addPlanner(planner);
+                planners.push_back(planner);
+                if (!options.compareCheckers)
+                    continue;
+                checking[planner.get()] = {ctx.checker, fclMotions};
+                auto withJMap = make();
+                withJMap->setName(withJMap->getName() + "_jmap");
+                benchmark.addPlanner(withJMap);
+                planners.push_back(withJMap);
+                checking[withJMap.get()] = {jmapChecker, jmapMotions};
+            }
+            benchmark.addExperimentParameter("query", "INTEGER", std::to_string(options.query));
+            // experience planners learn the training queries' solutions before the runs (not timed); run i of every
+            // planner plans held-out query i mod n (docs/path-seed.md, ExperienceQueries.h)
+            const auto &heldOut = problem.experience.heldOut;
+            std::map<std::string, std::size_t> heldOutRun;
+            const bool cycleHeldOut = options.heldOut && !heldOut.empty();
+            if (cycleHeldOut)
+            {
+                checkHeldOutQueries(problem, ctx);
+                benchmark.addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
+            }
+            if (cycleHeldOut || options.compareCheckers)
+                benchmark.setPreRunEvent(
+                    [&](const ob::PlannerPtr &planner)
+                    {
+                        if (cycleHeldOut)
+                            setQuery(ctx, heldOut[heldOutRun[planner->getName()]++ % heldOut.size()]);
+                        const auto it = checking.find(planner.get());
+                        if (it != checking.end())
+                        {
+                            // SimpleSetup::setup() sets the space information up again before the run
+                            si->setStateValidityChecker(it->second.first);
+                            si->setMotionValidator(it->second.second);
+                        }
+                    });
+            if (options.compareCheckers)
+                benchmark.addExperimentParameter("checkers", "VARCHAR(32)", "fcl,jmap");
+            trainExperiencePlanners(problem, ctx, planners, options.progress);
+            benchmark.addExperimentParameter("seed", "INTEGER", std::to_string(problem.benchmark.seed));
+
+            BenchResult result;
+            std::mutex pathMutex;
+            std::map<std::string, PlotPath> firstPaths;
+            const std::size_t totalRuns = planners.size() * runs;
+            std::size_t done = 0;
+            std::ostream *progress = options.progress;
+            benchmark.setPostRunEvent(
+                [&](const ob::PlannerPtr &planner, ot::Benchmark::RunProperties &run)
+                {
+                    std::lock_guard<std::mutex> lock(pathMutex);
+                    ++done;
+                    const bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
+                    if (progress)
+                        *progress << "michi bench: [" << done << "/" << totalRuns << "] " << planner->getName() << ": "
+                                  << (solved ? "solved" : "not solved") << " in " << std::setprecision(3)
+                                  << property(run, "time REAL") << " s" << std::endl;
+                    if (!solved || firstPaths.count(planner->getName()))
+                        return;
+                    const auto pdef = planner->getProblemDefinition();
+                    if (!pdef || !pdef->hasExactSolution())
+                        return;
+                    auto *path = pdef->getSolutionPath()->as<og::PathGeometric>();
+                    PlotPath plot;
+                    plot.label = planner->getName();
+                    for (const auto *s : path->getStates())
+                    {
+                        std::vector<double> values;
+                        si->getStateSpace()->copyToReals(values, s);
+                        plot.states.push_back(values);
+                    }
+                    firstPaths[planner->getName()] = plot;
+                });
+
+            StagedDirectory staging(options.outDir);
+            if (progress)
+                *progress << "michi bench: " << problem.name << ": " << planners.size() << " planners x " << runs
+                          << " runs, " << timeLimit << " s each" << std::endl;
+            // saveConsoleOutput=false: OMPL would otherwise leave a .console file in the working directory
+            ot::Benchmark::Request request(timeLimit, problem.benchmark.memoryLimit, runs, 0.05, false, false,
+                                           problem.benchmark.simplify);
+            benchmark.benchmark(request);
+
+            const fs::path log = staging.path(problem.name + ".log");
+            if (!benchmark.saveResultsToFile(log.string().c_str()))
+                throw std::runtime_error(log.string() + ": cannot write the benchmark log");
+            const fs::path db = staging.path(problem.name + ".db");
+            const fs::path statsLog = staging.path("ompl_benchmark_statistics.out");
+            const std::string command = "ompl_benchmark_statistics " + shellQuote(log.string()) + " -d " +
+                                        shellQuote(db.string()) + " > " + shellQuote(statsLog.string()) + " 2>&1";
+            const int rc = std::system(command.c_str());
+            if (rc != 0 || !fs::exists(db))
+            {
+                std::ifstream in(statsLog.string());
+                std::string line, last;
+                while (std::getline(in, line))
+                    if (!line.empty())
+                        last = line;
+                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) + "): " + last +
+                                         " (is the ompl-demos package installed?)");
+            }
+            fs::remove(statsLog);
+
+            const auto &experiment = benchmark.getRecordedExperimentData();
+            for (const auto &p : experiment.planners)
+            {
+                PlannerSummary s;
+                s.name = p.name;
+                std::vector<double> times, lengths, clearances;
+                for (const auto &run : p.runs)
+                {
+                    ++s.runs;
+                    times.push_back(property(run, "time REAL"));
+                    if (property(run, "solved BOOLEAN") == 1.)
+                    {
+                        ++s.solved;
+                        lengths.push_back(property(run, "solution length REAL"));
+                        clearances.push_back(property(run, "solution clearance REAL"));
+                    }
+                }
+                s.medianTime = median(times);
+                s.medianLength = median(lengths);
+                s.medianClearance = median(clearances);
+                result.planners.push_back(s);
+            }
+            const fs::path summary = staging.path("summary.md");
+            {
+                std::ofstream out(summary.string());
+                out << summaryMarkdown(problem, result.planners, timeLimit, runs, options.compareCheckers);
+                if (!out)
+                    throw std::runtime_error(summary.string() + ": cannot write");
+            }
+            for (const auto &planner : planners)
+                if (firstPaths.count(planner->getName()))
+                    result.paths.push_back(firstPaths[planner->getName()]);
+            const fs::path picture = staging.path(problem.name + ".svg");
+            writeProblemSvg(problem, result.paths, picture.string(), options.query);
+            if (!svgToPng(picture.string(), staging.path(problem.name + ".png").string()) && progress)
+                *progress << "michi bench: no PNG copy of the picture (rsvg-convert from librsvg2-bin is missing)"
+                          << std::endl;
+
+            staging.commit();
+            const fs::path out = staging.out();
+            result.log = (out / log.filename()).string();
+            result.database = (out / db.filename()).string();
+            result.summary = (out / summary.filename()).string();
+            result.picture = (out / picture.filename()).string();
+            return result;
+        }
+    }  // namespace tools
+}  // namespace michi

@@ -1,0 +1,225 @@
+#include <michi/tools/bench/PlanningContext.h>
+#include "problem/ProblemYaml.h"
+
+#include <michi/state_spaces/JointStateSpace.h>
+#include <michi/state_spaces/TurnMoveTurnStateSpace.h>
+#include <michi/tools/problem/TurnMoveTurnBodies.h>
+#include <michi/tools/bench/PlannerRegistry.h>
+#include <michi/tools/problem/ProblemJMap.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
+#include <michi/validity/jmap/JMapMotionValidator.h>
+#include <michi/validity/fcl/WorkspaceMotionValidator.h>
+
+#include <ompl/base/ScopedState.h>
+
+#include <sstream>
+
+namespace ob = ompl::base;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            /** robot.motion turn_move_turn: turn weight defaults to the footprint's circumradius. */
+            state_spaces::TurnMoveTurnStateSpacePtr makeTurnMoveTurnSpace(const Problem &problem)
+            {
+                const auto &b = problem.se2Bounds;
+                double weight = problem.se2Motion.turnWeight;
+                if (!(weight > 0.))
+                    weight = validity::PlanarRigidBody(problem.footprint).circumradius();
+                return state_spaces::makeTurnMoveTurnStateSpace(b[0], b[1], b[2], b[3], weight,
+                                                                problem.se2Motion.backward);
+            }
+        }  // namespace
+
+        ob::StateSpacePtr makeStateSpace(const Problem &problem)
+        {
+            if (problem.kind == Problem::Kind::SE2)
+            {
+                const auto &b = problem.se2Bounds;
+                if (problem.se2Motion.model == "turn_move_turn")
+                    return makeTurnMoveTurnSpace(problem);
+                return state_spaces::makeSe2StateSpace(b[0], b[1], b[2], b[3]);
+            }
+            std::vector<state_spaces::JointSpec> joints;
+            for (int v : problem.groupVariables)
+            {
+                const auto &j = problem.model->variableJoint(v);
+                joints.push_back(state_spaces::JointSpec{j.name, j.lower, j.upper,
+                                                         j.type == validity::RobotJoint::Type::CONTINUOUS});
+            }
+            return state_spaces::makeJointStateSpace(joints);
+        }
+
+        namespace
+        {
+            void setState(ob::ScopedState<> &state, const std::vector<double> &values)
+            {
+                state.getSpace()->copyFromReals(state.get(), values);
+                state.getSpace()->enforceBounds(state.get());  // wraps SO(2) values into [-pi, pi)
+            }
+
+            void checkEndpoint(const Problem &problem, const PlanningContext &ctx, const std::vector<double> &values,
+                               const std::string &key)
+            {
+                ob::ScopedState<> state(ctx.setup->getStateSpace());
+                setState(state, values);
+                if (!ctx.setup->getSpaceInformation()->satisfiesBounds(state.get()))
+                    throw ProblemError(problem.file, key, "outside the state space bounds");
+                const std::string collision = ctx.checker->describeCollision(values.data());
+                if (!collision.empty())
+                    throw ProblemError(problem.file, key, "in collision: " + collision);
+            }
+        }  // namespace
+
+        PlanningContext makePlanningContext(const Problem &problem, std::size_t query)
+        {
+            ContextOptions options;
+            options.query = query;
+            return makePlanningContext(problem, options);
+        }
+
+        PlanningContext makePlanningContext(const Problem &problem, const ContextOptions &options)
+        {
+            const bool ownQuery = !options.start.empty() || !options.goal.empty();
+            if (ownQuery && (options.start.size() != problem.dimension() || options.goal.size() != problem.dimension()))
+                throw ProblemError(problem.file, "start", "a query needs start and goal of " +
+                                                              std::to_string(problem.dimension()) + " values");
+            const std::size_t query = options.query;
+            if (!ownQuery && query >= problem.queries.size())
+                throw ProblemError(problem.file, "queries",
+                                   "query " + std::to_string(query) + " requested, the file has " +
+                                       std::to_string(problem.queries.size()));
+            const std::string checker = options.checker.empty() ? problem.checker : options.checker;
+            const std::string motionValidator =
+                options.motionValidator.empty() ? problem.motionValidator : options.motionValidator;
+            if (checker != "fcl" && checker != "jmap")
+                throw std::invalid_argument("makePlanningContext: checker must be fcl or jmap, got '" + checker + "'");
+            PlanningContext ctx;
+            ctx.scene = options.scene ? options.scene : problem.scene;
+            ctx.fixedValues = options.fixedValues.empty() ? problem.fixedValues : options.fixedValues;
+            if (problem.kind == Problem::Kind::ARM && ctx.fixedValues.size() != problem.model->variableCount())
+                throw std::invalid_argument("makePlanningContext: fixed values for " +
+                                            std::to_string(ctx.fixedValues.size()) + " joints, the robot has " +
+                                            std::to_string(problem.model->variableCount()));
+            ctx.bodies = problem.kind == Problem::Kind::ARM
+                             ? std::make_shared<validity::RobotGroupBodies>(problem.model, problem.groupVariables,
+                                                                            ctx.fixedValues)
+                             : problem.bodies();
+            ctx.setup = std::make_shared<ompl::geometric::SimpleSetup>(makeStateSpace(problem));
+            if (auto tmt = std::dynamic_pointer_cast<state_spaces::TurnMoveTurnStateSpace>(ctx.setup->getStateSpace()))
+                if (auto body = std::dynamic_pointer_cast<const validity::PlanarRigidBody>(ctx.bodies))
+                    ctx.bodies = std::make_shared<TurnMoveTurnBodies>(body, tmt);  // bounds of turn-move-turn motions
+            auto si = ctx.setup->getSpaceInformation();
+            ctx.checker = std::make_shared<validity::FclValidityChecker>(si, ctx.bodies, ctx.scene);
+            ctx.setup->setStateValidityChecker(ctx.checker);
+            if (motionValidator == "conservative")
+                si->setMotionValidator(std::make_shared<validity::ConservativeMotionValidator>(si, ctx.checker));
+            else if (motionValidator == "workspace")
+                si->setMotionValidator(
+                    std::make_shared<validity::WorkspaceMotionValidator>(si, ctx.checker, problem.maxStep));
+            // "discrete": SpaceInformation's own DiscreteMotionValidator
+            if (problem.validSegmentFraction > 0.)
+                si->setStateValidityCheckingResolution(problem.validSegmentFraction);
+            si->setup();  // the space's value locations (copyFromReals) exist only after setup
+
+            const std::string prefix = !ownQuery && (problem.queries.size() > 1 || query > 0)
+                                           ? "queries[" + std::to_string(query) + "]."
+                                           : std::string();
+            const Query q = ownQuery ? Query{options.start, options.goal} : problem.queries[query];
+            checkEndpoint(problem, ctx, q.start, prefix.empty() ? "start" : prefix + "start");
+            checkEndpoint(problem, ctx, q.goal, prefix.empty() ? "goal" : prefix + "goal");
+            ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
+            setState(start, q.start);
+            setState(goal, q.goal);
+            if (checker == "jmap")
+            {
+                ctx.jmap = makeJMapChecker(problem, ctx, problem.jmap);
+                ctx.setup->setStateValidityChecker(ctx.jmap);
+                // motions too: a segment on the map; what the map cannot decide goes to the FCL-based validator
+                si->setMotionValidator(
+                    std::make_shared<validity::JMapMotionValidator>(si, ctx.jmap, si->getMotionValidator()));
+            }
+            // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
+            ctx.setup->setStartAndGoalStates(start, goal);
+            return ctx;
+        }
+
+        std::string outsideDeclaredRange(const std::string &value, const std::string &range)
+        {
+            // OMPL declares ranges as "lower:upper" or "lower:step:upper" (numbers) or "0,1" (a flag); planners do
+            // not check them themselves, so a value such as divisions: -1 used to be taken as given
+            std::vector<std::string> parts;
+            std::stringstream in(range);
+            for (std::string part; std::getline(in, part, ':');)
+                parts.push_back(part);
+            if (parts.size() < 2 || parts.size() > 3)
+                return "";
+            double lower = 0., upper = 0., v = 0.;
+            try
+            {
+                lower = problem_file::Reader::parseNumber(parts.front());
+                upper = problem_file::Reader::parseNumber(parts.back());
+            }
+            catch (const std::exception &)
+            {
+                return "";  // not a numeric range: nothing to hold the value to
+            }
+            try
+            {
+                v = problem_file::Reader::parseNumber(value);
+            }
+            catch (const std::exception &)
+            {
+                return "is not a number";
+            }
+            if (v < lower || v > upper)
+                return "is outside the declared range";
+            return "";
+        }
+
+        void applyPlannerParams(ob::Planner &planner, const PlannerSpec &spec, const std::string &file)
+        {
+            for (const auto &kv : spec.params)
+            {
+                auto &params = planner.params();
+                if (!params.hasParam(kv.first))
+                {
+                    std::vector<std::string> names;
+                    params.getParamNames(names);
+                    std::ostringstream known;
+                    for (std::size_t i = 0; i < names.size(); ++i)
+                        known << (i ? ", " : "") << names[i];
+                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                                       "unknown parameter of " + planner.getName() + " (known: " + known.str() + ")");
+                }
+                const std::string range = params[kv.first].getRangeSuggestion();
+                const std::string problem = outsideDeclaredRange(kv.second, range);
+                if (!problem.empty())
+                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                                       "value '" + kv.second + "' " + problem + " of " + planner.getName() +
+                                           " (declared range " + range + ")");
+                if (!params.setParam(kv.first, kv.second))
+                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                                       "value '" + kv.second + "' rejected by " + planner.getName() + " (range " +
+                                           params[kv.first].getRangeSuggestion() + ")");
+            }
+        }
+
+        ob::PlannerPtr makePlanner(const Problem &problem, const std::string &name, const ob::SpaceInformationPtr &si,
+                                   const std::map<std::string, std::string> &extra)
+        {
+            PlannerSpec spec{name, {}};
+            for (const auto &s : problem.planners)
+                if (s.name == name)
+                    spec = s;
+            for (const auto &kv : extra)
+                spec.params[kv.first] = kv.second;
+            ob::PlannerPtr planner = allocatePlanner(name, si);  // std::invalid_argument for an unknown name
+            applyPlannerParams(*planner, spec, problem.file);
+            return planner;
+        }
+    }  // namespace tools
+}  // namespace michi

@@ -1,0 +1,385 @@
+#include <michi/tools/problem/ExperienceQueries.h>
+#include "ProblemYaml.h"
+#include <michi/validity/InputFile.h>
+
+#include <michi/planners/experience/ExperiencePlanner.h>
+#include <michi/planners/path_seed/PathSeedLibrary.h>
+#include <michi/tools/FileOutput.h>
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/PathSimplifier.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <boost/filesystem.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            std::vector<double> readState(const YAML::Node &n, const std::string &file, const std::string &key,
+                                          const Problem &problem)
+            {
+                if (!n || !n.IsSequence())
+                    throw ProblemError(file, key,
+                                       "expected a list of " + std::to_string(problem.dimension()) + " numbers");
+                if (n.size() != problem.dimension())
+                    throw ProblemError(file, key,
+                                       "expected " + std::to_string(problem.dimension()) + " numbers, got " +
+                                           std::to_string(n.size()));
+                std::vector<double> v;
+                for (std::size_t i = 0; i < n.size(); ++i)
+                {
+                    double x;
+                    try
+                    {
+                        x = n[i].as<double>();
+                    }
+                    catch (const YAML::Exception &)
+                    {
+                        throw ProblemError(file, key + "[" + std::to_string(i) + "]", "expected a number");
+                    }
+                    if (!std::isfinite(x))
+                        throw ProblemError(file, key + "[" + std::to_string(i) + "]", "expected a finite number");
+                    if (problem.kind == Problem::Kind::ARM)
+                    {
+                        const auto &j = problem.model->variableJoint(problem.groupVariables[i]);
+                        if (j.type != validity::RobotJoint::Type::CONTINUOUS && (x < j.lower || x > j.upper))
+                        {
+                            std::ostringstream msg;
+                            msg << "value " << x << " outside the limits of " << j.name << " [" << j.lower << ", "
+                                << j.upper << "]";
+                            throw ProblemError(file, key + "[" + std::to_string(i) + "]", msg.str());
+                        }
+                    }
+                    v.push_back(x);
+                }
+                return v;
+            }
+
+            std::vector<Query> readList(const YAML::Node &root, const std::string &name, const std::string &file,
+                                        const Problem &problem)
+            {
+                std::vector<Query> out;
+                const YAML::Node list = root[name];
+                if (!list || list.IsNull())
+                    return out;
+                if (!list.IsSequence())
+                    throw ProblemError(file, name, "expected a list of {start, goal}");
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = name + "[" + std::to_string(i) + "]";
+                    if (!list[i].IsMap())
+                        throw ProblemError(file, key, "expected {start: [...], goal: [...]}");
+                    out.push_back(Query{readState(list[i]["start"], file, key + ".start", problem),
+                                        readState(list[i]["goal"], file, key + ".goal", problem)});
+                }
+                return out;
+            }
+
+            void setState(ob::ScopedState<> &state, const std::vector<double> &values)
+            {
+                state.getSpace()->copyFromReals(state.get(), values);
+                state.getSpace()->enforceBounds(state.get());
+            }
+
+            std::string invalidReason(const PlanningContext &ctx, const std::vector<double> &values)
+            {
+                ob::ScopedState<> s(ctx.setup->getStateSpace());
+                setState(s, values);
+                if (!ctx.setup->getSpaceInformation()->satisfiesBounds(s.get()))
+                    return "outside the state space bounds";
+                const std::string collision = ctx.checker->describeCollision(values.data());
+                return collision.empty() ? "" : "in collision: " + collision;
+            }
+
+            double seconds(std::chrono::steady_clock::time_point since)
+            {
+                return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+            }
+        }  // namespace
+
+        ExperienceQueries readExperienceQueries(const std::string &problemFile, const Problem &problem)
+        {
+            ExperienceQueries out;
+            const YAML::Node root = problem_file::loadYaml(problemFile);  // parsed once, by loadProblem()
+            const YAML::Node e = root["experience"];
+            if (!e)
+                return out;
+            if (!e.IsMap())
+                throw ProblemError(problemFile, "experience", "expected a mapping (queries, training_time)");
+            for (const auto &kv : e)
+            {
+                const std::string k = kv.first.as<std::string>();
+                if (k != "queries" && k != "training_time" && k != "library")
+                    throw ProblemError(problemFile, "experience." + k,
+                                       "unknown key (expected queries, training_time, library)");
+            }
+            if (const YAML::Node t = e["training_time"])
+            {
+                try
+                {
+                    out.trainingTime = t.as<double>();
+                }
+                catch (const YAML::Exception &)
+                {
+                    out.trainingTime = -1.;
+                }
+                if (!(out.trainingTime > 0.))
+                    throw ProblemError(problemFile, "experience.training_time",
+                                       "expected a positive number of seconds");
+            }
+            if (const YAML::Node l = e["library"])
+            {
+                const fs::path lp(l.IsScalar() ? l.Scalar() : std::string());
+                const fs::path lfull = lp.is_absolute() ? lp : fs::path(problemFile).parent_path() / lp;
+                if (!l.IsScalar() || !fs::is_regular_file(lfull))
+                    throw ProblemError(problemFile, "experience.library",
+                                       "expected an existing experience file, got '" + lfull.string() + "'");
+                out.library = lfull.lexically_normal().string();
+            }
+            if (!e["queries"] || !e["queries"].IsScalar())
+                throw ProblemError(problemFile, "experience.queries", "expected the name of a queries file");
+            const fs::path p(e["queries"].Scalar());
+            const fs::path full = p.is_absolute() ? p : fs::path(problemFile).parent_path() / p;
+            out.file = full.lexically_normal().string();
+            if (!fs::is_regular_file(full))
+                throw ProblemError(problemFile, "experience.queries", "file '" + out.file + "' does not exist");
+            if (problem.kind != Problem::Kind::ARM)
+                throw ProblemError(problemFile, "experience", "experience queries need an arm problem");
+            const YAML::Node q = problem_file::loadYaml(out.file);
+            if (!q.IsMap())
+                throw ProblemError(out.file, "", "expected a mapping with training and held_out");
+            for (const auto &kv : q)
+            {
+                const std::string k = kv.first.as<std::string>();
+                if (k != "training" && k != "held_out")
+                    throw ProblemError(out.file, k, "unknown key (expected training, held_out)");
+            }
+            out.training = readList(q, "training", out.file, problem);
+            out.heldOut = readList(q, "held_out", out.file, problem);
+            return out;
+        }
+
+        ExperienceQueries generateExperienceQueries(const Problem &problem, std::size_t count, std::size_t training,
+                                                    double startSpread, double goalSpread, unsigned int seed)
+        {
+            if (training > count)
+                throw std::invalid_argument("more training queries than queries");
+            const PlanningContext ctx = makePlanningContext(problem, 0);
+            ompl::RNG rng(seed);
+            ExperienceQueries out;
+            out.trainingTime = problem.experience.trainingTime;
+            for (std::size_t i = 0; i < count; ++i)
+            {
+                const Query &base = problem.queries[i % problem.queries.size()];
+                Query q;
+                bool found = false;
+                for (int attempt = 0; attempt < 10000 && !found; ++attempt)
+                {
+                    q = base;
+                    // rounded to the 6 decimals the file keeps, so the values checked are the values written
+                    for (auto &x : q.start)
+                        x = std::round((x + rng.uniformReal(-startSpread, startSpread)) * 1e6) / 1e6;
+                    for (auto &x : q.goal)
+                        x = std::round((x + rng.uniformReal(-goalSpread, goalSpread)) * 1e6) / 1e6;
+                    found = invalidReason(ctx, q.start).empty() && invalidReason(ctx, q.goal).empty();
+                    // the stored values are the ones checked: within joint limits (enforceBounds would clamp)
+                    for (std::size_t k = 0; k < q.start.size() && found; ++k)
+                    {
+                        const auto &j = problem.model->variableJoint(problem.groupVariables[k]);
+                        if (j.type != validity::RobotJoint::Type::CONTINUOUS)
+                            found = q.start[k] >= j.lower && q.start[k] <= j.upper && q.goal[k] >= j.lower &&
+                                    q.goal[k] <= j.upper;
+                    }
+                }
+                if (!found)
+                    throw std::runtime_error(problem.file + ": no valid start/goal pair near query " +
+                                             std::to_string(i % problem.queries.size()) + " in 10000 attempts");
+                (i < training ? out.training : out.heldOut).push_back(q);
+            }
+            return out;
+        }
+
+        std::string experienceQueriesYaml(const ExperienceQueries &queries, const std::string &header)
+        {
+            std::ostringstream out;
+            out << header;
+            out << std::setprecision(6) << std::fixed;
+            auto list = [&](const char *name, const std::vector<Query> &qs)
+            {
+                out << name << ":" << (qs.empty() ? " []" : "") << "\n";
+                auto values = [&](const std::vector<double> &v)
+                {
+                    out << "[";
+                    for (std::size_t i = 0; i < v.size(); ++i)
+                        out << (i ? ", " : "") << v[i];
+                    out << "]";
+                };
+                for (const auto &q : qs)
+                {
+                    out << "  - {start: ";
+                    values(q.start);
+                    out << ", goal: ";
+                    values(q.goal);
+                    out << "}\n";
+                }
+            };
+            list("training", queries.training);
+            list("held_out", queries.heldOut);
+            return out.str();
+        }
+
+        std::string writeExperienceQueriesFile(const Problem &problem, const ExperienceQueriesOptions &options)
+        {
+            const auto queries = generateExperienceQueries(problem, options.count, options.training,
+                                                           options.startSpread, options.goalSpread, options.seed);
+            std::ostringstream header;
+            header << "# Experience queries of " << fs::path(problem.file).filename().string()
+                   << " (docs/path-seed.md): training and held-out start/goal pairs, disjoint.\n"
+                   << "# Made by: michi experience-queries " << fs::path(problem.file).filename().string()
+                   << " --count " << options.count << " --training " << options.training << " --start-spread "
+                   << options.startSpread << " --goal-spread " << options.goalSpread << " --seed " << options.seed
+                   << " --out " << fs::path(options.out).filename().string() << "\n"
+                   << "# Pair i perturbs the problem's query i mod " << problem.queries.size()
+                   << " uniformly per joint (start by +-" << options.startSpread << " rad, goal by +-"
+                   << options.goalSpread << " rad);\n"
+                   << "# every start and goal is within the joint limits and collision-free (FCL).\n";
+            writeAtomically(experienceQueriesYaml(queries, header.str()), options.out);
+            std::ostringstream report;
+            report << "michi experience-queries: wrote " << options.out << " (" << queries.training.size()
+                   << " training, " << queries.heldOut.size() << " held-out queries)";
+            return report.str();
+        }
+
+        std::string writePathSeedLibrary(const Problem &problem, const std::string &variant, unsigned int seed,
+                                         const std::string &file)
+        {
+            ompl::RNG::setSeed(seed);
+            const PlanningContext ctx = makePlanningContext(problem, 0);
+            planners::PathSeedLibrary library(planners::seedVariantFromName(variant));
+            const auto paths = solveTrainingQueries(problem, ctx, nullptr);
+            std::vector<double> reals;
+            for (const auto &path : paths)
+            {
+                std::vector<Eigen::VectorXd> states;
+                for (const auto *s : const_cast<og::PathGeometric &>(path).getStates())
+                {
+                    ctx.setup->getStateSpace()->copyToReals(reals, s);
+                    states.push_back(Eigen::Map<const Eigen::VectorXd>(reals.data(), reals.size()));
+                }
+                library.add(states);
+            }
+            library.save(file);
+            std::ostringstream report;
+            report << "michi path-seed-library: wrote " << file << " (" << library.size() << " " << variant
+                   << " seeds from " << problem.experience.training.size() << " training queries)";
+            return report.str();
+        }
+
+        std::vector<og::PathGeometric> solveTrainingQueries(const Problem &problem, const PlanningContext &ctx,
+                                                            std::ostream *progress)
+        {
+            const auto si = ctx.setup->getSpaceInformation();
+            const auto &training = problem.experience.training;
+            std::vector<og::PathGeometric> paths;
+            const auto began = std::chrono::steady_clock::now();
+            for (std::size_t i = 0; i < training.size(); ++i)
+            {
+                const std::string key = "experience.training[" + std::to_string(i) + "]";
+                for (const auto *which : {"start", "goal"})
+                {
+                    const std::string why =
+                        invalidReason(ctx, std::string(which) == "start" ? training[i].start : training[i].goal);
+                    if (!why.empty())
+                        throw ProblemError(problem.experience.file, key + "." + which, why);
+                }
+                auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+                ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
+                setState(start, training[i].start);
+                setState(goal, training[i].goal);
+                pdef->setStartAndGoalStates(start, goal);
+                og::RRTConnect rrt(si);
+                rrt.setProblemDefinition(pdef);
+                rrt.setup();
+                if (rrt.solve(ob::timedPlannerTerminationCondition(problem.experience.trainingTime)) !=
+                    ob::PlannerStatus::EXACT_SOLUTION)
+                    continue;
+                og::PathGeometric path(*pdef->getSolutionPath()->as<og::PathGeometric>());
+                og::PathSimplifier simplifier(si);
+                simplifier.simplify(path, 1.);
+                if (path.check())
+                    paths.push_back(path);
+            }
+            if (progress)
+                *progress << "michi bench: training: " << paths.size() << " of " << training.size()
+                          << " training queries solved by RRT-Connect (" << problem.experience.trainingTime
+                          << " s each) in " << std::setprecision(3) << seconds(began) << " s (not in run times)"
+                          << std::endl;
+            return paths;
+        }
+
+        std::size_t trainExperiencePlanners(const Problem &problem, const PlanningContext &ctx,
+                                            const std::vector<ob::PlannerPtr> &planners, std::ostream *progress)
+        {
+            std::vector<planners::ExperiencePlanner *> learners;
+            for (const auto &planner : planners)
+                if (auto *learner = dynamic_cast<planners::ExperiencePlanner *>(planner.get()))
+                    learners.push_back(learner);
+            if (!problem.experience.library.empty())
+                for (auto *learner : learners)
+                    if (!learner->loadExperience(problem.experience.library) && progress)
+                        *progress << "michi bench: experience.library: "
+                                  << dynamic_cast<ob::Planner *>(learner)->getName() << " cannot read "
+                                  << problem.experience.library << " (not its format); it starts empty" << std::endl;
+            if (learners.empty() || problem.experience.training.empty())
+                return 0;
+            const auto paths = solveTrainingQueries(problem, ctx, progress);
+            for (auto *learner : learners)
+                for (const auto &path : paths)
+                    learner->addExperience(path);
+            return paths.size();
+        }
+
+        void checkHeldOutQueries(const Problem &problem, const PlanningContext &ctx)
+        {
+            const auto &heldOut = problem.experience.heldOut;
+            for (std::size_t i = 0; i < heldOut.size(); ++i)
+            {
+                const std::string key = "experience.held_out[" + std::to_string(i) + "]";
+                std::string why = invalidReason(ctx, heldOut[i].start);
+                if (!why.empty())
+                    throw ProblemError(problem.experience.file, key + ".start", why);
+                why = invalidReason(ctx, heldOut[i].goal);
+                if (!why.empty())
+                    throw ProblemError(problem.experience.file, key + ".goal", why);
+            }
+        }
+
+        void setQuery(const PlanningContext &ctx, const Query &query)
+        {
+            const auto space = ctx.setup->getStateSpace();
+            ob::ScopedState<> start(space), goal(space);
+            setState(start, query.start);
+            setState(goal, query.goal);
+            const auto pdef = ctx.setup->getProblemDefinition();
+            pdef->clearStartStates();
+            pdef->addStartState(start);
+            pdef->setGoalState(goal);
+        }
+    }  // namespace tools
+}  // namespace michi

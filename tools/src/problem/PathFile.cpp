@@ -1,0 +1,71 @@
+#include <michi/tools/problem/PathFile.h>
+#include <michi/validity/InputFile.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace michi
+{
+    namespace tools
+    {
+        void writePathFile(const std::string &file, const std::vector<std::string> &names,
+                           const std::vector<std::vector<double>> &states, const std::string &comment)
+        {
+            const std::string tmp = file + ".tmp";
+            {
+                std::ofstream out(tmp);
+                if (!out)
+                    throw std::runtime_error(file + ": cannot write path file");
+                if (!comment.empty())
+                    out << "# " << comment << "\n";
+                out << "#";
+                for (const auto &n : names)
+                    out << " " << n;
+                out << "\n" << std::setprecision(17);
+                for (const auto &s : states)
+                {
+                    for (std::size_t i = 0; i < s.size(); ++i)
+                        out << (i ? " " : "") << s[i];
+                    out << "\n";
+                }
+                if (!out)
+                {
+                    std::remove(tmp.c_str());
+                    throw std::runtime_error(file + ": cannot write path file");
+                }
+            }
+            if (std::rename(tmp.c_str(), file.c_str()) != 0)
+            {
+                std::remove(tmp.c_str());
+                throw std::runtime_error(file + ": cannot write path file");
+            }
+        }
+
+        std::vector<std::vector<double>> readPathFile(const std::string &file)
+        {
+            validity::requireInputFile(file);
+            std::ifstream in(file);
+            if (!in)
+                throw std::runtime_error(file + ": cannot open path file");
+            std::vector<std::vector<double>> states;
+            std::string line;
+            for (int number = 1; std::getline(in, line); ++number)
+            {
+                if (line.empty() || line[0] == '#')
+                    continue;
+                std::istringstream fields(line);
+                std::vector<double> state;
+                double v;
+                while (fields >> v)
+                    state.push_back(v);
+                if (!fields.eof() || (!states.empty() && state.size() != states.front().size()) || state.empty())
+                    throw std::runtime_error(file + ":" + std::to_string(number) + ": malformed state");
+                states.push_back(state);
+            }
+            return states;
+        }
+    }  // namespace tools
+}  // namespace michi

@@ -1,0 +1,147 @@
+#include <michi/tools/problem/Problem.h>
+#include <michi/validity/InputFile.h>
+
+#include "ProblemYaml.h"
+
+#include <michi/tools/problem/ExperienceQueries.h>
+#include <michi/tools/problem/MoveItImport.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <boost/filesystem.hpp>
+
+#include <set>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        validity::CollisionBodiesPtr Problem::bodies() const
+        {
+            if (kind == Kind::SE2)
+                return std::make_shared<validity::PlanarRigidBody>(footprint, 0., footprintHeight);
+            return std::make_shared<validity::RobotGroupBodies>(model, groupVariables, fixedValues);
+        }
+
+        std::size_t Problem::dimension() const
+        {
+            return kind == Kind::SE2 ? 3 : groupVariables.size();
+        }
+
+        std::vector<std::string> Problem::valueNames() const
+        {
+            if (kind == Kind::SE2)
+                return {"x", "y", "yaw"};
+            std::vector<std::string> names;
+            for (int v : groupVariables)
+                names.push_back(model->variableJoint(v).name);
+            return names;
+        }
+
+        Problem loadProblem(const std::string &path)
+        {
+            using namespace problem_file;  // the Reader and the section readers (ProblemYaml.h)
+            Reader r(path);
+            const YAML::Node root = loadYaml(path);  // errors name the file (and line)
+            if (!root.IsMap())
+                r.fail("", "expected a mapping at the top level (name, robot, scene, start, goal, ...)");
+            // dual_arm: read by DualArmProblem.cpp; experience: by ExperienceQueries.cpp
+            static const std::set<std::string> known{"name",      "description", "robot",    "scene",     "start",
+                                                     "goal",      "request",     "queries",  "planners",  "benchmark",
+                                                     "collision", "extras",      "dual_arm", "experience"};
+            for (const auto &kv : root)
+                if (!known.count(kv.first.as<std::string>()))
+                    r.fail(kv.first.as<std::string>(), "unknown top-level key");
+
+            Problem problem;
+            problem.file = path;
+            problem.name = root["name"] ? r.text(root["name"], "name") : fs::path(path).stem().string();
+            if (root["description"])
+                problem.description = r.text(root["description"], "description");
+
+            const YAML::Node robot = r.require(root, "robot", "");
+            if (!robot.IsMap())
+                r.fail("robot", "expected a mapping (urdf: ... or type: se2)");
+            const std::string type = robot["type"] ? r.text(robot["type"], "robot.type") : "urdf";
+
+            // the first MoveIt request (top-level request, else the first query's) may name the planned group
+            YAML::Node firstRequest;
+            std::string firstRequestKey;
+            if (root["request"])
+            {
+                if (root["start"] || root["goal"])
+                    r.fail("request", "give either request or start and goal, not both");
+                firstRequest = root["request"];
+                firstRequestKey = "request";
+            }
+            else if (root["queries"] && root["queries"].IsSequence())
+                for (std::size_t i = 0; i < root["queries"].size() && firstRequestKey.empty(); ++i)
+                    if (root["queries"][i].IsMap() && root["queries"][i]["request"])
+                    {
+                        firstRequest = root["queries"][i]["request"];
+                        firstRequestKey = "queries[" + std::to_string(i) + "].request";
+                    }
+            MoveItRequest request;
+            if (!firstRequestKey.empty() && (type == "urdf" || type == "arm"))
+                request = readMoveItRequest(r.path(firstRequest, firstRequestKey));
+
+            const YAML::Node sceneNode = root["scene"];
+            const bool gridMap = sceneNode && sceneNode.IsMap() && sceneNode["movingai"];
+            if (type == "urdf" || type == "arm")
+                readArm(r, robot, problem, request);
+            else if (type == "se2")
+                readSe2(r, robot, problem, gridMap);
+            else
+                r.fail("robot.type", "expected 'urdf' or 'se2', got '" + type + "'");
+
+            GridMapInfo gridMapInfo;
+            readScene(r, sceneNode, problem, gridMapInfo);
+            if (problem.kind == Problem::Kind::SE2 && !robot["bounds"])
+                problem.se2Bounds = gridMapInfo.bounds;  // readSe2 required them unless there is a grid map
+            for (const auto &q : gridMapInfo.queries)
+                for (const auto *values : {&q.start, &q.goal})
+                    checkConfiguration(r, *values, "scene.movingai.scenarios", problem);
+
+            std::vector<Query> requestQuery;
+            if (root["request"])
+                requestQuery.push_back(readRequestQuery(r, root["request"], "request", problem, robot, true));
+            if (root["queries"])
+            {
+                const YAML::Node q = root["queries"];
+                if (!q.IsSequence() || q.size() == 0)
+                    r.fail("queries", "expected a non-empty list of {start, goal} or {request}");
+                for (std::size_t i = 0; i < q.size(); ++i)
+                {
+                    const std::string key = "queries[" + std::to_string(i) + "]";
+                    if (q[i].IsMap() && q[i]["request"])
+                    {
+                        if (q[i]["start"] || q[i]["goal"])
+                            r.fail(key, "give either request or start and goal, not both");
+                        problem.queries.push_back(readRequestQuery(r, q[i]["request"], key + ".request", problem, robot,
+                                                                   key + ".request" == firstRequestKey));
+                        continue;
+                    }
+                    problem.queries.push_back(
+                        Query{readConfiguration(r, r.require(q[i], "start", key), key + ".start", problem),
+                              readConfiguration(r, r.require(q[i], "goal", key), key + ".goal", problem)});
+                }
+            }
+            problem.queries.insert(problem.queries.end(), gridMapInfo.queries.begin(), gridMapInfo.queries.end());
+            if (!requestQuery.empty())
+                problem.queries.insert(problem.queries.begin(), requestQuery.front());
+            else if (root["start"] || root["goal"] || problem.queries.empty())
+            {
+                const auto start = readConfiguration(r, r.require(root, "start", ""), "start", problem);
+                const auto goal = readConfiguration(r, r.require(root, "goal", ""), "goal", problem);
+                problem.queries.insert(problem.queries.begin(), Query{start, goal});
+            }
+            readPlanners(r, root["planners"], problem);
+            readBenchmark(r, root["benchmark"], problem);
+            readCollision(r, root["collision"], problem);
+            problem.experience = readExperienceQueries(path, problem);  // ExperienceQueries.cpp
+            return problem;
+        }
+    }  // namespace tools
+}  // namespace michi

@@ -1,0 +1,283 @@
+#include "ProblemYaml.h"
+
+#include <michi/tools/problem/MoveItImport.h>
+#include <michi/tools/problem/MovingAiMap.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+using michi::validity::Obstacle;
+using michi::validity::Shape;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace problem_file
+        {
+            namespace
+            {
+                std::shared_ptr<const Shape> readShape(const Reader &r, const YAML::Node &o, const std::string &key)
+                {
+                    int kinds = 0;
+                    for (const char *kind : {"box", "sphere", "cylinder", "capsule", "polygon", "mesh"})
+                        kinds += o[kind] ? 1 : 0;
+                    if (kinds > 1)
+                        r.fail(key, "more than one shape given (one of box, sphere, cylinder, capsule, polygon, mesh)");
+                    for (const char *kind : {"cylinder", "capsule"})
+                        r.keys(o[kind], key + "." + kind, {"radius", "length"});
+                    r.keys(o["polygon"], key + ".polygon", {"points", "z"});
+                    r.keys(o["mesh"], key + ".mesh", {"file", "scale"});
+                    try
+                    {
+                        if (o["box"])
+                        {
+                            const auto s = r.coordinates(o["box"], key + ".box", 3);
+                            return Shape::box(Eigen::Vector3d(s[0], s[1], s[2]));
+                        }
+                        if (o["sphere"])
+                            return Shape::sphere(r.number(o["sphere"], key + ".sphere"));
+                        for (const char *kind : {"cylinder", "capsule"})
+                            if (o[kind])
+                            {
+                                const std::string k = key + "." + kind;
+                                const double radius = r.number(r.require(o[kind], "radius", k), k + ".radius");
+                                const double length = r.number(r.require(o[kind], "length", k), k + ".length");
+                                return std::string(kind) == "cylinder" ? Shape::cylinder(radius, length)
+                                                                       : Shape::capsule(radius, length);
+                            }
+                        if (o["polygon"])
+                        {
+                            const std::string k = key + ".polygon";
+                            const YAML::Node p = o["polygon"];
+                            const auto points = r.polygon(r.require(p, "points", k), k + ".points");
+                            std::vector<double> z{-0.5, 0.5};
+                            if (p["z"])
+                                z = r.coordinates(p["z"], k + ".z", 2);
+                            return Shape::prism(points, z[0], z[1]);
+                        }
+                        if (o["mesh"])
+                        {
+                            const std::string k = key + ".mesh";
+                            const std::string file = r.path(r.require(o["mesh"], "file", k), k + ".file");
+                            Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+                            if (o["mesh"]["scale"])
+                            {
+                                const auto s = r.numbers(o["mesh"]["scale"], k + ".scale", 3);
+                                scale = Eigen::Vector3d(s[0], s[1], s[2]);
+                            }
+                            return Shape::meshFromFile(file, scale);
+                        }
+                    }
+                    catch (const ProblemError &)
+                    {
+                        throw;
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail(key, e.what());
+                    }
+                    r.fail(key, "expected one of box, sphere, cylinder, capsule, polygon, mesh");
+                }
+
+                void readMoveItSceneKey(const Reader &r, const YAML::Node &node, Problem &problem)
+                {
+                    const std::string path = r.path(node, "scene.moveit");
+                    const MoveItScene moveit =
+                        readMoveItScene(path, problem.model.get());  // errors name the scene file
+                    try
+                    {
+                        problem.scene->add(moveit.obstacles);  // one broad-phase build; names the bad object
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail("scene.moveit", e.what());
+                    }
+                    for (const auto &pair : moveit.allowedCollisions)
+                        problem.model->allowCollision(pair.first, pair.second);  // robot links, checked by the reader
+                }
+
+                void readMovingAiKey(const Reader &r, const YAML::Node &node, Problem &problem, GridMapInfo &info)
+                {
+                    const std::string key = "scene.movingai";
+                    if (!node.IsMap())
+                        r.fail(key, "expected a mapping {map: FILE.map, resolution, height, origin, scenarios}");
+                    for (const auto &kv : node)
+                    {
+                        const std::string k = kv.first.as<std::string>();
+                        if (k != "map" && k != "resolution" && k != "height" && k != "origin" && k != "scenarios")
+                            r.fail(key + "." + k, "unknown key (expected map, resolution, height, origin, scenarios)");
+                    }
+                    const std::string file = r.path(r.require(node, "map", key), key + ".map");
+                    const double resolution = r.number(node, "resolution", key, 1.);
+                    if (!(resolution > 0.))
+                        r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                    const double height = r.number(node, "height", key, 1.);
+                    if (!(height > 0.))
+                        r.fail(key + ".height", "expected a positive number (metres)");
+                    Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+                    if (node["origin"])
+                    {
+                        const auto o = r.coordinates(node["origin"], key + ".origin", 2);
+                        origin = Eigen::Vector2d(o[0], o[1]);
+                    }
+                    const MovingAiMap map = readMovingAiMap(file);  // errors name the map file
+                    try
+                    {
+                        problem.scene->add(movingAiObstacles(map, resolution, origin, height));
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail(key, e.what());
+                    }
+                    info.present = true;
+                    info.bounds = {{origin.x(), origin.x() + map.width * resolution, origin.y(),
+                                    origin.y() + map.height * resolution}};
+
+                    const YAML::Node scen = node["scenarios"];
+                    if (!scen)
+                        return;
+                    const std::string sk = key + ".scenarios";
+                    if (problem.kind != Problem::Kind::SE2)
+                        r.fail(sk, "scenarios become SE2 queries: needs robot.type se2");
+                    if (!scen.IsMap())
+                        r.fail(sk, "expected a mapping {file: FILE.scen, bucket, count}");
+                    for (const auto &kv : scen)
+                    {
+                        const std::string k = kv.first.as<std::string>();
+                        if (k != "file" && k != "bucket" && k != "count")
+                            r.fail(sk + "." + k, "unknown key (expected file, bucket, count)");
+                    }
+                    const std::string scenFile = r.path(r.require(scen, "file", sk), sk + ".file");
+                    int bucket = -1;
+                    if (scen["bucket"])
+                    {
+                        const double b = r.number(scen["bucket"], sk + ".bucket");
+                        // MovingAI buckets are path lengths / 4: a few thousand at most; a cast of 2^31 would wrap
+                        if (b < 0. || b != std::floor(b) || b > 1e6)
+                            r.fail(sk + ".bucket", "expected a bucket number (0, 1, ... 1000000)");
+                        bucket = static_cast<int>(b);
+                    }
+                    const unsigned int count = scen["count"] ? r.count(scen["count"], sk + ".count")
+                                                             : std::numeric_limits<unsigned int>::max();
+                    for (const auto &s : readMovingAiScenarios(scenFile))
+                    {
+                        if (bucket >= 0 && s.bucket != bucket)
+                            continue;
+                        if (info.queries.size() >= count)
+                            break;
+                        const std::string line = "line " + std::to_string(s.line);
+                        if (s.mapWidth != map.width || s.mapHeight != map.height)
+                            throw ProblemError(scenFile, line,
+                                               "map size " + std::to_string(s.mapWidth) + " x " +
+                                                   std::to_string(s.mapHeight) + ", but '" + file + "' is " +
+                                                   std::to_string(map.width) + " x " + std::to_string(map.height));
+                        for (const auto &cell : {std::make_pair(s.startX, s.startY), std::make_pair(s.goalX, s.goalY)})
+                            if (cell.first < 0 || cell.first >= map.width || cell.second < 0 ||
+                                cell.second >= map.height)
+                                throw ProblemError(scenFile, line,
+                                                   "cell (" + std::to_string(cell.first) + ", " +
+                                                       std::to_string(cell.second) + ") outside the map");
+                        const Eigen::Vector2d a = movingAiCellCentre(map, s.startX, s.startY, resolution, origin);
+                        const Eigen::Vector2d b = movingAiCellCentre(map, s.goalX, s.goalY, resolution, origin);
+                        info.queries.push_back(Query{{a.x(), a.y(), 0.}, {b.x(), b.y(), 0.}});
+                    }
+                    if (info.queries.empty())
+                        r.fail(sk, "no scenario in '" + scenFile + "'" +
+                                       (bucket >= 0 ? " with bucket " + std::to_string(bucket) : std::string()));
+                }
+            }  // namespace
+
+            void readScene(const Reader &r, const YAML::Node &scene, Problem &problem, GridMapInfo &gridMap)
+            {
+                problem.scene = std::make_shared<validity::Scene>();
+                if (!scene)
+                    return;
+                if (!scene.IsMap())
+                    r.fail("scene", "expected a mapping with obstacles, map, moveit and/or movingai");
+                if (const YAML::Node list = scene["obstacles"])
+                {
+                    if (!list.IsSequence())
+                        r.fail("scene.obstacles", "expected a list");
+                    std::set<std::string> names;
+                    for (std::size_t i = 0; i < list.size(); ++i)
+                    {
+                        const std::string key = "scene.obstacles[" + std::to_string(i) + "]";
+                        const YAML::Node o = list[i];
+                        if (!o.IsMap())
+                            r.fail(key, "expected a mapping");
+                        r.keys(
+                            o, key,
+                            {"name", "box", "sphere", "cylinder", "capsule", "polygon", "mesh", "pose", "trajectory"});
+                        Obstacle obstacle;
+                        obstacle.name = o["name"] ? r.text(o["name"], key + ".name") : "obstacle" + std::to_string(i);
+                        if (!names.insert(obstacle.name).second)
+                            r.fail(key + ".name", "duplicate obstacle name '" + obstacle.name + "'");
+                        obstacle.shape = readShape(r, o, key);
+                        if (o["pose"])
+                            obstacle.pose = r.pose(o["pose"], key + ".pose");
+                        if (const YAML::Node traj = o["trajectory"])
+                        {
+                            if (!traj.IsSequence() || traj.size() < 1)
+                                r.fail(key + ".trajectory", "expected a list of {t, xyz, rpy} key frames");
+                            for (std::size_t k = 0; k < traj.size(); ++k)
+                            {
+                                const std::string tk = key + ".trajectory[" + std::to_string(k) + "]";
+                                validity::TimedPose tp;
+                                tp.time = r.number(r.require(traj[k], "t", tk), tk + ".t");
+                                YAML::Node poseNode = YAML::Clone(traj[k]);
+                                poseNode.remove("t");
+                                tp.pose = r.pose(poseNode, tk);
+                                obstacle.trajectory.push_back(tp);
+                            }
+                        }
+                        try
+                        {
+                            problem.scene->add(std::move(obstacle));
+                        }
+                        catch (const std::exception &e)
+                        {
+                            r.fail(key, e.what());
+                        }
+                    }
+                }
+                if (const YAML::Node map = scene["map"])
+                {
+                    const std::string key = "scene.map";
+                    r.keys(map, key, {"pgm", "resolution", "origin", "height", "threshold"});
+                    const std::string pgm = r.path(r.require(map, "pgm", key), key + ".pgm");
+                    const double resolution = r.number(r.require(map, "resolution", key), key + ".resolution");
+                    if (!(resolution > 0.))
+                        r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                    Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+                    if (map["origin"])
+                    {
+                        const auto o = r.coordinates(map["origin"], key + ".origin", 2);
+                        origin = Eigen::Vector2d(o[0], o[1]);
+                    }
+                    const double height = r.number(map, "height", key, 1.);
+                    const double threshold = r.number(map, "threshold", key, 0.5);
+                    try
+                    {
+                        problem.scene->add(validity::occupancyObstacles(pgm, resolution, origin, height, threshold));
+                    }
+                    catch (const std::exception &e)
+                    {
+                        r.fail(key + ".pgm", e.what());
+                    }
+                }
+                if (const YAML::Node moveit = scene["moveit"])
+                    readMoveItSceneKey(r, moveit, problem);
+                if (const YAML::Node movingai = scene["movingai"])
+                    readMovingAiKey(r, movingai, problem, gridMap);
+                for (const auto &kv : scene)
+                {
+                    const std::string k = kv.first.as<std::string>();
+                    if (k != "obstacles" && k != "map" && k != "moveit" && k != "movingai")
+                        r.fail("scene." + k, "unknown key (expected obstacles, map, moveit, movingai)");
+                }
+            }
+        }  // namespace problem_file
+    }      // namespace tools
+}  // namespace michi

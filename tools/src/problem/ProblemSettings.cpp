@@ -1,0 +1,163 @@
+#include "ProblemYaml.h"
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace problem_file
+        {
+            namespace
+            {
+                void readJMapSettings(const Reader &r, const YAML::Node &n, const std::string &key,
+                                      validity::JMapCheckerSettings &settings)
+                {
+                    if (!n.IsMap())
+                        r.fail(key, "expected a mapping (mode, slices, tiles, tolerance, fallback_band)");
+                    r.keys(n, key, {"mode", "slices", "tiles", "tolerance", "fallback_band"});
+                    if (n["mode"])
+                    {
+                        const std::string mode = r.text(n["mode"], key + ".mode");
+                        if (mode == "conservative")
+                            settings.mode = validity::JMapCheckerSettings::Mode::CONSERVATIVE;
+                        else if (mode == "exact_fallback")
+                            settings.mode = validity::JMapCheckerSettings::Mode::EXACT_FALLBACK;
+                        else
+                            r.fail(key + ".mode", "expected conservative or exact_fallback, got '" + mode + "'");
+                    }
+                    if (n["slices"])
+                    {
+                        settings.map.slices = static_cast<int>(r.count(n["slices"], key + ".slices"));
+                        // 72 is 5 degrees; 3600 is 0.1 degree, finer than any arm's map needs (memory and build
+                        // time grow with the slices)
+                        if (settings.map.slices > 3600)
+                            r.fail(key + ".slices", "expected at most 3600 slices");
+                    }
+                    if (n["tiles"])
+                        settings.tiles = static_cast<int>(r.count(n["tiles"], key + ".tiles"));
+                    if (settings.tiles > settings.map.slices)
+                        r.fail(key + ".tiles", "must not exceed slices");
+                    settings.map.tolerance = r.number(n, "tolerance", key, settings.map.tolerance);
+                    if (!(settings.map.tolerance > 0.))
+                        r.fail(key + ".tolerance", "expected a positive number of radians");
+                    settings.fallbackBand = r.number(n, "fallback_band", key, settings.fallbackBand);
+                    if (!(settings.fallbackBand >= 0.))
+                        r.fail(key + ".fallback_band", "expected a non-negative number of radians");
+                }
+            }  // namespace
+
+            void readPlanners(const Reader &r, const YAML::Node &list, Problem &problem)
+            {
+                if (!list)
+                {
+                    for (const char *name :
+                         {"geometric::RRTConnect", "geometric::PRM", "geometric::RRTstar", "geometric::BITstar"})
+                        problem.planners.push_back(PlannerSpec{name, {}});
+                    return;
+                }
+                if (!list.IsSequence() || list.size() == 0)
+                    r.fail("planners", "expected a non-empty list of planner names or {name, params}");
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = "planners[" + std::to_string(i) + "]";
+                    PlannerSpec spec;
+                    if (list[i].IsScalar())
+                        spec.name = list[i].Scalar();
+                    else if (list[i].IsMap())
+                    {
+                        spec.name = r.text(r.require(list[i], "name", key), key + ".name");
+                        if (const YAML::Node params = list[i]["params"])
+                        {
+                            if (!params.IsMap())
+                                r.fail(key + ".params", "expected a mapping of parameter name to value");
+                            for (const auto &kv : params)
+                                spec.params[kv.first.as<std::string>()] =
+                                    r.text(kv.second, key + ".params." + kv.first.as<std::string>());
+                        }
+                    }
+                    else
+                        r.fail(key, "expected a planner name or {name, params}");
+                    problem.planners.push_back(spec);
+                }
+            }
+
+            void readBenchmark(const Reader &r, const YAML::Node &b, Problem &problem)
+            {
+                if (!b)
+                    return;
+                if (!b.IsMap())
+                    r.fail("benchmark", "expected a mapping (time_limit, runs, memory_limit, seed, simplify)");
+                auto &s = problem.benchmark;
+                for (const auto &kv : b)
+                {
+                    const std::string k = kv.first.as<std::string>(), key = "benchmark." + k;
+                    if (k == "time_limit")
+                    {
+                        s.timeLimit = r.number(kv.second, key);
+                        if (!(s.timeLimit > 0.))
+                            r.fail(key, "expected a positive number of seconds");
+                    }
+                    else if (k == "memory_limit")
+                    {
+                        s.memoryLimit = r.number(kv.second, key);
+                        if (!(s.memoryLimit > 0.))
+                            r.fail(key, "expected a positive number of megabytes");
+                    }
+                    else if (k == "runs")
+                        s.runs = r.count(kv.second, key);
+                    else if (k == "seed")
+                        s.seed = r.count(kv.second, key);
+                    else if (k == "simplify")
+                        s.simplify = r.flag(kv.second, key);
+                    else
+                        r.fail(key, "unknown key (expected time_limit, runs, memory_limit, seed, simplify)");
+                }
+            }
+
+            void readCollision(const Reader &r, const YAML::Node &c, Problem &problem)
+            {
+                if (!c)
+                    return;
+                if (!c.IsMap())
+                    r.fail("collision", "expected a mapping (motion_validator, max_step, valid_segment_fraction)");
+                for (const auto &kv : c)
+                {
+                    const std::string k = kv.first.as<std::string>(), key = "collision." + k;
+                    if (k == "valid_segment_fraction")
+                    {
+                        problem.validSegmentFraction = r.number(kv.second, key);
+                        if (problem.validSegmentFraction <= 0. || problem.validSegmentFraction >= 1.)
+                            r.fail(key, "expected a number in (0, 1)");
+                    }
+                    else if (k == "max_step")
+                    {
+                        problem.maxStep = r.number(kv.second, key);
+                        // a motion is checked every max_step metres: below 0.1 mm a 1 m motion takes 10,000+
+                        // checks and planning never ends in practice
+                        if (!(problem.maxStep >= 1e-4) || problem.maxStep > 1e3)
+                            r.fail(key, "expected a number of metres in [0.0001, 1000]");
+                    }
+                    else if (k == "motion_validator")
+                    {
+                        problem.motionValidator = r.text(kv.second, key);
+                        if (problem.motionValidator != "workspace" && problem.motionValidator != "conservative" &&
+                            problem.motionValidator != "discrete")
+                            r.fail(key, "expected workspace, conservative or discrete, got '" +
+                                            problem.motionValidator + "'");
+                    }
+                    else if (k == "checker")
+                    {
+                        problem.checker = r.text(kv.second, key);
+                        if (problem.checker != "fcl" && problem.checker != "jmap")
+                            r.fail(key, "expected fcl or jmap, got '" + problem.checker + "'");
+                    }
+                    else if (k == "jmap")
+                        readJMapSettings(r, kv.second, key, problem.jmap);
+                    else
+                        r.fail(key,
+                               "unknown key (expected checker, jmap, motion_validator, max_step, "
+                               "valid_segment_fraction)");
+                }
+            }
+        }  // namespace problem_file
+    }      // namespace tools
+}  // namespace michi

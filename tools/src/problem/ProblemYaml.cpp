@@ -1,0 +1,328 @@
+#include "ProblemYaml.h"
+
+#include <michi/validity/InputFile.h>
+#include <michi/validity/Limits.h>
+
+#include <boost/filesystem.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace problem_file
+        {
+            namespace
+            {
+                /** Throws on the first mapping that holds a key twice (yaml-cpp would keep only one of them). */
+                void rejectDuplicateKeys(const std::string &file, const YAML::Node &n, const std::string &key, int depth)
+                {
+                    if (depth > 200)  // deeper nesting is no michi file; stop before the stack does
+                        throw ProblemError(file, key, "nested more than 200 levels deep");
+                    if (n.IsMap())
+                    {
+                        std::set<std::string> seen;
+                        for (const auto &kv : n)
+                        {
+                            const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
+                            const std::string child = key.empty() ? k : key + "." + k;
+                            if (!seen.insert(k).second)
+                                throw ProblemError(file, child,
+                                                   "duplicate key (line " + std::to_string(kv.first.Mark().line + 1) +
+                                                       "): each key may appear once");
+                            rejectDuplicateKeys(file, kv.second, child, depth + 1);
+                        }
+                    }
+                    else if (n.IsSequence())
+                        for (std::size_t i = 0; i < n.size(); ++i)
+                            rejectDuplicateKeys(file, n[i], key + "[" + std::to_string(i) + "]", depth + 1);
+                }
+
+                YAML::Node parseYamlFile(const std::string &file)
+                {
+                    std::string text;
+                    try
+                    {
+                        text = validity::readInputFile(file);
+                    }
+                    catch (const validity::InputFileError &e)
+                    {
+                        throw ProblemError(file, "", e.reason());
+                    }
+                    YAML::Node root;
+                    try
+                    {
+                        root = YAML::Load(text);
+                    }
+                    catch (const YAML::Exception &e)
+                    {
+                        throw ProblemError(file, "",
+                                           "not valid YAML (line " + std::to_string(e.mark.line + 1) + ", column " +
+                                               std::to_string(e.mark.column + 1) + "): " + e.msg);
+                    }
+                    rejectDuplicateKeys(file, root, "", 0);
+                    return root;
+                }
+            }  // namespace
+
+            YAML::Node loadYaml(const std::string &file)
+            {
+                // every section reader (dual_arm, experience, extras.replan) asks for the problem file again:
+                // keep the parsed tree per file, size and modification time so each file is parsed once
+                struct Cached
+                {
+                    std::uintmax_t size;
+                    std::filesystem::file_time_type time;
+                    YAML::Node root;
+                };
+                static std::mutex cacheMutex;
+                static std::map<std::string, Cached> cache;
+                std::error_code ec;
+                const auto size = std::filesystem::file_size(file, ec);
+                const auto time = ec ? std::filesystem::file_time_type() : std::filesystem::last_write_time(file, ec);
+                {
+                    std::lock_guard<std::mutex> lock(cacheMutex);
+                    auto it = cache.find(file);
+                    if (!ec && it != cache.end() && it->second.size == size && it->second.time == time)
+                        return YAML::Clone(it->second.root);  // a copy: callers may change their tree
+                }
+                YAML::Node root = parseYamlFile(file);
+                if (!ec)
+                {
+                    std::lock_guard<std::mutex> lock(cacheMutex);
+                    cache[file] = Cached{size, time, YAML::Clone(root)};
+                }
+                return root;
+            }
+
+            void Reader::fail(const std::string &key, const std::string &message) const
+            {
+                throw ProblemError(file_, key, message);
+            }
+
+            YAML::Node Reader::require(const YAML::Node &map, const std::string &name, const std::string &key) const
+            {
+                if (!map.IsMap())
+                    fail(key, "expected a mapping");
+                const YAML::Node n = map[name];
+                if (!n)
+                    fail(key.empty() ? name : key + "." + name, "missing (required)");
+                return n;
+            }
+
+            double Reader::number(const YAML::Node &n, const std::string &key) const
+            {
+                if (!n.IsScalar())
+                    fail(key, "expected a number");
+                const std::string text = n.Scalar();
+                // accept "pi", "-pi/2", "0.5*pi" as conveniences for joint values
+                try
+                {
+                    const double v = parseNumber(text);
+                    // any count, time or size michi reads is far below 1e12; beyond it squares and sums of
+                    // values stop being exact and products overflow in the geometry code
+                    if (std::abs(v) > 1e12)
+                        fail(key, "number " + text + " is out of range (|value| above 1e12)");
+                    return v;
+                }
+                catch (const ProblemError &)
+                {
+                    throw;
+                }
+                catch (const std::exception &)
+                {
+                    fail(key, "expected a number, got '" + text + "'");
+                }
+            }
+
+            double Reader::number(const YAML::Node &map, const std::string &name, const std::string &key,
+                                  double fallback) const
+            {
+                const YAML::Node n = map[name];
+                return n ? number(n, key + "." + name) : fallback;
+            }
+
+            std::vector<double> Reader::numbers(const YAML::Node &n, const std::string &key, std::size_t size) const
+            {
+                if (!n.IsSequence())
+                    fail(key, size ? "expected a list of " + std::to_string(size) + " numbers"
+                                   : "expected a list of numbers");
+                if (size && n.size() != size)
+                    fail(key, "expected " + std::to_string(size) + " numbers, got " + std::to_string(n.size()));
+                std::vector<double> values;
+                for (std::size_t i = 0; i < n.size(); ++i)
+                    values.push_back(number(n[i], key + "[" + std::to_string(i) + "]"));
+                return values;
+            }
+
+            double Reader::coordinate(const YAML::Node &n, const std::string &key) const
+            {
+                const double v = number(n, key);
+                if (!validity::isGeometryValue(v))
+                    fail(key, "coordinate " + validity::geometryValueProblem(v));
+                return v;
+            }
+
+            std::vector<double> Reader::coordinates(const YAML::Node &n, const std::string &key, std::size_t size) const
+            {
+                const auto values = numbers(n, key, size);
+                for (std::size_t i = 0; i < values.size(); ++i)
+                    if (!validity::isGeometryValue(values[i]))
+                        fail(key + "[" + std::to_string(i) + "]",
+                             "coordinate " + validity::geometryValueProblem(values[i]));
+                return values;
+            }
+
+            std::string Reader::text(const YAML::Node &n, const std::string &key) const
+            {
+                if (!n.IsScalar())
+                    fail(key, "expected a string");
+                return n.Scalar();
+            }
+
+            unsigned int Reader::count(const YAML::Node &n, const std::string &key) const
+            {
+                const double v = number(n, key);
+                if (!(v >= 1.) || v != std::floor(v) || v > 1e9)
+                    fail(key, "expected a positive integer");
+                return static_cast<unsigned int>(v);
+            }
+
+            bool Reader::flag(const YAML::Node &n, const std::string &key) const
+            {
+                if (!n.IsScalar() || (n.Scalar() != "true" && n.Scalar() != "false"))
+                    fail(key, "expected true or false");
+                return n.Scalar() == "true";
+            }
+
+            std::string Reader::path(const YAML::Node &n, const std::string &key) const
+            {
+                const fs::path p = fs::path(text(n, key));
+                const fs::path full = p.is_absolute() ? p : fs::path(file_).parent_path() / p;
+                if (!fs::exists(full))
+                    fail(key, "file '" + full.string() + "' does not exist");
+                // a folder or a device here would fail later with a message that names no key
+                try
+                {
+                    validity::requireInputFile(full.string());
+                }
+                catch (const validity::InputFileError &e)
+                {
+                    fail(key, "'" + full.string() + "' " + e.reason());
+                }
+                return full.lexically_normal().string();
+            }
+
+            Eigen::Isometry3d Reader::pose(const YAML::Node &n, const std::string &key) const
+            {
+                if (!n.IsMap())
+                    fail(key, "expected a pose {xyz: [x, y, z], rpy: [roll, pitch, yaw]}");
+                Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+                for (const char *name : {"xyz", "position"})
+                    if (n[name])
+                    {
+                        const auto v = coordinates(n[name], key + "." + name, 3);
+                        t.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+                    }
+                if (n["rpy"])
+                {
+                    const auto r = numbers(n["rpy"], key + ".rpy", 3);
+                    t.linear() = (Eigen::AngleAxisd(r[2], Eigen::Vector3d::UnitZ()) *
+                                  Eigen::AngleAxisd(r[1], Eigen::Vector3d::UnitY()) *
+                                  Eigen::AngleAxisd(r[0], Eigen::Vector3d::UnitX()))
+                                     .toRotationMatrix();
+                }
+                else if (n["orientation"])
+                {
+                    const auto q = numbers(n["orientation"], key + ".orientation", 4);
+                    const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
+                    if (quat.norm() < 1e-9)
+                        fail(key + ".orientation", "quaternion has zero norm");
+                    t.linear() = quat.normalized().toRotationMatrix();
+                }
+                for (const auto &kv : n)
+                {
+                    const std::string k = kv.first.as<std::string>();
+                    if (k != "xyz" && k != "position" && k != "rpy" && k != "orientation")
+                        fail(key + "." + k, "unknown pose key (expected xyz/rpy or position/orientation)");
+                }
+                return t;
+            }
+
+            std::vector<Eigen::Vector2d> Reader::polygon(const YAML::Node &n, const std::string &key) const
+            {
+                if (!n.IsSequence() || n.size() < 3)
+                    fail(key, "expected a list of at least 3 [x, y] points");
+                std::vector<Eigen::Vector2d> points;
+                for (std::size_t i = 0; i < n.size(); ++i)
+                {
+                    const auto p = coordinates(n[i], key + "[" + std::to_string(i) + "]", 2);
+                    points.emplace_back(p[0], p[1]);
+                }
+                return points;
+            }
+
+            double Reader::parseNumber(std::string text)
+            {
+                text.erase(std::remove_if(text.begin(), text.end(), ::isspace), text.end());
+                double sign = 1.;
+                if (!text.empty() && (text[0] == '-' || text[0] == '+'))
+                {
+                    sign = text[0] == '-' ? -1. : 1.;
+                    text = text.substr(1);
+                }
+                const auto pi = text.find("pi");
+                if (pi == std::string::npos)
+                {
+                    std::size_t used = 0;
+                    const double v = std::stod(text, &used);
+                    if (used != text.size() || !std::isfinite(v))
+                        throw std::invalid_argument(text);
+                    return sign * v;
+                }
+                // forms: pi, k*pi, pi/d, k*pi/d
+                double factor = 1., divisor = 1.;
+                const std::string before = text.substr(0, pi), after = text.substr(pi + 2);
+                if (!before.empty())
+                {
+                    if (before.back() != '*')
+                        throw std::invalid_argument(text);
+                    factor = parseNumber(before.substr(0, before.size() - 1));
+                }
+                if (!after.empty())
+                {
+                    if (after[0] != '/')
+                        throw std::invalid_argument(text);
+                    divisor = parseNumber(after.substr(1));
+                    if (divisor == 0.)
+                        throw std::invalid_argument(text);
+                }
+                return sign * factor * M_PI / divisor;
+            }
+
+            void Reader::keys(const YAML::Node &n, const std::string &key, const std::set<std::string> &allowed) const
+            {
+                if (!n || !n.IsMap())  // absent (or not a mapping: the caller's own check reports that)
+                    return;
+                for (const auto &kv : n)
+                {
+                    const std::string k = kv.first.as<std::string>();
+                    if (!allowed.count(k))
+                    {
+                        std::string list;
+                        for (const auto &a : allowed)
+                            list += (list.empty() ? "" : ", ") + a;
+                        fail(key.empty() ? k : key + "." + k, "unknown key (expected one of " + list + ")");
+                    }
+                }
+            }
+        }  // namespace problem_file
+    }      // namespace tools
+}  // namespace michi

@@ -1,0 +1,261 @@
+#include <michi/validity/fcl/FclValidityChecker.h>
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <sstream>
+
+namespace michi
+{
+    namespace validity
+    {
+        namespace
+        {
+            struct CollisionData
+            {
+                fcl::CollisionRequestd request;
+                fcl::CollisionResultd result;
+                const fcl::CollisionObjectd *query{nullptr};
+                const std::string *hit{nullptr};
+                bool done{false};
+            };
+
+            bool collisionCallback(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *raw)
+            {
+                auto *data = static_cast<CollisionData *>(raw);
+                if (data->done)
+                    return true;
+                fcl::collide(o1, o2, data->request, data->result);
+                if (data->result.isCollision())
+                {
+                    data->done = true;
+                    data->hit = &Scene::obstacleName(o1 == data->query ? o2 : o1);
+                }
+                return data->done;
+            }
+
+            struct DistanceData
+            {
+                fcl::DistanceRequestd request;
+                const fcl::CollisionObjectd *query{nullptr};
+                double best{std::numeric_limits<double>::infinity()};
+                const std::string *obstacle{nullptr};
+                Eigen::Vector3d robotPoint{Eigen::Vector3d::Zero()};
+                Eigen::Vector3d otherPoint{Eigen::Vector3d::Zero()};
+            };
+
+            bool distanceCallback(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *raw, double &dist)
+            {
+                auto *data = static_cast<DistanceData *>(raw);
+                fcl::DistanceResultd result;
+                fcl::distance(o1, o2, data->request, result);
+                if (result.min_distance < data->best)
+                {
+                    const bool queryFirst = o1 == data->query;
+                    data->best = result.min_distance;
+                    data->obstacle = &Scene::obstacleName(queryFirst ? o2 : o1);
+                    data->robotPoint = result.nearest_points[queryFirst ? 0 : 1];
+                    data->otherPoint = result.nearest_points[queryFirst ? 1 : 0];
+                }
+                dist = data->best;
+                return data->best <= 0.;
+            }
+
+            /** FCL objects of every body shape, posed for one configuration (one set per query and thread). */
+            struct PosedBodies
+            {
+                std::vector<std::vector<std::unique_ptr<fcl::CollisionObjectd>>> objects;
+
+                PosedBodies(const CollisionBodies &bodies, const double *values)
+                {
+                    std::vector<Eigen::Isometry3d> poses;
+                    bodies.bodyPoses(values, poses);
+                    objects.resize(poses.size());
+                    for (std::size_t b = 0; b < poses.size(); ++b)
+                        for (const auto &s : bodies.bodies()[b].shapes)
+                            for (const auto &g : s.shape->geometries())
+                                objects[b].push_back(std::make_unique<fcl::CollisionObjectd>(g, poses[b] * s.origin));
+                }
+            };
+        }  // namespace
+
+        FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr &si, CollisionBodiesPtr bodies,
+                                               ScenePtr scene)
+            : ompl::base::StateValidityChecker(si), bodies_(std::move(bodies)), scene_(std::move(scene))
+        {
+            specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
+            if (si->getStateSpace()->getDimension() != bodies_->dimension())
+                throw std::invalid_argument(
+                    "state space has dimension " + std::to_string(si->getStateSpace()->getDimension()) +
+                    ", the robot's configuration has " + std::to_string(bodies_->dimension()) + " values");
+        }
+
+        void FclValidityChecker::toReals(const ompl::base::State *state, std::vector<double> &values) const
+        {
+            si_->getStateSpace()->copyToReals(values, state);
+        }
+
+        bool FclValidityChecker::isValid(const ompl::base::State *state) const
+        {
+            if (!si_->satisfiesBounds(state))
+                return false;
+            std::vector<double> values;
+            toReals(state, values);
+            return isValidConfiguration(values.data());
+        }
+
+        bool FclValidityChecker::isValid(const ompl::base::State *state, double &dist) const
+        {
+            std::vector<double> values;
+            toReals(state, values);
+            if (!si_->satisfiesBounds(state) || !isValidConfiguration(values.data()))
+            {
+                dist = 0.;
+                return false;
+            }
+            dist = clearanceConfiguration(values.data());
+            return true;
+        }
+
+        double FclValidityChecker::clearance(const ompl::base::State *state) const
+        {
+            std::vector<double> values;
+            toReals(state, values);
+            return clearanceConfiguration(values.data());
+        }
+
+        bool FclValidityChecker::isValidConfiguration(const double *values) const
+        {
+            return describeCollision(values).empty();
+        }
+
+        std::string FclValidityChecker::describeCollision(const double *values) const
+        {
+            ++queries_;
+            PosedBodies posed(*bodies_, values);
+            const auto &bodies = bodies_->bodies();
+            {
+                auto lock = scene_->lockShared();
+                for (std::size_t b = 0; b < posed.objects.size(); ++b)
+                    for (const auto &object : posed.objects[b])
+                    {
+                        CollisionData data;
+                        data.query = object.get();
+                        scene_->manager().collide(object.get(), &data, collisionCallback);
+                        if (data.done)
+                            return bodies[b].name + " touches obstacle '" + *data.hit + "'";
+                    }
+            }
+            for (const auto &pair : bodies_->selfCheckPairs())
+                for (const auto &a : posed.objects[pair.first])
+                    for (const auto &b : posed.objects[pair.second])
+                    {
+                        fcl::CollisionRequestd request;
+                        fcl::CollisionResultd result;
+                        if (fcl::collide(a.get(), b.get(), request, result) > 0)
+                            return bodies[pair.first].name + " touches " + bodies[pair.second].name;
+                    }
+            return "";
+        }
+
+        double FclValidityChecker::clearanceConfiguration(const double *values) const
+        {
+            return proximity(values, false).distance;
+        }
+
+        Proximity FclValidityChecker::proximity(const double *values, bool includeSelf, double relativeError) const
+        {
+            PosedBodies posed(*bodies_, values);
+            Proximity best;
+            {
+                auto lock = scene_->lockShared();
+                for (std::size_t b = 0; b < posed.objects.size(); ++b)
+                    for (const auto &object : posed.objects[b])
+                    {
+                        DistanceData data;
+                        data.request.enable_nearest_points = true;
+                        data.request.rel_err = relativeError;
+                        data.request.gjk_solver_type = fcl::GST_INDEP;
+                        data.query = object.get();
+                        data.best = best.distance;
+                        scene_->manager().distance(object.get(), &data, distanceCallback);
+                        if (data.obstacle != nullptr && data.best < best.distance)
+                        {
+                            best.distance = data.best;
+                            best.body = static_cast<int>(b);
+                            best.otherBody = -1;
+                            best.obstacle = *data.obstacle;
+                            best.robotPoint = data.robotPoint;
+                            best.otherPoint = data.otherPoint;
+                        }
+                    }
+            }
+            if (includeSelf)
+                for (const auto &pair : bodies_->selfCheckPairs())
+                    for (const auto &a : posed.objects[pair.first])
+                        for (const auto &b : posed.objects[pair.second])
+                        {
+                            fcl::DistanceRequestd request;
+                            request.enable_nearest_points = true;
+                            request.rel_err = relativeError;
+                            request.gjk_solver_type = fcl::GST_INDEP;
+                            fcl::DistanceResultd result;
+                            fcl::distance(a.get(), b.get(), request, result);
+                            if (result.min_distance < best.distance)
+                            {
+                                best.distance = result.min_distance;
+                                best.body = pair.first;
+                                best.otherBody = pair.second;
+                                best.obstacle.clear();
+                                best.robotPoint = result.nearest_points[0];
+                                best.otherPoint = result.nearest_points[1];
+                            }
+                        }
+            return best;
+        }
+
+        void FclValidityChecker::bodyDistances(const double *values, const std::vector<char> &wantBodies,
+                                               const std::vector<char> &wantPairs, std::vector<double> &obstacle,
+                                               std::vector<double> &self) const
+        {
+            const double inf = std::numeric_limits<double>::infinity();
+            PosedBodies posed(*bodies_, values);
+            obstacle.assign(posed.objects.size(), inf);
+            {
+                auto lock = scene_->lockShared();
+                for (std::size_t b = 0; b < posed.objects.size(); ++b)
+                {
+                    if (!wantBodies[b])
+                        continue;
+                    for (const auto &object : posed.objects[b])
+                    {
+                        DistanceData data;
+                        data.request.gjk_solver_type = fcl::GST_INDEP;
+                        data.query = object.get();
+                        data.best = obstacle[b];
+                        scene_->manager().distance(object.get(), &data, distanceCallback);
+                        obstacle[b] = std::min(obstacle[b], data.best);
+                    }
+                }
+            }
+            const auto &pairs = bodies_->selfCheckPairs();
+            self.assign(pairs.size(), inf);
+            for (std::size_t k = 0; k < pairs.size(); ++k)
+            {
+                if (!wantPairs[k])
+                    continue;
+                for (const auto &a : posed.objects[pairs[k].first])
+                    for (const auto &b : posed.objects[pairs[k].second])
+                    {
+                        fcl::DistanceRequestd request;
+                        request.gjk_solver_type = fcl::GST_INDEP;
+                        fcl::DistanceResultd result;
+                        fcl::distance(a.get(), b.get(), request, result);
+                        self[k] = std::min(self[k], result.min_distance);
+                    }
+            }
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,91 @@
+#include <michi/validity/fcl/WorkspaceMotionValidator.h>
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <stdexcept>
+
+namespace michi
+{
+    namespace validity
+    {
+        WorkspaceMotionValidator::WorkspaceMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                                                           FclValidityCheckerPtr checker, double maxStep)
+            : ompl::base::MotionValidator(si), checker_(std::move(checker)), maxStep_(0.01)
+        {
+            setMaxStep(maxStep);
+        }
+
+        void WorkspaceMotionValidator::setMaxStep(double metres)
+        {
+            if (!(metres > 0.))
+                throw std::invalid_argument("motion validator max_step must be positive");
+            maxStep_ = metres;
+        }
+
+        unsigned int WorkspaceMotionValidator::stepCount(const ompl::base::State *s1, const ompl::base::State *s2) const
+        {
+            std::vector<double> from, to, bounds;
+            si_->getStateSpace()->copyToReals(from, s1);
+            si_->getStateSpace()->copyToReals(to, s2);
+            checker_->bodies()->bodyDisplacementBounds(from.data(), to.data(), bounds);
+            const double largest = bounds.empty() ? 0. : *std::max_element(bounds.begin(), bounds.end());
+            return std::max(1u, static_cast<unsigned int>(std::ceil(largest / maxStep_)));
+        }
+
+        bool WorkspaceMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
+        {
+            if (!si_->isValid(s2))
+            {
+                ++invalid_;
+                return false;
+            }
+            const unsigned int n = stepCount(s1, s2);
+            // intermediate states in bisection order, so a collision in the middle is found early
+            ompl::base::State *state = si_->allocState();
+            std::queue<std::pair<unsigned int, unsigned int>> intervals;
+            intervals.emplace(1, n - 1);
+            bool ok = true;
+            while (ok && !intervals.empty())
+            {
+                const auto [lo, hi] = intervals.front();
+                intervals.pop();
+                if (lo > hi)
+                    continue;
+                const unsigned int mid = (lo + hi) / 2;
+                si_->getStateSpace()->interpolate(s1, s2, static_cast<double>(mid) / n, state);
+                ok = si_->isValid(state);
+                if (mid > lo)
+                    intervals.emplace(lo, mid - 1);
+                intervals.emplace(mid + 1, hi);
+            }
+            si_->freeState(state);
+            ok ? ++valid_ : ++invalid_;
+            return ok;
+        }
+
+        bool WorkspaceMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
+                                                   std::pair<ompl::base::State *, double> &lastValid) const
+        {
+            const unsigned int n = stepCount(s1, s2);
+            ompl::base::State *state = si_->allocState();
+            bool ok = true;
+            for (unsigned int i = 1; i <= n && ok; ++i)
+            {
+                si_->getStateSpace()->interpolate(s1, s2, static_cast<double>(i) / n, state);
+                if (!si_->isValid(state))
+                {
+                    ok = false;
+                    lastValid.second = static_cast<double>(i - 1) / n;
+                    if (lastValid.first != nullptr)
+                        si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
+                }
+            }
+            si_->freeState(state);
+            ok ? ++valid_ : ++invalid_;
+            return ok;
+        }
+    }  // namespace validity
+}  // namespace michi

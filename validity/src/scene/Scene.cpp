@@ -1,0 +1,224 @@
+#include <michi/validity/scene/Scene.h>
+#include <michi/validity/Limits.h>
+
+#include <algorithm>
+#include <mutex>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_set>
+
+namespace bg = boost::geometry;
+
+namespace michi
+{
+    namespace validity
+    {
+        Scene::Scene() = default;
+
+        void Scene::place(Entry &entry, const Eigen::Isometry3d &pose)
+        {
+            entry.obstacle.pose = pose;
+            for (auto &object : entry.objects)
+            {
+                object->setTransform(pose);
+                object->computeAABB();
+            }
+        }
+
+        void Scene::rebuildManager()
+        {
+            manager_.clear();
+            std::vector<fcl::CollisionObjectd *> objects;
+            for (auto &entry : entries_)
+                for (auto &object : entry->objects)
+                    objects.push_back(object.get());
+            manager_.registerObjects(objects);
+            manager_.setup();
+        }
+
+        void Scene::add(Obstacle obstacle)
+        {
+            std::vector<Obstacle> one;
+            one.push_back(std::move(obstacle));
+            add(std::move(one));
+        }
+
+        void Scene::add(std::vector<Obstacle> obstacles)
+        {
+            // everything is checked before anything changes, so a bad obstacle leaves the scene as it was
+            std::unordered_set<std::string> newNames;
+            for (auto &obstacle : obstacles)
+            {
+                if (!obstacle.shape)
+                    throw std::invalid_argument("obstacle '" + obstacle.name + "' has no shape");
+                // FCL's broad phase crashes on boxes that overflow (coordinates near sqrt(DBL_MAX)) and ignores nan
+                requireGeometryPose(obstacle.pose, "obstacle '" + obstacle.name + "'");
+                for (const auto &key : obstacle.trajectory)
+                {
+                    if (!std::isfinite(key.time))
+                        throw std::invalid_argument("obstacle '" + obstacle.name + "': key frame time is not finite");
+                    requireGeometryPose(key.pose, "obstacle '" + obstacle.name + "' key frame");
+                }
+                if (!newNames.insert(obstacle.name).second)
+                    throw std::invalid_argument("scene already has an obstacle named '" + obstacle.name + "'");
+                std::sort(obstacle.trajectory.begin(), obstacle.trajectory.end(),
+                          [](const TimedPose &a, const TimedPose &b)
+                          {
+                              return a.time < b.time;
+                          });
+            }
+            std::unique_lock<std::shared_mutex> lock(mutex_);
+            for (const auto &e : entries_)
+                if (newNames.count(e->obstacle.name))
+                    throw std::invalid_argument("scene already has an obstacle named '" + e->obstacle.name + "'");
+            for (auto &obstacle : obstacles)
+            {
+                auto entry = std::make_unique<Entry>();
+                entry->obstacle = std::move(obstacle);
+                for (const auto &g : entry->obstacle.shape->geometries())
+                {
+                    entry->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+                    entry->objects.back()->setUserData(&entry->obstacle.name);
+                }
+                const Eigen::Isometry3d pose = entry->obstacle.trajectory.empty()
+                                                   ? entry->obstacle.pose
+                                                   : poseAt(entry->obstacle.trajectory, time_);
+                place(*entry, pose);
+                entries_.push_back(std::move(entry));
+            }
+            // one broad-phase build for the whole batch: rebuilding per obstacle made loading a 10,000-box map
+            // quadratic (28 s)
+            rebuildManager();
+            ++changeCount_;
+        }
+
+        bool Scene::remove(const std::string &name)
+        {
+            std::unique_lock<std::shared_mutex> lock(mutex_);
+            auto it = std::find_if(entries_.begin(), entries_.end(),
+                                   [&](const std::unique_ptr<Entry> &e)
+                                   {
+                                       return e->obstacle.name == name;
+                                   });
+            if (it == entries_.end())
+                return false;
+            entries_.erase(it);
+            rebuildManager();
+            ++changeCount_;
+            return true;
+        }
+
+        void Scene::setPose(const std::string &name, const Eigen::Isometry3d &pose)
+        {
+            std::unique_lock<std::shared_mutex> lock(mutex_);
+            for (auto &e : entries_)
+                if (e->obstacle.name == name)
+                {
+                    place(*e, pose);
+                    manager_.update();
+                    ++changeCount_;
+                    return;
+                }
+            throw std::out_of_range("scene has no obstacle named '" + name + "'");
+        }
+
+        void Scene::setTime(double t)
+        {
+            std::unique_lock<std::shared_mutex> lock(mutex_);
+            time_ = t;
+            bool moved = false;
+            for (auto &e : entries_)
+            {
+                if (e->obstacle.trajectory.empty())
+                    continue;
+                const Eigen::Isometry3d pose = poseAt(e->obstacle.trajectory, t);
+                if (!pose.isApprox(e->obstacle.pose, 1e-12))
+                {
+                    place(*e, pose);
+                    moved = true;
+                }
+            }
+            if (moved)
+            {
+                manager_.update();
+                ++changeCount_;
+            }
+        }
+
+        double Scene::time() const
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            return time_;
+        }
+
+        std::size_t Scene::size() const
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            return entries_.size();
+        }
+
+        std::vector<Obstacle> Scene::obstacles() const
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            std::vector<Obstacle> result;
+            for (const auto &e : entries_)
+                result.push_back(e->obstacle);
+            return result;
+        }
+
+        MultiPolygon2 Scene::polygons2d() const
+        {
+            MultiPolygon2 all;
+            for (const auto &o : obstacles())
+            {
+                MultiPolygon2 merged;
+                bg::union_(all, o.shape->footprint(o.pose), merged);
+                all = std::move(merged);
+            }
+            return all;
+        }
+
+        std::pair<Eigen::Vector3d, Eigen::Vector3d> Scene::bounds() const
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            if (entries_.empty())
+                return {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+            Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+            Eigen::Vector3d hi = -lo;
+            for (const auto &e : entries_)
+                for (const auto &o : e->objects)
+                {
+                    lo = lo.cwiseMin(o->getAABB().min_);
+                    hi = hi.cwiseMax(o->getAABB().max_);
+                }
+            return {lo, hi};
+        }
+
+        Eigen::Isometry3d Scene::poseAt(const std::vector<TimedPose> &trajectory, double t)
+        {
+            if (trajectory.empty())
+                throw std::invalid_argument("empty trajectory");
+            if (t <= trajectory.front().time)
+                return trajectory.front().pose;
+            if (t >= trajectory.back().time)
+                return trajectory.back().pose;
+            auto next = std::upper_bound(trajectory.begin(), trajectory.end(), t,
+                                         [](double time, const TimedPose &p)
+                                         {
+                                             return time < p.time;
+                                         });
+            auto prev = next - 1;
+            const double s = (t - prev->time) / (next->time - prev->time);
+            Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+            pose.translation() = (1. - s) * prev->pose.translation() + s * next->pose.translation();
+            const Eigen::Quaterniond qa(prev->pose.linear()), qb(next->pose.linear());
+            pose.linear() = qa.slerp(s, qb).toRotationMatrix();
+            return pose;
+        }
+
+        const std::string &Scene::obstacleName(const fcl::CollisionObjectd *object)
+        {
+            return *static_cast<const std::string *>(object->getUserData());
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,433 @@
+#include <michi/validity/scene/Shape.h>
+#include <michi/validity/InputFile.h>
+#include <michi/validity/Limits.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace bg = boost::geometry;
+
+namespace michi
+{
+    namespace validity
+    {
+        namespace
+        {
+            double signedArea(const std::vector<Eigen::Vector2d> &p)
+            {
+                double a = 0.;
+                for (std::size_t i = 0; i < p.size(); ++i)
+                {
+                    const auto &u = p[i];
+                    const auto &v = p[(i + 1) % p.size()];
+                    a += u.x() * v.y() - v.x() * u.y();
+                }
+                return 0.5 * a;
+            }
+
+            double cross(const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+            }
+
+            bool isConvexCcw(const std::vector<Eigen::Vector2d> &p)
+            {
+                for (std::size_t i = 0; i < p.size(); ++i)
+                    if (cross(p[i], p[(i + 1) % p.size()], p[(i + 2) % p.size()]) < -1e-12)
+                        return false;
+                return true;
+            }
+
+            /** A convex prism over a CCW convex outline, faces counter-clockwise seen from outside. */
+            std::shared_ptr<fcl::CollisionGeometryd> convexPrism(const std::vector<Eigen::Vector2d> &outline,
+                                                                 double zMin, double zMax)
+            {
+                const int n = static_cast<int>(outline.size());
+                auto vertices = std::make_shared<std::vector<Eigen::Vector3d>>();
+                for (const auto &p : outline)
+                    vertices->emplace_back(p.x(), p.y(), zMin);
+                for (const auto &p : outline)
+                    vertices->emplace_back(p.x(), p.y(), zMax);
+                auto faces = std::make_shared<std::vector<int>>();
+                faces->push_back(n);  // top, seen from +z
+                for (int i = 0; i < n; ++i)
+                    faces->push_back(n + i);
+                faces->push_back(n);  // bottom, seen from -z
+                for (int i = n - 1; i >= 0; --i)
+                    faces->push_back(i);
+                for (int i = 0; i < n; ++i)
+                {
+                    const int j = (i + 1) % n;
+                    faces->insert(faces->end(), {4, i, j, n + j, n + i});
+                }
+                return std::make_shared<fcl::Convexd>(vertices, n + 2, faces);
+            }
+
+            std::vector<Eigen::Vector3d> samplePoints(const Shape &shape, int circleSides)
+            {
+                std::vector<Eigen::Vector3d> points;
+                const Eigen::Vector3d &s = shape.size();
+                // circles are sampled on a polygon that contains them
+                const double grow = 1. / std::cos(M_PI / circleSides);
+                auto circle = [&](double r, double z)
+                {
+                    for (int i = 0; i < circleSides; ++i)
+                    {
+                        const double a = 2. * M_PI * i / circleSides;
+                        points.emplace_back(r * grow * std::cos(a), r * grow * std::sin(a), z);
+                    }
+                };
+                switch (shape.type())
+                {
+                    case Shape::Type::BOX:
+                        for (int i = 0; i < 8; ++i)
+                            points.emplace_back((i & 1 ? 0.5 : -0.5) * s.x(), (i & 2 ? 0.5 : -0.5) * s.y(),
+                                                (i & 4 ? 0.5 : -0.5) * s.z());
+                        break;
+                    case Shape::Type::CYLINDER:
+                        circle(s.x(), -0.5 * s.z());
+                        circle(s.x(), 0.5 * s.z());
+                        break;
+                    case Shape::Type::SPHERE:
+                    case Shape::Type::CAPSULE:
+                        break;  // handled as disks by footprint()
+                    case Shape::Type::PRISM:
+                        for (const auto &p : shape.outline())
+                        {
+                            points.emplace_back(p.x(), p.y(), s.x());
+                            points.emplace_back(p.x(), p.y(), s.y());
+                        }
+                        break;
+                    case Shape::Type::MESH:
+                        points = shape.vertices();
+                        break;
+                }
+                return points;
+            }
+        }  // namespace
+
+        std::vector<std::array<int, 3>> triangulatePolygon(const std::vector<Eigen::Vector2d> &outline)
+        {
+            const int n = static_cast<int>(outline.size());
+            if (n < 3)
+                throw std::invalid_argument("polygon has " + std::to_string(n) + " vertices, at least 3 needed");
+            std::vector<Point2> pts;
+            for (const auto &p : outline)
+                pts.emplace_back(p.x(), p.y());
+            Polygon2 poly = makePolygon2(pts);
+            std::string reason;
+            if (!bg::is_valid(poly, reason))
+                throw std::invalid_argument("polygon is not simple: " + reason);
+
+            std::vector<int> idx(n);
+            for (int i = 0; i < n; ++i)
+                idx[i] = i;
+            if (signedArea(outline) < 0.)
+                std::reverse(idx.begin(), idx.end());
+            std::vector<std::array<int, 3>> triangles;
+            // ear clipping: O(n^3) worst case, fine for map polygons of tens of vertices
+            while (idx.size() > 3)
+            {
+                bool clipped = false;
+                const std::size_t m = idx.size();
+                for (std::size_t k = 0; k < m && !clipped; ++k)
+                {
+                    const int a = idx[(k + m - 1) % m], b = idx[k], c = idx[(k + 1) % m];
+                    if (cross(outline[a], outline[b], outline[c]) <= 1e-14)
+                        continue;  // reflex or degenerate corner
+                    bool empty = true;
+                    for (std::size_t t = 0; t < m && empty; ++t)
+                    {
+                        const int q = idx[t];
+                        if (q == a || q == b || q == c)
+                            continue;
+                        const auto &p = outline[q];
+                        if (cross(outline[a], outline[b], p) >= 0 && cross(outline[b], outline[c], p) >= 0 &&
+                            cross(outline[c], outline[a], p) >= 0)
+                            empty = false;
+                    }
+                    if (!empty)
+                        continue;
+                    triangles.push_back({a, b, c});
+                    idx.erase(idx.begin() + static_cast<long>(k));
+                    clipped = true;
+                }
+                if (!clipped)
+                {
+                    // only collinear corners remain: drop one
+                    idx.erase(idx.begin());
+                }
+            }
+            if (cross(outline[idx[0]], outline[idx[1]], outline[idx[2]]) > 1e-14)
+                triangles.push_back({idx[0], idx[1], idx[2]});
+            return triangles;
+        }
+
+        std::shared_ptr<const Shape> Shape::box(const Eigen::Vector3d &extents)
+        {
+            for (int i = 0; i < 3; ++i)
+                requireGeometryValue(extents[i], "box extent");
+            if ((extents.array() <= 0.).any())
+                throw std::invalid_argument("box extents must be positive");
+            std::shared_ptr<Shape> s(new Shape);
+            s->type_ = Type::BOX;
+            s->size_ = extents;
+            s->geometries_.push_back(std::make_shared<fcl::Boxd>(extents));
+            s->finish();
+            return s;
+        }
+
+        std::shared_ptr<const Shape> Shape::sphere(double radius)
+        {
+            requireGeometryValue(radius, "sphere radius");
+            if (!(radius > 0.))
+                throw std::invalid_argument("sphere radius must be positive");
+            std::shared_ptr<Shape> s(new Shape);
+            s->type_ = Type::SPHERE;
+            s->size_ = Eigen::Vector3d(radius, radius, radius);
+            s->geometries_.push_back(std::make_shared<fcl::Sphered>(radius));
+            s->finish();
+            return s;
+        }
+
+        std::shared_ptr<const Shape> Shape::cylinder(double radius, double length)
+        {
+            requireGeometryValue(radius, "cylinder radius");
+            requireGeometryValue(length, "cylinder length");
+            if (!(radius > 0.) || !(length > 0.))
+                throw std::invalid_argument("cylinder radius and length must be positive");
+            std::shared_ptr<Shape> s(new Shape);
+            s->type_ = Type::CYLINDER;
+            s->size_ = Eigen::Vector3d(radius, radius, length);
+            s->geometries_.push_back(std::make_shared<fcl::Cylinderd>(radius, length));
+            s->finish();
+            return s;
+        }
+
+        std::shared_ptr<const Shape> Shape::capsule(double radius, double length)
+        {
+            requireGeometryValue(radius, "capsule radius");
+            requireGeometryValue(length, "capsule length");
+            if (!(radius > 0.) || !(length >= 0.))
+                throw std::invalid_argument("capsule radius must be positive and length non-negative");
+            std::shared_ptr<Shape> s(new Shape);
+            s->type_ = Type::CAPSULE;
+            s->size_ = Eigen::Vector3d(radius, radius, length);
+            s->geometries_.push_back(std::make_shared<fcl::Capsuled>(radius, length));
+            s->finish();
+            return s;
+        }
+
+        std::shared_ptr<const Shape> Shape::prism(const std::vector<Eigen::Vector2d> &outline, double zMin, double zMax)
+        {
+            requireGeometryValue(zMin, "prism z_min");
+            requireGeometryValue(zMax, "prism z_max");
+            for (const auto &p : outline)
+            {
+                requireGeometryValue(p.x(), "prism outline x");
+                requireGeometryValue(p.y(), "prism outline y");
+            }
+            if (!(zMax > zMin))
+                throw std::invalid_argument("prism needs z_max > z_min");
+            const auto triangles = triangulatePolygon(outline);  // validates the outline
+            std::shared_ptr<Shape> s(new Shape);
+            s->type_ = Type::PRISM;
+            s->size_ = Eigen::Vector3d(zMin, zMax, zMax - zMin);
+            s->outline_ = outline;
+            std::vector<Eigen::Vector2d> ccw = outline;
+            if (signedArea(ccw) < 0.)
+                std::reverse(ccw.begin(), ccw.end());
+            if (isConvexCcw(ccw))
+                s->convexPieces_.push_back(ccw);
+            else
+                for (const auto &t : triangles)
+                    s->convexPieces_.push_back({outline[t[0]], outline[t[1]], outline[t[2]]});
+            for (const auto &piece : s->convexPieces_)
+                s->geometries_.push_back(convexPrism(piece, zMin, zMax));
+            s->finish();
+            return s;
+        }
+
+        std::shared_ptr<const Shape> Shape::mesh(std::vector<Eigen::Vector3d> vertices,
+                                                 std::vector<Eigen::Vector3i> triangles, std::string source)
+        {
+            if (vertices.empty() || triangles.empty())
+                throw std::invalid_argument("mesh " + source + " has no triangles");
+            for (const auto &t : triangles)
+                if ((t.array() < 0).any() || (t.array() >= static_cast<int>(vertices.size())).any())
+                    throw std::invalid_argument("mesh " + source + " has a triangle index out of range");
+            // a non-finite or huge vertex would make FCL's bounding volumes overflow (and its broad phase crash)
+            for (std::size_t v = 0; v < vertices.size(); ++v)
+                for (int i = 0; i < 3; ++i)
+                    if (!isGeometryValue(vertices[v][i]))
+                        throw std::invalid_argument("mesh " + source + ": vertex " + std::to_string(v) + " coordinate " +
+                                                    geometryValueProblem(vertices[v][i]));
+            std::shared_ptr<Shape> s(new Shape);
+            s->type_ = Type::MESH;
+            s->vertices_ = std::move(vertices);
+            s->triangles_ = std::move(triangles);
+            s->source_ = std::move(source);
+            auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+            std::vector<fcl::Triangle> tris;
+            tris.reserve(s->triangles_.size());
+            for (const auto &t : s->triangles_)
+                tris.emplace_back(t[0], t[1], t[2]);
+            bvh->beginModel();
+            bvh->addSubModel(s->vertices_, tris);
+            bvh->endModel();
+            s->geometries_.push_back(bvh);
+            s->finish();
+            return s;
+        }
+
+        std::shared_ptr<const Shape> Shape::meshFromFile(const std::string &path, const Eigen::Vector3d &scale)
+        {
+            requireInputFile(path);  // a directory or device would give assimp's own confusing message
+            Assimp::Importer importer;
+            const aiScene *scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                               aiProcess_PreTransformVertices | aiProcess_SortByPType);
+            if (scene == nullptr)
+                throw std::runtime_error(path + ": cannot read mesh: " + importer.GetErrorString());
+            std::vector<Eigen::Vector3d> vertices;
+            std::vector<Eigen::Vector3i> triangles;
+            for (unsigned int m = 0; m < scene->mNumMeshes; ++m)
+            {
+                const aiMesh *mesh = scene->mMeshes[m];
+                const int offset = static_cast<int>(vertices.size());
+                for (unsigned int v = 0; v < mesh->mNumVertices; ++v)
+                {
+                    const aiVector3D &p = mesh->mVertices[v];
+                    vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+                }
+                for (unsigned int f = 0; f < mesh->mNumFaces; ++f)
+                {
+                    const aiFace &face = mesh->mFaces[f];
+                    if (face.mNumIndices == 3)
+                        triangles.emplace_back(offset + static_cast<int>(face.mIndices[0]),
+                                               offset + static_cast<int>(face.mIndices[1]),
+                                               offset + static_cast<int>(face.mIndices[2]));
+                }
+            }
+            if (triangles.empty())
+                throw std::runtime_error(path + ": mesh holds no triangles");
+            return mesh(std::move(vertices), std::move(triangles), path);
+        }
+
+        void Shape::finish()
+        {
+            double r = 0.;
+            switch (type_)
+            {
+                case Type::BOX:
+                    r = 0.5 * size_.norm();
+                    break;
+                case Type::SPHERE:
+                    r = size_.x();
+                    break;
+                case Type::CYLINDER:
+                    r = std::hypot(size_.x(), 0.5 * size_.z());
+                    break;
+                case Type::CAPSULE:
+                    r = size_.x() + 0.5 * size_.z();
+                    break;
+                case Type::PRISM:
+                    for (const auto &p : outline_)
+                        r = std::max({r, std::hypot(p.norm(), size_.x()), std::hypot(p.norm(), size_.y())});
+                    break;
+                case Type::MESH:
+                    for (const auto &v : vertices_)
+                        r = std::max(r, v.norm());
+                    break;
+            }
+            boundingRadius_ = r;
+            for (auto &g : geometries_)
+                g->computeLocalAABB();
+        }
+
+        MultiPolygon2 Shape::footprint(const Eigen::Isometry3d &pose) const
+        {
+            MultiPolygon2 result;
+            const int sides = 32;
+            if (type_ == Type::SPHERE || type_ == Type::CAPSULE)
+            {
+                // shadow of a sphere is a disk; of a capsule, the hull of its two end disks
+                const double half = type_ == Type::CAPSULE ? 0.5 * size_.z() : 0.;
+                bg::model::multi_point<Point2> pts;
+                for (double z : {-half, half})
+                {
+                    const Eigen::Vector3d c = pose * Eigen::Vector3d(0, 0, z);
+                    const Polygon2 circle = circlePolygon2(Point2(c.x(), c.y()), size_.x(), sides);
+                    for (const auto &p : circle.outer())
+                        pts.push_back(p);
+                }
+                Polygon2 hull;
+                bg::convex_hull(pts, hull);
+                result.push_back(hull);
+                return result;
+            }
+            const Eigen::Vector3d zAxis = pose.linear().col(2);
+            if (type_ == Type::PRISM && std::abs(std::abs(zAxis.z()) - 1.) < 1e-9)
+            {
+                // an upright prism keeps its (possibly non-convex) outline
+                std::vector<Point2> pts;
+                for (const auto &p : outline_)
+                {
+                    const Eigen::Vector3d w = pose * Eigen::Vector3d(p.x(), p.y(), size_.x());
+                    pts.emplace_back(w.x(), w.y());
+                }
+                result.push_back(makePolygon2(pts));
+                return result;
+            }
+            bg::model::multi_point<Point2> pts;
+            for (const auto &p : samplePoints(*this, sides))
+            {
+                const Eigen::Vector3d w = pose * p;
+                pts.emplace_back(w.x(), w.y());
+            }
+            Polygon2 hull;
+            bg::convex_hull(pts, hull);
+            result.push_back(hull);
+            return result;
+        }
+
+        std::string Shape::describe() const
+        {
+            std::ostringstream out;
+            switch (type_)
+            {
+                case Type::BOX:
+                    out << "box " << size_.x() << "x" << size_.y() << "x" << size_.z();
+                    break;
+                case Type::SPHERE:
+                    out << "sphere r=" << size_.x();
+                    break;
+                case Type::CYLINDER:
+                    out << "cylinder r=" << size_.x() << " l=" << size_.z();
+                    break;
+                case Type::CAPSULE:
+                    out << "capsule r=" << size_.x() << " l=" << size_.z();
+                    break;
+                case Type::PRISM:
+                    out << "prism of " << outline_.size() << " vertices, z " << size_.x() << ".." << size_.y();
+                    break;
+                case Type::MESH:
+                    out << "mesh " << source_ << " (" << triangles_.size() << " triangles)";
+                    break;
+            }
+            return out.str();
+        }
+    }  // namespace validity
+}  // namespace michi
