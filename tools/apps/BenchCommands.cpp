@@ -1,6 +1,7 @@
 // `michi bench`, `michi plan` and `michi list-planners`: OMPL's Benchmark and one solve on a problem file.
 #include "CommandLine.h"
 
+#include <michi/tools/FileOutput.h>
 #include <michi/tools/bench/BenchmarkRunner.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
@@ -142,12 +143,13 @@ namespace michi
                             std::cout << (i ? " " : "") << s[i];
                         std::cout << "\n";
                     }
-                    const fs::path out = args.out;
-                    if (!fs::exists(out))
-                        fs::create_directories(out);
-                    const std::string stem = (out / (problem.name + "-" + fileSafe(name))).string();
-                    writePathFile(stem + ".path", problem.valueNames(), states, comment.str());
-                    writeProblemSvg(problem, {PlotPath{name, states}}, stem + ".svg", query);
+                    // both files or neither: a failure in the picture used to leave the .path behind
+                    StagedDirectory stage(args.out);
+                    const std::string base = problem.name + "-" + fileSafe(name);
+                    writePathFile(stage.path(base + ".path").string(), problem.valueNames(), states, comment.str());
+                    writeProblemSvg(problem, {PlotPath{name, states}}, stage.path(base + ".svg").string(), query);
+                    stage.commit();
+                    const std::string stem = (stage.out() / base).string();
                     std::cerr << "michi plan: wrote " << stem << ".path and " << stem << ".svg" << std::endl;
                     return 0;
                 }
