@@ -78,8 +78,8 @@ namespace michi
         {
             // OMPL's stock geometric planners under MoveIt's ids. Those that use a projection (KPIECE1,
             // BKPIECE1, LBKPIECE1, ProjEST, SBL, PDST, STRIDE) take the space's default projection: michi's
-            // joint spaces register one that works on OMPL 1.5.2. michi's own planners join this map as they
-            // arrive, under "michi::<Name>".
+            // joint spaces register one that works on OMPL 1.5.2. michi's own planners are in this map under
+            // "michi::<Name>" (the registry name; the C++ class is michi::planners::<Name>).
             static const std::map<std::string, ob::PlannerAllocator> registry{
                 {"geometric::ABITstar", allocator<WithSafeProgress<og::ABITstar>>()},
                 {"geometric::AITstar", allocator<og::AITstar>()},

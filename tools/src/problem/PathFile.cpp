@@ -1,4 +1,5 @@
 #include <michi/tools/problem/PathFile.h>
+#include <michi/tools/FileOutput.h>
 #include <michi/validity/InputFile.h>
 
 #include <cstdio>
@@ -14,34 +15,20 @@ namespace michi
         void writePathFile(const std::string &file, const std::vector<std::string> &names,
                            const std::vector<std::vector<double>> &states, const std::string &comment)
         {
-            const std::string tmp = file + ".tmp";
+            std::ostringstream out;
+            if (!comment.empty())
+                out << "# " << comment << "\n";
+            out << "#";
+            for (const auto &n : names)
+                out << " " << n;
+            out << "\n" << std::setprecision(17);
+            for (const auto &s : states)
             {
-                std::ofstream out(tmp);
-                if (!out)
-                    throw std::runtime_error(file + ": cannot write path file");
-                if (!comment.empty())
-                    out << "# " << comment << "\n";
-                out << "#";
-                for (const auto &n : names)
-                    out << " " << n;
-                out << "\n" << std::setprecision(17);
-                for (const auto &s : states)
-                {
-                    for (std::size_t i = 0; i < s.size(); ++i)
-                        out << (i ? " " : "") << s[i];
-                    out << "\n";
-                }
-                if (!out)
-                {
-                    std::remove(tmp.c_str());
-                    throw std::runtime_error(file + ": cannot write path file");
-                }
+                for (std::size_t i = 0; i < s.size(); ++i)
+                    out << (i ? " " : "") << s[i];
+                out << "\n";
             }
-            if (std::rename(tmp.c_str(), file.c_str()) != 0)
-            {
-                std::remove(tmp.c_str());
-                throw std::runtime_error(file + ": cannot write path file");
-            }
+            writeAtomically(out.str(), file);  // the one atomic write (FileOutput.h)
         }
 
         std::vector<std::vector<double>> readPathFile(const std::string &file)
