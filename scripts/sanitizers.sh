@@ -36,7 +36,9 @@ run_asan() {
     stamp "build $asan_dir"
     cmake --build "$asan_dir" -j"$jobs"
     stamp "ctest under ASan+UBSan (all but slow, install and the libFuzzer runs)"
-    ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE 'slow|install|libfuzzer' --timeout 900
+    # the termination tests time a planner's return to 0.1 s: a timing, not behaviour, under a 3-10x sanitizer slowdown
+    ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE 'slow|install|libfuzzer' --timeout 900 \
+        -E 'ReturnsWithinATenthOfASecond'
 }
 
 run_fuzz() {
@@ -50,7 +52,7 @@ run_tsan() {
     stamp "build $tsan_dir (the threaded tests only)"
     cmake --build "$tsan_dir" -j"$jobs"
     stamp "ctest under TSan (label tsan)"
-    ctest --test-dir "$tsan_dir" --output-on-failure -j"$jobs" -L tsan --timeout 900
+    ctest --test-dir "$tsan_dir" --output-on-failure -j"$jobs" -L tsan --timeout 900 -E 'ReturnsWithinATenthOfASecond'
 }
 
 start=$(date +%s)
