@@ -34,6 +34,8 @@ namespace michi
                 }
                 if (space.getType() == ob::STATE_SPACE_SO2)
                 {
+                    // OMPL's SO(2) range; values wrap, so the maps work in unwrapped coordinates
+                    // (docs/concentric-circle.md).
                     out.push_back({-M_PI, M_PI, true});
                     return;
                 }
@@ -56,6 +58,9 @@ namespace michi
                 if (axis.wraps)
                 {
                     const double period = axis.hi - axis.lo;
+                    // Subtracting the nearest whole number of periods leaves d in [-period/2, period/2]: the same
+                    // convention as OMPL's SO(2) interpolation, so a map segment and the motion the space checks go the
+                    // same way round.
                     d -= period * std::round(d / period);
                 }
                 return d;
@@ -76,6 +81,8 @@ namespace michi
                 const auto *checker = si->getStateValidityChecker().get();
                 if (const auto *f = dynamic_cast<const validity::FclValidityChecker *>(checker))
                     return f;
+                // A J-map checker keeps an FCL checker of the same robot and scene (its source of intervals): use its
+                // geometry.
                 if (const auto *j = dynamic_cast<const validity::JMapValidityChecker *>(checker))
                     return j->fcl().get();
                 return nullptr;
@@ -92,6 +99,8 @@ namespace michi
         void setStateValues(const ob::StateSpace &space, const std::vector<double> &values, ob::State *state)
         {
             space.copyFromReals(state, values);
+            // Unwrapped map coordinates become OMPL values: SO(2) values are wrapped into [-pi, pi), bounded values
+            // clamped.
             space.enforceBounds(state);
         }
 
@@ -109,6 +118,8 @@ namespace michi
             if (axes_.size() != start_.size())
                 throw ompl::Exception("ConcentricCircle", "the space's values do not match its components");
             start2_ = Eigen::Vector2d(start_[axis1_], start_[axis2_]);
+            // The goal's image nearest to the start: on a wrapping axis the map never goes the long way round unless it
+            // must.
             goal2_ = start2_ + Eigen::Vector2d(difference(axes_[axis1_], start_[axis1_], goal_[axis1_]),
                                                difference(axes_[axis2_], start_[axis2_], goal_[axis2_]));
             a_ = si_->allocState();
@@ -125,6 +136,8 @@ namespace michi
         {
             const Eigen::Vector2d d = goal2_ - start2_;
             const double len2 = d.squaredNorm();
+            // Projection mode: the values off the map follow the point's progress along S -> G (its projection on the
+            // line, clamped), so the start and goal map to the exact start and goal states.
             const double t = len2 > 0. ? std::clamp((p - start2_).dot(d) / len2, 0., 1.) : 0.;
             std::vector<double> v = interpolate(axes_, start_, goal_, t);
             v[axis1_] = p.x();
@@ -189,6 +202,8 @@ namespace michi
 
         std::vector<double> HandLift::values(const Eigen::Vector2d &p) const
         {
+            // Hand map (paper 000, Fig. 6): x is the arc length along the arm path, the paper's arm-path point number
+            // made continuous; y is the hand value. The other values are interpolated between start and goal by x.
             const double x = std::clamp(p.x(), 0., length_);
             std::vector<double> v = interpolate(axes_, start_, goal_, x / length_);
             Eigen::Vector2d arm = arm_.back();
@@ -215,6 +230,9 @@ namespace michi
         {
             std::vector<Eigen::Vector2d> out;
             const double lo = std::min(a.x(), b.x()), hi = std::max(a.x(), b.x());
+            // A straight hand-map segment lifts to a polyline through the arm path's vertices: the motion validator
+            // must check each piece, or a segment spanning an arm-path corner would be checked along a chord the arm
+            // never takes.
             for (std::size_t k = 1; k + 1 < s_.size(); ++k)
                 if (s_[k] > lo + 1e-12 && s_[k] < hi - 1e-12)
                 {
@@ -274,6 +292,7 @@ namespace michi
             for (double x : d)
                 len += x * x;
             len = std::sqrt(len);
+            // e1 along the start-goal line; when start == goal any direction will do, and the search ends at once
             e1_.assign(n, 0.);
             if (len > 0.)
                 for (std::size_t i = 0; i < n; ++i)
@@ -284,6 +303,7 @@ namespace michi
             std::vector<std::size_t> order(n);
             for (std::size_t i = 0; i < n; ++i)
                 order[i] = i;
+            // stable: ties keep the axes' order, so the plane (and the planner's result) is the same in every run.
             std::stable_sort(order.begin(), order.end(),
                              [this](std::size_t a, std::size_t b)
                              {
@@ -306,6 +326,7 @@ namespace michi
                 for (double x : v)
                     norm += x * x;
                 norm = std::sqrt(norm);
+                // The axis is (nearly) in the span already: take the next one, so the basis stays orthonormal.
                 if (norm < 1e-9)
                     continue;
                 for (double &x : v)
@@ -313,6 +334,8 @@ namespace michi
                 basis.push_back(v);
             }
             e2_.assign(n, 0.);
+            // Turning e2 about e1 by surface_angle picks the plane through the start-goal line; ConcentricCircle
+            // tries the planes at +45, +90 and +135 degrees too. With only two values the plane is the whole space.
             for (std::size_t i = 0; i < n; ++i)
                 e2_[i] = std::cos(angle) * basis[1][i] + (basis.size() > 2 ? std::sin(angle) * basis[2][i] : 0.);
             start2_ = Eigen::Vector2d::Zero();
@@ -366,6 +389,8 @@ namespace michi
                     lift(b, b_);
                     return si_->checkMotion(a_, b_);
                 });
+            // The plane is unbounded: the map covers the start-goal segment plus margin on every side (pi in the
+            // planner, so a detour may turn a joint half a revolution away from the straight line).
             map->lo = Eigen::Vector2d(-margin_, -margin_);
             map->hi = Eigen::Vector2d(goal2_.x() + margin_, margin_);
             return map;
@@ -406,6 +431,7 @@ namespace michi
             // every tile's polygons, united (tiles split regions at their borders)
             std::set<const validity::JMap *> seen;
             validity::MultiPolygon2 all;
+            // tile() is looked up by theta1: four samples per tile width find every tile, and seen skips repeats.
             const int samples = static_cast<int>(checker->tileCount()) * 4;
             for (int i = 0; i < samples; ++i)
             {
@@ -416,6 +442,8 @@ namespace michi
                 for (const auto &poly : tile.polygons())
                 {
                     validity::MultiPolygon2 merged;
+                    // Unite rather than collect: a region split at a tile border would otherwise leave an edge inside
+                    // the obstacle, and the search's visibility and potential treat every edge as an obstacle boundary.
                     bg::union_(all, poly, merged);
                     all = std::move(merged);
                 }
@@ -452,6 +480,8 @@ namespace michi
             for (std::size_t l = 0; l < planar->links().size(); ++l)
             {
                 bool hand = false;
+                // Paper 000: the arm's map is built without the hand. A link moved by a hand value is left out, so
+                // the arm map only blocks what the arm's own links hit; the hand map deals with the rest.
                 for (const int h : handValues)
                     hand = hand || planar->moves(variables[h], static_cast<int>(l));
                 if (!hand)
@@ -470,6 +500,9 @@ namespace michi
                 freeAt,
                 [freeAt](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
                 {
+                    // Sampled at 0.005 rad: the capsule model has no motion test of its own; every returned path is
+                    // checked again with the space's motion validator (ConcentricCircle::solve), so this only has to be
+                    // fine enough to rarely propose a link the validator rejects.
                     const double step = 0.005;
                     const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
                     for (int i = 0; i <= n; ++i)

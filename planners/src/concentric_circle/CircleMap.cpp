@@ -21,6 +21,8 @@ namespace michi
 
             bool onSegment(const Eigen::Vector2d &p, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
             {
+                // Bounding-box test for a point already known to be collinear; the 1e-12 slack keeps an end point that
+                // rounding puts just outside the box on the segment.
                 return std::min(a.x(), b.x()) - 1e-12 <= p.x() && p.x() <= std::max(a.x(), b.x()) + 1e-12 &&
                        std::min(a.y(), b.y()) - 1e-12 <= p.y() && p.y() <= std::max(a.y(), b.y()) + 1e-12;
             }
@@ -31,8 +33,11 @@ namespace michi
             {
                 const double d1 = cross(q1, q2, p1), d2 = cross(q1, q2, p2);
                 const double d3 = cross(p1, p2, q1), d4 = cross(p1, p2, q2);
+                // Proper crossing: each segment's ends lie strictly on both sides of the other's line.
                 if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
                     return true;
+                // Touching: an end point on the other segment. Touches count as blocked because the polygons are closed
+                // sets (the boundary belongs to the collision region, as in JMap).
                 const double eps = 1e-14;
                 return (std::abs(d1) <= eps && onSegment(p1, q1, q2)) ||
                        (std::abs(d2) <= eps && onSegment(p2, q1, q2)) ||
@@ -62,6 +67,7 @@ namespace michi
 
         bool CircleMap::inRange(const Eigen::Vector2d &p) const
         {
+            // A wrapping axis has no edge: the search may draw circles across +-pi, and lifting wraps the value.
             for (int i = 0; i < 2; ++i)
                 if (!wraps[i] && (p[i] < lo[i] || p[i] > hi[i]))
                     return false;
@@ -91,6 +97,8 @@ namespace michi
 
         struct PolygonCircleMap::Index
         {
+            // An R-tree of the edges' bounding boxes: visibility and potential queries touch only the few edges near a
+            // segment or point, not every edge of the map.
             bgi::rtree<Value, bgi::quadratic<16>> tree;
         };
 
@@ -120,6 +128,7 @@ namespace michi
                 for (const auto &inner : poly.inners())
                     addRing(inner);
             }
+            // next_ is the inverse of prev_: together they name the two edges that share each vertex.
             next_.assign(edges_.size(), -1);
             for (std::size_t e = 0; e < edges_.size(); ++e)
                 next_[prev_[e]] = static_cast<int>(e);
@@ -176,9 +185,14 @@ namespace michi
             for (const int e : near)
             {
                 const Edge2 &ed = edges_[e];
+                // potential_range: a far edge's term Kp / Dp^2 is small (docs/concentric-circle.md), and leaving it out
+                // keeps the cost per point bounded on large maps.
                 if (segmentDistance(p, ed.a, ed.b) > range)
                     continue;
                 // vertex a is shared by edges e and prev_[e]; vertex b by e and the edge after e
+                // Paper 000: only edges whose both end points are visible from P count, so the pockets of concave
+                // polygons do not pull the potential in. The edges meeting at the end point itself are skipped, since a
+                // sight line always touches them there.
                 if (blocked(p, ed.a, e, prev_[e]) || blocked(p, ed.b, e, next_[e]))
                     continue;
                 edges.push_back(ed);

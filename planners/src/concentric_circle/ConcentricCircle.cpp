@@ -25,6 +25,8 @@ namespace michi
             specs_.optimizingPaths = false;
             specs_.multithreaded = false;
             specs_.directed = false;
+            // The search needs one goal point on the map: a GoalState's state, else one state sampled from the region
+            // (solve()).
             specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
 
             declareParam<double>("ring_spacing", this, &ConcentricCircle::setRingSpacing,
@@ -82,6 +84,8 @@ namespace michi
 
         void ConcentricCircle::setup()
         {
+            // Nothing to configure ahead of solve(): every map depends on the query (start, goal, plane) and is built
+            // there.
             ob::Planner::setup();
         }
 
@@ -116,6 +120,9 @@ namespace michi
                 stage.lift(p, states.back());
             }
             bool ok = true;
+            // check is only needed where the map's own links were not checked with the motion validator (the J-map's
+            // segment-against-polygon test); the other maps' link tests already are the validator on these lifted
+            // states.
             for (std::size_t j = 1; check && ok && j < states.size(); ++j)
                 ok = si_->checkMotion(states[j - 1], states[j]);
             if (!ok)
@@ -145,6 +152,7 @@ namespace michi
             const auto &checker = si_->getStateValidityChecker();
             for (auto *s : path.getStates())
                 worst = std::min(worst, checker->clearance(s));
+            // Negated so that, as for length, a smaller cost is better and one ascending sort ranks both objectives.
             return -worst;
         }
 
@@ -162,6 +170,8 @@ namespace michi
                 setStateValues(*si_->getStateSpace(), {p.x(), p.y()}, s);
             };
             const Eigen::Vector2d s2(start[0], start[1]), g2(goal[0], goal[1]);
+            // The J-map polygons are conservative (they contain the true collision region, paper 000): a valid start or
+            // goal can lie inside them, and no circle search can leave such a point.
             if (!map->isFree(s2) || !map->isFree(g2))
             {
                 OMPL_INFORM("%s: start or goal inside the J-map polygons; using the projection of the checker",
@@ -172,6 +182,9 @@ namespace michi
             bool found = stage.search->run(s2, g2, ptc);
             stages_.push_back(stage);
             // every path must pass the space's motion validator: drop links it rejects and look again
+            // The polygons' segment test and the space's validator can disagree (the validator interpolates, the
+            // polygons over-approximate). Each round removes one rejected link; 200 bounds the work when the two
+            // disagree a lot.
             for (int round = 0; found && round < 200 && !ptc; ++round)
             {
                 bool rejected = false;
@@ -230,6 +243,8 @@ namespace michi
         {
             const int n = static_cast<int>(start.size());
             int hand = handAxis_;
+            // hand_axis -1: the first value that is neither arm axis is the hand (paper 000's planar example: 2 arm
+            // joints, 1 hand).
             for (int v = 0; hand < 0 && v < n; ++v)
                 if (v != axis1_ && v != axis2_)
                     hand = v;
@@ -277,6 +292,8 @@ namespace michi
                         stages_.push_back(handStage);
                     continue;
                 }
+                // Only the arm stage and the solved hand stage are kept, so stages_.back() is the search that produced
+                // the solution.
                 stages_.resize(1);
                 stages_[0].chosenPath = static_cast<int>(i);
                 stages_.push_back(handStage);
@@ -306,6 +323,8 @@ namespace michi
                 };
                 stage.search = std::make_shared<ConcentricCircleSearch>(*stage.map, settings_);
                 const bool found = stage.search->run(surface->start2(), surface->goal2(), ptc);
+                // Only the last plane tried is kept: pictures and PlannerData show the plane that gave the answer (or
+                // the last that failed).
                 stages_.clear();
                 stages_.push_back(stage);
                 if (!found)
@@ -328,6 +347,8 @@ namespace michi
             }
             const ob::State *goalState = nullptr;
             const auto goal = pdef_->getGoal();
+            // A goal region gives one sampled state: the circles need one point for the goal, and the method's
+            // result does not improve with more of them.
             if (auto *gs = dynamic_cast<ob::GoalState *>(goal.get()))
                 goalState = gs->getState();
             else
@@ -357,6 +378,9 @@ namespace michi
             usedMode_ = mode_;
             if (mode_ == "jmap" || mode_ == "auto")
             {
+                // Mode order in auto: the J-map polygons when the checker has them (the paper's own map, with exact
+                // visibility), else for 3 or more values the arm -> hand hierarchy (planar arms) or the restriction
+                // surface, else the 2-D projection.
                 const bool possible = n == 2 && axis1_ == 0 && axis2_ == 1 && makeJMapCircleMap(si_) != nullptr;
                 if (possible)
                 {
@@ -408,6 +432,8 @@ namespace michi
             // the first and last states are the exact start and goal
             for (auto &p : fullPaths_)
             {
+                // The lift of the start and goal points can differ from the given states in the last bits
+                // (enforceBounds, wrapping): OMPL checks that a solution starts at the start and reaches the goal.
                 si_->copyState(p.front(), startState);
                 si_->copyState(p.back(), goalState);
             }
@@ -416,6 +442,7 @@ namespace michi
             std::vector<std::pair<double, int>> ranked;
             for (std::size_t i = 0; i < fullPaths_.size(); ++i)
                 ranked.emplace_back(pathCost(fullPaths_[i]), static_cast<int>(i));
+            // stable: equal costs keep the search's order, so the same problem always gives the same path.
             std::stable_sort(ranked.begin(), ranked.end(),
                              [](const std::pair<double, int> &a, const std::pair<double, int> &b)
                              {
@@ -451,6 +478,8 @@ namespace michi
         {
             ob::Planner::getPlannerData(data);
             // the states stay with the planner (PlannerData keeps pointers) until the next solve or clear()
+            // getPlannerData() is const but must hand out states: they are lifted once, on the first call after a
+            // solve, and kept in the mutable stageStates_ so repeated calls do not leak or duplicate them.
             const bool build = stageStates_.empty();
             for (std::size_t k = 0; k < stages_.size(); ++k)
             {
@@ -470,6 +499,7 @@ namespace michi
                 const unsigned int tag = static_cast<unsigned int>(k);
                 for (std::size_t v = 0; v < states.size(); ++v)
                 {
+                    // Node 0 and node 1 of every search are its start and goal (ConcentricCircleSearch's convention).
                     if (v == 0)
                         data.addStartVertex(ob::PlannerDataVertex(states[v], tag));
                     else if (v == 1)

@@ -26,6 +26,8 @@ namespace michi
             /** the oval potential's obstacle term of edge AB at P */
             double repulsion(const Eigen::Vector2d &p, const Edge2 &e, double kObstacle)
             {
+                // Paper 000: Dp = |PA| + |PB| - |AB| is constant on ellipses with foci A and B (hence "oval"), zero on
+                // the edge itself; the floor keeps a point on the edge finite.
                 const double dp = std::max((p - e.a).norm() + (p - e.b).norm() - (e.a - e.b).norm(), 1e-9);
                 return kObstacle / (dp * dp);
             }
@@ -34,6 +36,7 @@ namespace michi
         ConcentricCircleSearch::ConcentricCircleSearch(const CircleMap &map, ConcentricCircleSettings settings)
             : map_(map), settings_(settings)
         {
+            // Fewer than 4 points per circle cannot go round an obstacle; a zero spacing would never leave the start.
             settings_.divisions = std::max(settings_.divisions, 4);
             settings_.ringSpacing = std::max(settings_.ringSpacing, 1e-6);
         }
@@ -45,6 +48,8 @@ namespace michi
                 if (map_.wraps[i])
                 {
                     const double period = map_.hi[i] - map_.lo[i];
+                    // On a wrapping axis every point has images one period apart: links and distances use the image
+                    // nearest to the other end, so a short way across +-pi is a short link.
                     r[i] -= period * std::round((r[i] - from[i]) / period);
                 }
             return r;
@@ -86,6 +91,9 @@ namespace michi
                 if (e.first == b)
                     return;
             addLink(a, b);
+            // Links are proposed unchecked and tested only when a shortest path uses them (lazy, like LazyPRM): which
+            // paths exist is unchanged, and most links are never tested (docs/concentric-circle.md: 185 instead of 1502
+            // on planar_2link).
             unchecked_.insert({std::min(a, b), std::max(a, b)});
         }
 
@@ -116,6 +124,8 @@ namespace michi
             std::vector<int> parent;
             while (ptc_ == nullptr || !*ptc_)
             {
+                // Invariant: every link that lazyConnect() returns true with has been checked; a failed check removes
+                // its link, so each round either succeeds or makes the graph strictly smaller, and the loop ends.
                 dijkstra(0, dist, parent);
                 if (dist[1] == INF)
                     return false;
@@ -149,6 +159,8 @@ namespace michi
         std::vector<std::pair<int, int>> ConcentricCircleSearch::links() const
         {
             std::vector<std::pair<int, int>> out;
+            // Only checked links are exported: an unchecked one may cross an obstacle, and pictures and
+            // PlannerData would show it as a way through.
             for (std::size_t a = 0; a < adjacency_.size(); ++a)
                 for (const auto &e : adjacency_[a])
                     if (static_cast<int>(a) < e.first && !unchecked_.count({static_cast<int>(a), e.first}))
@@ -165,11 +177,15 @@ namespace michi
             set.divisions = divisions;
             const Eigen::Vector2d c = nodes_[centre].p;
             set.goalRadius = (image(c, nodes_[goal].p) - c).norm();
+            // The ring that reaches the goal's radius; the 1e-9 keeps a goal exactly on a ring from needing one ring
+            // more.
             set.goalRings = std::max(1, static_cast<int>(std::ceil(set.goalRadius / spacing - 1e-9)));
             double reach = 0.;
             if (cover)
             {
                 Eigen::Vector2d far;
+                // cover: rings out to the map's farthest corner from the centre (half a period on a wrapping axis,
+                // beyond which the rings meet themselves), for paths that detour farther than the goal.
                 for (int i = 0; i < 2; ++i)
                     far[i] = map_.wraps[i] ? 0.5 * (map_.hi[i] - map_.lo[i])
                                            : std::max(std::abs(c[i] - map_.lo[i]), std::abs(map_.hi[i] - c[i]));
@@ -209,6 +225,7 @@ namespace michi
                 ring.potential.assign(n, 0.);
                 for (int i = 0; i < n; ++i)
                 {
+                    // ptc is checked every few points only: one point test is cheap next to evaluating the condition.
                     if (i % 8 == 0 && ptc)
                         return -1;
                     const double a = phase + 2. * M_PI * i / n;
@@ -222,6 +239,8 @@ namespace michi
                         firstFree = i;
                 if (firstFree < 0)
                 {
+                    // A fully blocked circle: chords of at most six steps around the whole circle, so the potential
+                    // sees the obstacle from every side; short chords stay close to the sampled circle.
                     for (int i = 0; i < n; i += 6)
                         ring.blockedEdges.push_back({ring.points[i], ring.points[std::min(i + 6, n) % n]});
                 }
@@ -260,6 +279,8 @@ namespace michi
             {
                 // no polygons: the blocked runs of this circle and its neighbours stand for the obstacle edges
                 const CcSet &set = sets_[s];
+                // This ring and its neighbours only (both are sampled before a ring is linked): using every ring
+                // would make a point's potential depend on how far the search had gone when it was evaluated.
                 for (int j = std::max(1, k - 1); j <= std::min(k + 1, static_cast<int>(set.rings.size())); ++j)
                     for (const Edge2 &e : rings_[set.rings[j - 1]].blockedEdges)
                         if (segmentDistance(p, e.a, e.b) <= settings_.potentialRange)
@@ -274,6 +295,7 @@ namespace michi
         {
             if (sampleRing(s, k, ptc) < 0)
                 return false;
+            // The next ring is sampled first: its blocked runs enter this ring's potential (see potential()).
             if (k < sets_[s].maxRings && sampleRing(s, k + 1, ptc) < 0)
                 return false;
             const int r = sets_[s].rings[k - 1];
@@ -334,6 +356,8 @@ namespace michi
                 std::vector<int> chain;
                 if (ends)
                     chain.push_back(candidate(arc.front()));
+                // count pieces of equal size (rounded up), rather than full pieces plus a short remainder, so no piece
+                // is a stub.
                 const int count = (static_cast<int>(arc.size()) + piecePoints - 1) / piecePoints;
                 const int size = (static_cast<int>(arc.size()) + count - 1) / count;
                 for (std::size_t from = 0; from < arc.size(); from += size)
@@ -352,6 +376,7 @@ namespace michi
                 }
                 if (ends)
                     chain.push_back(candidate(arc.back()));
+                // A circle with no obstacle on it: its chain closes on itself.
                 if (closed && chain.size() > 2)
                     chain.push_back(chain.front());
                 chains.push_back(std::move(chain));
@@ -381,6 +406,9 @@ namespace michi
                             const Eigen::Vector2d centre = rings_[r].centre;
                             const Eigen::Vector2d u = nodes_[c].p - centre, v = nodes_[d].p - centre;
                             const double angle = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+                            // Two pieces' angle (at most a quarter turn each): a candidate far round the circle would
+                            // make a long chord that mostly fails the visibility check, and trying every pair is
+                            // quadratic in the candidates.
                             if (std::abs(angle) > 2. * 2. * M_PI * std::min(piecePoints, n / 4) / n + 1e-9)
                                 continue;
                         }
@@ -433,6 +461,8 @@ namespace michi
             {
                 const auto [d, v] = open.top();
                 open.pop();
+                // A stale queue entry (the vertex was reached more cheaply since it was pushed): lazy deletion instead
+                // of a decrease-key heap.
                 if (d > dist[v])
                     continue;
                 for (const auto &e : adjacency_[v])
@@ -475,6 +505,8 @@ namespace michi
                     return true;
                 std::vector<int> sorted = p;
                 std::sort(sorted.begin(), sorted.end());
+                // Joining a start path and a goal path can visit a node twice (a loop): not a path the paper would
+                // draw.
                 if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
                     return true;
                 for (const auto &f : found)
@@ -497,6 +529,7 @@ namespace michi
                 goalLinks.push_back(e.first);
             for (const auto &e : adjacency_[0])
                 startLinks.push_back(e.first);
+            // Each attempt re-runs Dijkstra after a failed check removed a link; 8 bounds the work per goal link.
             for (const int v : goalLinks)
                 for (int attempt = 0; attempt < 8 && static_cast<int>(found.size()) < settings_.maxPaths; ++attempt)
                 {
@@ -612,6 +645,8 @@ namespace michi
                 // finer circles as the recursions go on (1/2, 1/4, 1/8 of the spacing, as many more points), and
                 // centred alternately on the goal's side and on the start's side: a goal at the end of a narrow
                 // channel is found from its own circles, whose small radii see the channel's way out
+                // The level grows every second recursion (one from each side) and stops at 1/8: finer circles cost as
+                // many more points per ring as they gain in resolution.
                 const int level = std::min((recursions_ + 1) / 2, 3);
                 const double spacing = settings_.ringSpacing / (1 << level);
                 const int divisions = settings_.divisions * (1 << level);

@@ -19,6 +19,7 @@ namespace michi
         Eigen::Vector3d WorkspaceGrid::centre(std::size_t index) const
         {
             const auto c = cell(index);
+            // Cells are addressed by their lower corner; a cell stands for the point at its centre.
             return origin + resolution * Eigen::Vector3d(c[0] + 0.5, c[1] + 0.5, c[2] + 0.5);
         }
 
@@ -59,6 +60,8 @@ namespace michi
                         {
                             const Eigen::Isometry3d ta = links[pair.first] * a.origin;
                             const Eigen::Isometry3d tb = links[pair.second] * b.origin;
+                            // Bounding spheres about the shapes' origins: most link pairs are far apart, and this test
+                            // is far cheaper than FCL's.
                             if ((ta.translation() - tb.translation()).norm() > a.radius + b.radius)
                                 continue;
                             fcl::CollisionResultd result;
@@ -91,6 +94,8 @@ namespace michi
             auto collision = std::make_shared<Collision>();
             const auto &links = model_->links();
             collision->pieces.resize(links.size());
+            // A link belongs to the arm of any joint on its chain from the root; links moved by neither arm are the
+            // base.
             std::vector<int> owner(links.size(), 0);  // 0: fixed (base), 1: large arm, 2: small arm
             for (std::size_t l = 0; l < links.size(); ++l)
             {
@@ -109,6 +114,9 @@ namespace michi
             for (const auto &p : model_->selfCollisionPairs())
             {
                 const int a = owner[p.first], b = owner[p.second];
+                // The robot's allowed self-collision pairs split three ways: large arm against small arm (1 + 2), and
+                // each arm against itself or the base. Solving one arm then checks only its own pairs, before the other
+                // arm is known.
                 if (a + b == 3)
                     collision->betweenPairs.push_back(p);
                 else if (a == 1 || b == 1)
@@ -136,6 +144,8 @@ namespace michi
         void DualArmWorkspace::sampleSeeds(const ArmTask &task, std::vector<std::vector<double>> &seeds,
                                            std::vector<Eigen::Vector3d> &tips) const
         {
+            // A seeded RNG of its own (not OMPL's global one): the work space is the same in every run with the same
+            // settings. The offset (a prime) gives the two arms different sample sequences.
             ompl::RNG rng(settings_.seed + (&task == &large_ ? 0u : 7919u));
             seeds.clear();
             tips.clear();
@@ -164,6 +174,7 @@ namespace michi
 
         std::vector<std::size_t> DualArmWorkspace::nearestSeeds(const ArmTask &task, const Eigen::Vector3d &p) const
         {
+            // Seeds whose hands were nearest the target converge fastest and to a nearby branch of the IK.
             const auto &tips = &task == &large_ ? largeTips_ : smallTips_;
             std::vector<std::pair<double, std::size_t>> d;
             d.reserve(tips.size());
@@ -190,6 +201,8 @@ namespace michi
                     q[vars[i]] = values[i];
                 return solveHandIk(task.arm, target, q, settings_.ik) && armFree(task, q);
             };
+            // The caller's own seeds first (e.g. the solution at a neighbouring point), so solutions stay on one IK
+            // branch.
             for (const auto &s : extraSeeds)
                 if (attempt(s))
                     return true;
@@ -217,6 +230,9 @@ namespace michi
                 {centre + Eigen::Vector3d(-h, -h, 0.), centre + Eigen::Vector3d(h, -h, 0.),
                  centre + Eigen::Vector3d(h, h, 0.), centre + Eigen::Vector3d(-h, h, 0.)}};
             // hand targets: a lead-in from the centre to the first corner (not part of the motion), then the square
+            // Paper 004, task B: the small arm's hand draws a square (3 cm in the paper) in a horizontal plane, sampled
+            // every stirStep. Each target's IK starts from the previous solution, so the states follow one continuous
+            // branch.
             const int perEdge = std::max(1, static_cast<int>(std::ceil(settings_.stirSide / settings_.stirStep)));
             std::vector<std::pair<Eigen::Vector3d, bool>> targets;
             const int leadIn =
@@ -246,11 +262,14 @@ namespace michi
                 double jump = 0.;
                 for (int v : small_.arm.variables())
                     jump = std::max(jump, std::abs(q[v] - before[v]));
+                // A joint change of more than 0.5 rad between targets a few millimetres apart means IK jumped to
+                // another branch: the arm could not follow the square continuously there.
                 if (jump > 0.5)
                 {
                     m.failure = "the small arm's solution jumps (" + std::to_string(jump) + " rad) at " + where.str();
                     return m;
                 }
+                // Lead-in targets only bring the hand to the first corner; they are not part of the stirring motion.
                 if (!t.second)
                     continue;
                 if (!armFree(small_, q) || !armsApart(q))
@@ -258,6 +277,7 @@ namespace michi
                     m.failure = "collision at " + where.str();
                     return m;
                 }
+                // Paper 004: w = sqrt(det(J J^T)) (Yoshikawa), the small arm's dexterity at this point of the motion.
                 const double w = small_.arm.manipulability(q, settings_.rows);
                 if (!m.states.empty())
                     for (std::size_t i = 0; i < small_.arm.size(); ++i)
@@ -322,6 +342,7 @@ namespace michi
             small_.arm.reachSphere(cs, rs);
             Eigen::Vector3d lo = (cl.array() - rl).min(cs.array() - rs).matrix();
             Eigen::Vector3d hi = (cl.array() + rl).max(cs.array() + rs).matrix();
+            // Nothing is placed below the floor, so cells there would only cost IK calls.
             lo.z() = std::max(lo.z(), 0.);
             const double res = settings_.resolution;
             grid_.resolution = res;
@@ -353,9 +374,14 @@ namespace michi
                 HandTarget target = task.hand;
                 auto attempt = [&](std::size_t c, const std::vector<double> &seed)
                 {
+                    // Each cell is solved once; a failed cell may be tried again from one other neighbour, whose seed
+                    // may be on a better IK branch, but not from all six (the fill would cost six IK runs per
+                    // unreachable cell).
                     if (!solutions[c].empty() || tries[c] >= 2)
                         return;
                     const Eigen::Vector3d p = grid_.centre(c);
+                    // Outside the reach sphere IK cannot succeed: skip it rather than let it run to its iteration
+                    // limit.
                     if ((p - centre).norm() > radius)
                         return;
                     ++tries[c];
@@ -379,6 +405,7 @@ namespace michi
                     if (i >= 0 && j >= 0 && k >= 0 && i < grid_.size[0] && j < grid_.size[1] && k < grid_.size[2])
                         attempt(grid_.index(i, j, k), samples[s]);
                 }
+                // Breadth-first: the queue grows while it is walked, each solved cell seeding its six face neighbours.
                 for (std::size_t head = 0; head < queue.size(); ++head)
                 {
                     const std::size_t c = queue[head];
@@ -407,8 +434,11 @@ namespace michi
                             both[large_.arm.variables()[i]] = largeQ[c][i];
                         if (armsApart(both))
                         {
+                            // Paper 004: the common work space is where both arms reach with their fixed hand
+                            // orientations and do not collide.
                             flags_[c] |= COMMON;
                             configs_[c] = both;
+                            // The manipulability area: the small arm's w above the threshold (0.0040 in the paper).
                             if (smallW_[c] > settings_.threshold)
                                 flags_[c] |= AREA;
                         }
@@ -454,6 +484,8 @@ namespace michi
                     if (flag == STIR)
                     {
                         const StirringMotion m = stir(centroid, atCentroid);
+                        // For task B the whole stirring motion must stay in the manipulability area, not only its
+                        // centre.
                         if (!m.valid || !(m.minManipulability > settings_.threshold))
                             return;
                     }
@@ -461,9 +493,12 @@ namespace michi
                     config = atCentroid;
                 }
             };
+            // Task A (hand-over): the centroid of the common work space is the work position (paper 004).
             centroidA_ = centroidOf(COMMON);
             place(COMMON, centroidA_, positionA_, configA_);
 
+            // Task B (stirring): the positions from which the whole square keeps w above the threshold; their centroid
+            // is the work position.
             for (std::size_t c = 0; c < n; ++c)
                 if (flags_[c] & AREA)
                 {

@@ -18,6 +18,8 @@ namespace michi
                                             std::to_string(jacobian.cols()) +
                                             " Jacobian: needs at least as many joints as rows (it would be 0 "
                                             "everywhere); use the position rows for an arm with fewer than 6 joints");
+            // Yoshikawa's measure w = sqrt(det(J J^T)) (paper 004). Rounding can make det slightly negative at a
+            // singularity: that is w = 0, not a NaN.
             const double d = (jacobian * jacobian.transpose()).determinant();
             return d > 0. ? std::sqrt(d) : 0.;
         }
@@ -41,6 +43,7 @@ namespace michi
             std::vector<Eigen::Isometry3d> poses;
             model_->forwardKinematics(q.data(), poses);
             Eigen::Isometry3d pose = poses[tip_];
+            // The tool point (e.g. a spoon's tip) is fixed in the tip link's frame; the orientation stays the link's.
             pose.translation() = poses[tip_] * toolPoint_;
             return pose;
         }
@@ -49,6 +52,8 @@ namespace michi
         {
             const Eigen::MatrixXd full = model_->jacobian(q, tip_, toolPoint_);
             Eigen::MatrixXd jac(6, static_cast<long>(variables_.size()));
+            // Only this arm's joints: manipulability and IK concern one arm, the other arm's columns would inflate
+            // w.
             for (std::size_t i = 0; i < variables_.size(); ++i)
                 jac.col(static_cast<long>(i)) = full.col(variables_[i]);
             return jac;
@@ -65,11 +70,10 @@ namespace michi
         {
             const std::size_t needed = rows == ManipulabilityRows::POSITION ? 3 : 6;
             if (variables_.size() < needed)
-                throw std::invalid_argument("arm to '" + tipName_ + "' has " + std::to_string(variables_.size()) +
-                                            " joints: its " + std::to_string(needed) +
-                                            "-row manipulability is 0 in every configuration (use " +
-                                            (needed == 6 ? std::string("position rows") : std::string("a longer arm")) +
-                                            ")");
+                throw std::invalid_argument(
+                    "arm to '" + tipName_ + "' has " + std::to_string(variables_.size()) + " joints: its " +
+                    std::to_string(needed) + "-row manipulability is 0 in every configuration (use " +
+                    (needed == 6 ? std::string("position rows") : std::string("a longer arm")) + ")");
         }
 
         void ArmChain::clampToLimits(std::vector<double> &q) const
@@ -77,6 +81,7 @@ namespace michi
             for (int v : variables_)
             {
                 const auto &joint = model_->variableJoint(static_cast<std::size_t>(v));
+                // Continuous joints have no limits to clamp to (their lower and upper are not meaningful).
                 if (joint.type == validity::RobotJoint::Type::CONTINUOUS)
                     continue;
                 q[v] = std::min(std::max(q[v], joint.lower), joint.upper);
@@ -96,6 +101,8 @@ namespace michi
                     const auto &joint = model_->variableJoint(static_cast<std::size_t>(variables_[i]));
                     const double lo = joint.type == validity::RobotJoint::Type::CONTINUOUS ? -M_PI : joint.lower;
                     const double hi = joint.type == validity::RobotJoint::Type::CONTINUOUS ? M_PI : joint.upper;
+                    // Fractions from incommensurate steps put every joint away from 0 and from its neighbours' values,
+                    // so a joint that moves a link origin cannot hide by happening to stay near its zero.
                     q[variables_[i]] = lo + (hi - lo) * std::fmod(0.31 * k + 0.17 * static_cast<double>(i), 1.);
                 }
                 probes.push_back(q);
@@ -118,6 +125,8 @@ namespace michi
                 fixed = c;
             }
             centre = zero[model_->joints()[chain[fixed]].childLink].translation();
+            // An upper bound on the reach: the sum of the link offsets after the fixed point, plus the tool offset
+            // (triangle inequality); the sphere may be larger than the real work space, never smaller.
             radius = toolPoint_.norm();
             for (std::size_t c = fixed + 1; c < chain.size(); ++c)
                 radius += model_->joints()[chain[c]].origin.translation().norm();

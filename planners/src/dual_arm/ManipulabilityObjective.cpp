@@ -20,6 +20,8 @@ namespace michi
             if (!(reference > 0.) || !(floor > 0.))
                 throw std::invalid_argument("ManipulabilityObjective: reference and floor must be positive");
             description_ = "Manipulability";
+            // Every state costs at least 1 per unit of length (see stateCost), so the distance to the goal region never
+            // overestimates the cost to go.
             setCostToGoHeuristic(&ompl::base::goalRegionCostToGo);
         }
 
@@ -29,6 +31,8 @@ namespace michi
                                                          double reference, double floor, bool interpolate)
             : ManipulabilityObjective(
                   si,
+                  // The state holds only the planned arm's joints; the rest of the robot (the other arm) stays at
+                  // fixedValues.
                   [arm, stateVariables, fixedValues, rows, si](const ompl::base::State *s)
                   {
                       std::vector<double> reals;
@@ -54,6 +58,9 @@ namespace michi
 
         ompl::base::Cost ManipulabilityObjective::stateCost(const ompl::base::State *s) const
         {
+            // Cost per unit of path length: 1 where w >= reference (paper 004's threshold, 0.0040), growing as
+            // reference / w below it. The 1 keeps the objective a path length where manipulability is good (no detours
+            // for nothing); floor_ keeps the cost finite at singular configurations (w = 0).
             return ompl::base::Cost(1. + weight_ * std::max(0., reference_ / std::max(evaluator_(s), floor_) - 1.));
         }
 
@@ -67,6 +74,7 @@ namespace michi
         ompl::base::Cost ManipulabilityObjective::motionCostHeuristic(const ompl::base::State *s1,
                                                                       const ompl::base::State *s2) const
         {
+            // The cheapest a motion can be: length times the minimum state cost 1 (admissible for informed planners).
             return ompl::base::Cost(si_->distance(s1, s2));
         }
     }  // namespace planners

@@ -26,14 +26,17 @@ namespace michi
     {
         namespace
         {
+            // First word of a saved learning roadmap, followed by the format version (docs/dual-roadmap.md,
+            // "DualRoadmap").
             const char *FILE_MAGIC = "michi-dual-roadmap";
-        }
+        }  // namespace
 
         DualRoadmap::DualRoadmap(const ob::SpaceInformationPtr &si) : ob::Planner(si, "DualRoadmap")
         {
             specs_.approximateSolutions = false;
             specs_.optimizingPaths = false;
             specs_.multithreaded = false;
+            // Goal states become roadmap vertices, so the goal must be able to give states (as for PRM and LazyPRM).
             specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
 
             declareParam<bool>("use_learning", this, &DualRoadmap::setUseLearning, &DualRoadmap::getUseLearning, "0,1");
@@ -50,6 +53,8 @@ namespace michi
             declareParam<unsigned int>("max_learning_edges", this, &DualRoadmap::setMaxLearningEdges,
                                        &DualRoadmap::getMaxLearningEdges, "0:1000:1000000");
 
+            // Benchmark reads progress properties from its own thread while solve() runs: hence the atomic copy of the
+            // count.
             addPlannerProgressProperty("learning edges INTEGER",
                                        [this]
                                        {
@@ -102,12 +107,16 @@ namespace michi
 
         void DualRoadmap::clearLearningRoadmap()
         {
+            // The learning roadmap outlives clear() on purpose (paper 002: it accumulates experience over scenes, as
+            // OMPL's experience planners keep their database); only this call or loadLearningRoadmap() forgets it.
             for (auto *s : learnStates_)
                 si_->freeState(s);
             learnStates_.clear();
             learnEdges_.clear();
             learnEdgeSet_.clear();
             learningEdgeCountAtomic_ = 0;
+            // Working vertices that pointed into the forgotten learning roadmap must not be learned under their old
+            // ids.
             for (auto v : boost::make_iterator_range(boost::vertices(graph_)))
                 graph_[v].learnId = -1;
         }
@@ -125,6 +134,7 @@ namespace michi
 
         bool DualRoadmap::sceneChanged()
         {
+            // exchange: a notifySceneChanged() from another thread between the read and the reset is not lost.
             bool changed = changed_.exchange(false);
             if (counter_)
             {
@@ -160,8 +170,12 @@ namespace michi
 
         void DualRoadmap::connectLazily(Vertex v)
         {
+            // Edges are only added, not checked (LazyPRM's scheme): validatePath() checks the ones a candidate path
+            // uses, so the k-nearest query stays cheap. The range bound keeps long edges, which are rarely valid in
+            // clutter, out of the graph.
             const double range = rangeFraction_ * si_->getMaximumExtent();
             std::vector<Vertex> neighbours;
+            // k + 1: v is already in nn_ and is its own nearest neighbour.
             nn_->nearestK(v, k_ + 1, neighbours);
             for (Vertex n : neighbours)
             {
@@ -185,13 +199,18 @@ namespace michi
             seeded_ = 0;
             if (!useLearning_ || learnEdges_.empty())
                 return;
+            // Paper 002, Fig. 2: after a change the working roadmap is cleared and seeded with randomly chosen local
+            // paths of the learning roadmap. Only seedEdges_ of them, so seeding costs a bounded number of checks
+            // however much has been learned.
             // random choice of learning edges, re-checked in the current scene
             std::vector<std::size_t> order(learnEdges_.size());
             for (std::size_t i = 0; i < order.size(); ++i)
                 order[i] = i;
+            // Fisher-Yates shuffle through rng_ (not std::shuffle), so that ompl::RNG::setSeed() reproduces the choice.
             for (std::size_t i = order.size(); i > 1; --i)
                 std::swap(order[i - 1], order[rng_.uniformInt(0, static_cast<int>(i - 1))]);
             std::map<std::size_t, Vertex> inWorking;
+            // A learning state shared by several chosen edges is checked and added once.
             std::map<std::size_t, bool> stateValid;
             auto valid = [&](std::size_t id)
             {
@@ -217,6 +236,8 @@ namespace michi
                 const auto &edge = learnEdges_[order[i]];
                 if (!valid(edge.first) || !valid(edge.second))
                     continue;
+                // Both end states are always checked (cheap, and an invalid vertex would poison every edge it has); the
+                // motion is checked here only without lazy seeding, else later and only if a candidate path uses it.
                 if (!lazySeeding_ && !si_->checkMotion(learnStates_[edge.first], learnStates_[edge.second]))
                     continue;
                 const Vertex a = vertexFor(edge.first);
@@ -243,6 +264,8 @@ namespace michi
 
         namespace
         {
+            // Thrown by the A* visitor to stop at the first goal vertex examined: Boost's astar_search has no early
+            // exit, and the search would otherwise settle the whole component.
             struct FoundGoal
             {
             };
@@ -261,6 +284,8 @@ namespace michi
             {
                 const DualRoadmap *self;
                 const std::vector<Vertex> *goals;
+                // Admissible: the distance to the nearest goal never exceeds the path length through the roadmap's
+                // edges, whose weights are the same distances.
                 double operator()(Vertex v) const
                 {
                     double best = std::numeric_limits<double>::infinity();
@@ -308,6 +333,8 @@ namespace michi
             for (Vertex v = found; v != start; v = pred[v])
             {
                 path.push_back(v);
+                // A vertex that is its own predecessor was never reached from start: no path (guards against an endless
+                // walk).
                 if (pred[v] == v)
                     return {};
             }
@@ -330,10 +357,13 @@ namespace michi
                 if (si_->checkMotion(graph_[path[i]].state, graph_[path[i + 1]].state))
                 {
                     graph_[e.first].checked = true;
+                    // Paper 002: every edge newly proved valid in the working roadmap is added to the learning roadmap.
                     learnEdge(path[i], path[i + 1]);
                 }
                 else
                 {
+                    // An invalid edge is removed for good (in this scene), so the next search finds another candidate
+                    // path. Edges checked valid before the failing one stay checked and are already learned.
                     boost::remove_edge(e.first, graph_);
                     return false;
                 }
@@ -353,10 +383,12 @@ namespace michi
 
         void DualRoadmap::learnEdge(Vertex a, Vertex b)
         {
+            // The cap bounds memory and the size of saved files in long runs; edges found later are simply not learned.
             if (!useLearning_ || learnEdges_.size() >= maxLearningEdges_)
                 return;
             std::size_t la = static_cast<std::size_t>(learnVertex(a));
             std::size_t lb = static_cast<std::size_t>(learnVertex(b));
+            // Undirected edges are stored with the smaller index first, so learnEdgeSet_ finds (a, b) and (b, a) alike.
             if (la > lb)
                 std::swap(la, lb);
             if (learnEdgeSet_.insert({la, lb}).second)
@@ -411,6 +443,9 @@ namespace michi
                 // more goal states while the goal region has them
                 if (goalVertices_.empty() || pis_.haveMoreGoalStates())
                 {
+                    // Without any goal vertex there is nothing to search for: wait (until ptc) for the goal region's
+                    // first sample. Later goal states are taken only when available at once, so sampling the goal never
+                    // blocks the search.
                     const ob::State *g = goalVertices_.empty() ? pis_.nextGoal(ptc) : pis_.nextGoal();
                     if (g != nullptr)
                     {
@@ -441,6 +476,8 @@ namespace michi
                 if (solved || ptc)
                     break;
                 // expand: a batch of uniform valid samples, connected lazily
+                // A batch rather than one sample per round: each round repeats the A* search over the whole roadmap,
+                // which would otherwise dominate once the roadmap is large.
                 for (unsigned int i = 0; i < batchSize_ && !ptc; ++i)
                 {
                     sampler_->sampleUniform(sample);
@@ -456,6 +493,8 @@ namespace michi
             auto result = std::make_shared<og::PathGeometric>(si_);
             for (Vertex v : path)
                 result->append(graph_[v].state);
+            // Paper 002: found paths are smoothed (redundant parts removed) before they are executed. The simplifier's
+            // motions are checked by the motion validator, so the result stays valid.
             if (smooth_ && result->getStateCount() > 2)
             {
                 og::PathSimplifier simplifier(si_, pdef_->getGoal());
@@ -469,6 +508,8 @@ namespace michi
         void DualRoadmap::getPlannerData(ob::PlannerData &data) const
         {
             Planner::getPlannerData(data);
+            // Tag 0: the working roadmap (this scene); tag 1: the learning roadmap. Edges are added both ways because
+            // PlannerData is directed and the roadmaps are not.
             for (Vertex v : startVertices_)
                 data.addStartVertex(ob::PlannerDataVertex(graph_[v].state, 0));
             for (Vertex v : goalVertices_)
@@ -495,6 +536,8 @@ namespace michi
         {
             const auto &space = si_->getStateSpace();
             std::ostringstream out;
+            // 17 significant digits: every double reads back exactly, so a loaded roadmap has the same states as the
+            // saved one.
             out.precision(17);
             out << FILE_MAGIC << " 1\n";
             std::vector<double> reals;
@@ -515,6 +558,8 @@ namespace michi
             out << "edges " << learnEdges_.size() << "\n";
             for (const auto &e : learnEdges_)
                 out << e.first << " " << e.second << "\n";
+            // Written to a sibling file and renamed: a failed or interrupted write never leaves a truncated roadmap
+            // under the file's name.
             const std::string tmp = file + ".tmp";
             {
                 std::ofstream f(tmp);
@@ -553,6 +598,8 @@ namespace michi
                 space->copyToReals(reals, probe);
                 si_->freeState(probe);
             }
+            // The space's name is written for people but not compared: the same robot may be set up under another name.
+            // Dimension and number of reals are what copyFromReals() depends on.
             if (dimension != space->getDimension() || realCount != reals.size())
                 fail("made for a space of dimension " + std::to_string(dimension) + " (" + std::to_string(realCount) +
                      " reals), this one has dimension " + std::to_string(space->getDimension()) + " (" +
@@ -595,6 +642,8 @@ namespace michi
                 }
                 edges.emplace_back(std::min(a, b), std::max(a, b));
             }
+            // Nothing is changed until the whole file has been read and checked: a bad file leaves the old learning
+            // roadmap as it was.
             clearLearningRoadmap();
             learnStates_ = std::move(states);
             for (const auto &e : edges)

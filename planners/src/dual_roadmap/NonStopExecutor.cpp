@@ -11,8 +11,10 @@ namespace michi
     {
         namespace
         {
+            // Tolerance on arc lengths: positions along the path are sums of distances, so comparisons with waypoint
+            // arcs or the path's end must not depend on the last bits.
             const double EPS = 1e-9;
-        }
+        }  // namespace
 
         NonStopExecutor::NonStopExecutor(NonStopHooks hooks, NonStopSettings settings)
             : hooks_(std::move(hooks)), settings_(settings)
@@ -26,6 +28,8 @@ namespace michi
                 throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive");
             if (!(settings_.planningDelay >= 0.))
                 throw std::invalid_argument("NonStopExecutor: planningDelay must not be negative");
+            // Paper 002, Fig. 1: the planning thread is the executor's own; the caller's thread is the execution
+            // thread. Started last, once every member it reads is set.
             thread_ = std::thread(
                 [this]
                 {
@@ -38,6 +42,8 @@ namespace michi
             {
                 std::lock_guard<std::mutex> lock(mutex_);
                 quit_ = true;
+                // cancel_ makes a plan hook that is still running return, so join() does not wait for a whole planning
+                // time.
                 cancel_ = true;
             }
             cv_.notify_all();
@@ -116,7 +122,11 @@ namespace michi
                 Query query = std::move(queries_.front());
                 queries_.pop_front();
                 busy_ = true;
+                // Reset under the lock before planning starts: a cancel for this query can only arrive after this point
+                // and is seen by the plan hook through the same flag.
                 cancel_ = false;
+                // The hook runs without the lock, so the execution thread keeps stepping (and may cancel) while the
+                // planner works.
                 lock.unlock();
 
                 Reply reply;
@@ -126,6 +136,8 @@ namespace michi
                 reply.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 
                 lock.lock();
+                // A cancelled plan may still return a path found before it noticed: it answers a question nobody asks
+                // any more.
                 if (cancel_ || reply.path.empty())
                     reply.found = false;
                 replies_.push_back(std::move(reply));
@@ -175,11 +187,17 @@ namespace michi
                 queries_.push_back(std::move(query));
             }
             cv_.notify_all();
+            // Synchronous mode (reproducible simulations): the query is planned to its end here, so a later cancel
+            // never interrupts the planner at a point that depends on wall-clock time.
             if (settings_.synchronous)
                 waitForPlanner();
+            // Where on the current path the new path will be joined: onPathFound() keeps the current path up to this
+            // arc.
             planStartArc_ = planStartArc;
             pendingPath_ = false;
             ++stats_.queries;
+            // Query is an internal signal that does not change the execution state; it is logged as a self-transition
+            // so the record follows Fig. 1's signals.
             transitions_.push_back(Transition{exec_, Signal::QUERY, exec_});
         }
 
@@ -194,6 +212,8 @@ namespace michi
                 {
                     if (it->id == activeQuery_)
                     {
+                        // An empty reply (not found) for a dropped query keeps "every query gets one reply";
+                        // takeReplies() ignores it because activeQuery_ no longer names it.
                         Reply reply;
                         reply.id = it->id;
                         replies_.push_back(std::move(reply));
@@ -219,6 +239,8 @@ namespace michi
         {
             path_ = std::move(path);
             arc_.assign(path_.size(), 0.);
+            // arc_[i]: the path length from the first waypoint to waypoint i; the robot's position is the arc s_
+            // along it.
             for (std::size_t i = 1; i < path_.size(); ++i)
                 arc_[i] = arc_[i - 1] + hooks_.distance(path_[i - 1], path_[i]);
             s_ = 0.;
@@ -236,6 +258,7 @@ namespace michi
                 return path_.back();
             const auto it = std::upper_bound(arc_.begin(), arc_.end(), s);
             const std::size_t i = static_cast<std::size_t>(it - arc_.begin());  // arc_[i-1] <= s < arc_[i]
+            // Repeated waypoints give a zero-length piece: take its first end rather than divide by zero.
             const double length = arc_[i] - arc_[i - 1];
             Configuration q;
             hooks_.interpolate(path_[i - 1], path_[i], length > 0. ? (s - arc_[i - 1]) / length : 0., q);
@@ -246,6 +269,8 @@ namespace michi
         {
             ConfigurationPath out;
             out.push_back(at(a));
+            // Backwards (b < a) walks the waypoints in reverse: the joined path of onPathFound() may start behind the
+            // robot after a stop overshoots the planned start.
             if (b > a)
             {
                 for (std::size_t i = 0; i < path_.size(); ++i)
@@ -258,6 +283,7 @@ namespace michi
                     if (arc_[i] < a - EPS && arc_[i] > b + EPS)
                         out.push_back(path_[i]);
             }
+            // A zero-length segment is the single state at(a), not the same state twice.
             if (std::fabs(b - a) > EPS)
                 out.push_back(at(b));
             return out;
@@ -292,6 +318,8 @@ namespace michi
             if (exec_ == ExecState::IDLE || exec_ == ExecState::FINISHED)
                 return;
             takeReplies();
+            // Paper 002, "Update problem": the remaining path is checked against the changed world; hit is the arc
+            // length (from the robot) to the first predicted interference, infinite when the path stays free.
             const double hit = hooks_.firstInterference(remainingPath());
             const bool free = std::isinf(hit);
             switch (exec_)
@@ -304,6 +332,8 @@ namespace michi
                         transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
                         return;
                     }
+                    // Paper 002, Fig. 3: small interference is first handled by deforming the path, without calling the
+                    // roadmap.
                     if (hooks_.deform)
                     {
                         ConfigurationPath deformed = remainingPath();
@@ -316,6 +346,9 @@ namespace michi
                         }
                     }
                     // replan from the point where a safe stop would begin, and keep moving until there
+                    // Braking from full speed needs brakingDistance(), and stopMargin keeps the stop short of the
+                    // interference: the robot can run on for room before it must start to brake, which is the time the
+                    // planner gets.
                     const double room = hit - settings_.stopMargin - brakingDistance();
                     if (room > EPS)
                     {
@@ -344,6 +377,7 @@ namespace michi
                         transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
                         return;
                     }
+                    // The obstacle may have come closer while planning: the stop point only ever moves nearer.
                     if (exec_ == ExecState::REPLANNING)
                         stopArc_ =
                             std::min(stopArc_, s_ + std::max(0., hit - settings_.stopMargin - brakingDistance()));
@@ -366,6 +400,8 @@ namespace michi
             {
                 if (reply.id != activeQuery_)
                     continue;  // a cancelled query's answer
+                // planningDelay charges simulated time for planning, so results do not depend on how fast this machine
+                // plans.
                 if (time_ < activeSentAt_ + settings_.planningDelay - EPS)
                 {
                     // not yet due on the simulated clock: keep it for a later step
@@ -379,6 +415,8 @@ namespace michi
                     ++stats_.failures;
                     transitions_.push_back(Transition{exec_, Signal::CANCELLED, exec_});
                     // try again: from the robot when it stands, else from the stop point
+                    // A retry starts from where the robot will be when it could take the new path, as the first query
+                    // did.
                     if (exec_ == ExecState::STOPPED)
                         sendQuery(current_, s_);
                     else if (exec_ == ExecState::REPLANNING)
@@ -402,12 +440,17 @@ namespace michi
                 pending_ = std::move(reply.path);
                 return;
             }
+            // The new path starts at the replanning start (the stop point): the robot keeps the old path up to there
+            // and goes on with the new one, so it never has to stand still for the planner.
             ConfigurationPath candidate = segment(s_, planStartArc_);
             for (std::size_t i = 1; i < reply.path.size(); ++i)
                 candidate.push_back(reply.path[i]);
+            // A one-state plan: the robot is already where the planner started, so that state is the whole
+            // continuation.
             if (reply.path.size() == 1)
                 candidate.push_back(reply.path[0]);
             ++stats_.pathsFound;
+            // The planner saw the world as it was when the query was sent; the obstacles may have moved since.
             if (!std::isinf(hooks_.firstInterference(candidate)))
             {
                 // the world moved on while planning: ask again
@@ -432,6 +475,8 @@ namespace michi
             {
                 case ExecState::EXECUTE:
                 case ExecState::REPLANNING:
+                    // Speeding up uses the deceleration's magnitude too: one rate, so braking distances and start-up
+                    // are symmetric.
                     velocity_ = std::min(settings_.speed, velocity_ + settings_.deceleration * dt);
                     break;
                 case ExecState::STOPPING:
@@ -440,6 +485,7 @@ namespace michi
                 default:
                     velocity_ = 0.;
             }
+            // Explicit Euler on the arc length; clamped so a large dt never runs past the path's end.
             s_ = std::min(pathLength(), s_ + velocity_ * dt);
             current_ = at(s_);
 
@@ -447,6 +493,8 @@ namespace michi
             {
                 velocity_ = 0.;
                 cancelQuery();
+                // The path's end is the goal only for a complete plan; 1e-6 absorbs interpolation rounding at the end
+                // of the path.
                 if (hooks_.distance(current_, goal_) <= 1e-6)
                 {
                     transition(ExecState::FINISHED, Signal::FINISHED);
@@ -457,6 +505,8 @@ namespace michi
                 sendQuery(current_, s_);
                 return;
             }
+            // Paper 002: keep moving while replanning unless the robot comes closer than the safety distance or
+            // reaches the point where braking must begin.
             if (exec_ == ExecState::REPLANNING &&
                 (s_ >= stopArc_ - EPS || hooks_.clearance(current_) < settings_.safetyDistance))
                 transition(ExecState::STOPPING, Signal::STEP);

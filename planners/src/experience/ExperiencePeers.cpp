@@ -22,6 +22,7 @@ namespace michi
             : ob::Planner(si, name)
         {
             specs_.approximateSolutions = false;
+            // The race runs the retrieve-repair planner and RRT-Connect in two threads (ompl::tools::ParallelPlan).
             specs_.multithreaded = true;
             specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
             declareParam<bool>("learn", this, &ExperienceRace::setLearn, &ExperienceRace::getLearn, "0,1");
@@ -37,6 +38,8 @@ namespace michi
             Planner::clear();
             if (retrieveRepair_)
                 retrieveRepair_->clear();
+            // The experience database is kept: like OMPL's Lightning and Thunder, clear() forgets one query, not what
+            // was learned.
             scratch_.reset();
         }
 
@@ -45,6 +48,8 @@ namespace michi
             checkValidity();
             if (ptc)
                 return ob::PlannerStatus::TIMEOUT;
+            // A fresh planner per query: a tree left over from an earlier query would make the race depend on the query
+            // order.
             scratch_ = std::make_shared<og::RRTConnect>(si_);
             scratch_->setProblemDefinition(pdef_);
             scratch_->setup();
@@ -53,10 +58,14 @@ namespace michi
                 retrieveRepair_->setup();
             // as ompl::tools::Lightning / Thunder: both in parallel, stop at the first solution
             ompl::tools::ParallelPlan race(pdef_);
+            // With an empty database retrieve-repair can only fail: racing it would take CPU from the planner that can
+            // succeed.
             if (experienceCount() > 0)
                 race.addPlanner(retrieveRepair_);
             race.addPlanner(scratch_);
             const ob::PlannerStatus status = race.solve(ptc, false);
+            // Only paths planned from scratch are learned (as Lightning and Thunder do): a repaired path is already
+            // close to one in the database. reduceVertices keeps a stored path short without changing where it goes.
             if (learn_ && status == ob::PlannerStatus::EXACT_SOLUTION && !pdef_->getSolutions().empty() &&
                 pdef_->getSolutions().front().plannerName_ == scratch_->getName())
             {
@@ -110,6 +119,8 @@ namespace michi
                 auto spars = std::make_shared<og::SPARSdb>(si_);
                 spars->setProblemDefinition(std::make_shared<ob::ProblemDefinition>(si_));
                 spars->setup();
+                // SPARSdb settings as ompl::tools::Thunder::setup() sets them, so this planner and OMPL's Thunder keep
+                // the same roadmap.
                 spars->setStretchFactor(1.2);
                 spars->setSparseDeltaFraction(0.05);
                 spars->setDenseDeltaFraction(0.001);

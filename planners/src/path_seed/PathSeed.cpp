@@ -20,6 +20,8 @@ namespace michi
     {
         namespace
         {
+            // Where the last solution came from (getLastSource()): kept in an atomic int so a benchmark thread can read
+            // it.
             enum Source
             {
                 NONE = 0,
@@ -28,13 +30,15 @@ namespace michi
                 REPAIR,
                 SCRATCH
             };
-        }
+        }  // namespace
 
         PathSeed::PathSeed(const ob::SpaceInformationPtr &si)
             : ob::Planner(si, "PathSeed"), library_(std::make_shared<PathSeedLibrary>())
         {
             specs_.approximateSolutions = false;
             specs_.optimizingPaths = false;
+            // Repair races RRT-Connect in a second thread, and the fail-fast checks may use several (threads
+            // parameter).
             specs_.multithreaded = true;
             specs_.directed = false;
             specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
@@ -71,6 +75,8 @@ namespace michi
                 return;
             }
             auto lib = PathSeedLibrary::load(file);  // throws PathSeedFileError naming file and line
+            // A library made for another robot would decode into meaningless states: refuse it when it is set, not at
+            // solve().
             if (lib->size() > 0 && lib->dimension() != si_->getStateDimension())
                 throw std::invalid_argument(file + ": path seeds of dimension " + std::to_string(lib->dimension()) +
                                             ", the state space has " + std::to_string(si_->getStateDimension()));
@@ -100,6 +106,7 @@ namespace michi
         void PathSeed::setVariant(const std::string &variant)
         {
             const SeedVariant v = seedVariantFromName(variant);  // throws for an unknown name
+            // Seeds of one variant cannot be decoded as another: changing the variant starts an empty library.
             if (v != library_->variant())
                 library_ = std::make_shared<PathSeedLibrary>(v);
         }
@@ -194,6 +201,8 @@ namespace michi
                 {
                     for (std::size_t k = 0; k < reals.size(); ++k)
                         reals[k] = decoded[i][k];
+                    // Decoding works on the raw reals (paper 001, Table 2); the state space gives them meaning (bounds,
+                    // SO(2) wrap).
                     space->copyFromReals(state, reals);
                     space->enforceBounds(state);  // joint limits clamp, continuous joints wrap
                     path.append(state);
@@ -226,7 +235,7 @@ namespace michi
                     }
                 }
             }
-            // nearest query first
+            // nearest query first: candidates() returns the seeds in that order, and decoded_ keeps it
             std::vector<std::pair<double, std::size_t>> order;
             for (std::size_t i = 0; i < decoded_.size(); ++i)
                 order.emplace_back(static_cast<double>(i), i);
@@ -235,6 +244,8 @@ namespace michi
             {
                 if (ptc)
                     break;
+                // The first decoded path that passes every state and motion check is the answer as it is: paper 001's
+                // case of a new query that the seed's shape already fits, with no repair at all.
                 if (checkPathFailFast(si_, decoded_[o.second], ptc, &checks, threads_))
                 {
                     out = decoded_[o.second];
@@ -253,6 +264,8 @@ namespace michi
             all.insert(all.end(), anchoredPaths_.begin(), anchoredPaths_.end());
             unsigned long checks = 0;
             const bool found =
+                // Stitching needs at least two paths to combine; one path that failed its checks cannot be helped by
+                // itself.
                 stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
             if (found)
                 lastSource_ = STITCH;
@@ -267,6 +280,8 @@ namespace michi
                 for (std::size_t i = 0; i < decoded_.size() && !ptc && !repaired; ++i)
                 {
                     og::PathGeometric path = decoded_[i];
+                    // Paper 001 repairs the decoded path with STOMP (initial trajectory = the decoded path);
+                    // rrtconnect, michi's default, replans only the invalid stretches.
                     if (repair_ == "stomp")
                         repaired = repairWithStomp(si_, path, ptc, stomp_);
                     else
@@ -283,6 +298,8 @@ namespace michi
         bool PathSeed::fromScratch(const ob::State *start, const ob::PlannerTerminationCondition &ptc,
                                    og::PathGeometric &out)
         {
+            // A problem definition of its own: RRT-Connect must not add its solution to the caller's pdef_, where it
+            // would compete with the one PathSeed reports.
             auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
             pdef->addStartState(start);
             pdef->setGoal(pdef_->getGoal());
@@ -330,6 +347,7 @@ namespace michi
                 return ptc ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::INVALID_GOAL;
             }
 
+            // inner ends both racers as soon as either has a path (or the caller's ptc fires).
             std::atomic<bool> done{false};
             const ob::PlannerTerminationCondition inner =
                 ob::plannerOrTerminationCondition(ptc, ob::PlannerTerminationCondition(
@@ -356,6 +374,7 @@ namespace michi
                 recallSolved = repair(inner, recalled);
                 if (recallSolved)
                     done = true;
+                // without racing, RRT-Connect from scratch runs only after repair has failed, with the time left
                 if (racer.joinable())
                     racer.join();
                 else if (!recallSolved && !ptc)
@@ -377,6 +396,8 @@ namespace michi
             ob::PlannerSolution solution(path);
             solution.setPlannerName(getName());
             pdef_->addSolutionPath(solution);
+            // A recalled or stitched path is made of seeds already in the library; a repaired or new path is new
+            // experience.
             if (learn_ && lastSource_ != RECALL && lastSource_ != STITCH)
                 learn(*result);
             return ob::PlannerStatus::EXACT_SOLUTION;

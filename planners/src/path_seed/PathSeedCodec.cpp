@@ -38,11 +38,16 @@ namespace michi
                 }
                 u /= s;
                 const double a = x.dot(from), b = x.dot(u);
+                // The rotation by angle t (cos t = c, sin t = s) in the plane spanned by from and u: x's components a
+                // (along from) and b (along u) turn as a 2-D vector, everything orthogonal to the plane is kept.
                 return x + (a * (c - 1.) - b * s) * from + (a * s + b * (c - 1.)) * u;
             }
 
             Eigen::Vector3d block(const Eigen::VectorXd &x, unsigned int b)
             {
+                // Paper 001 splits N = 6 into joints 1-3 and 4-6 because the cross product exists in 3-D only. For N
+                // not a multiple of 3 (left open by the paper) the last block is padded with zeros, which no step below
+                // moves.
                 Eigen::Vector3d out = Eigen::Vector3d::Zero();
                 for (unsigned int k = 0; k < 3; ++k)
                     if (3 * b + k < x.size())
@@ -90,6 +95,8 @@ namespace michi
                     const Eigen::Vector3d sb = block(s, b), vb = block(g, b) - sb;
                     const double nv = vb.norm();
                     const bool moves = nv > DEGENERATE;
+                    // A zero axis marks a block that does not move between start and goal; decoding reads it as such
+                    // (seedMoves).
                     const Eigen::Vector3d e = moves ? Eigen::Vector3d(vb / nv) : Eigen::Vector3d::Zero();
                     for (unsigned int k = 0; k < 3; ++k)
                         seed.axis[3 * b + k] = e[k];
@@ -110,6 +117,8 @@ namespace michi
                         {
                             if (moves)
                             {
+                                // delta = e x d / |e x d| (Table 1); since d is perpendicular to e, delta x e points
+                                // along d again, which is how decoding recovers the offset's direction for a new e~.
                                 const Eigen::Vector3d c = e.cross(d);
                                 const double nc = c.norm();
                                 if (nc > 0.)
@@ -148,6 +157,9 @@ namespace michi
                 for (std::size_t m = 0; m < M; ++m)
                 {
                     const Eigen::VectorXd ws = path[m + 1] - s;
+                    // Rotation variant (michi's, for any N): r and tau as in the paper on the full vector; delta is the
+                    // unit offset itself, turned at decoding by the rotation that takes the old line's direction to the
+                    // new one, since no N-D cross product is needed for that.
                     const double r = moves ? ws.dot(V) / (nv * nv) : 0.;
                     const Eigen::VectorXd d = ws - r * V;
                     const double tau = d.norm();
@@ -170,6 +182,7 @@ namespace michi
                     const Eigen::Vector3d sb = block(s, b), vb = block(g, b) - sb;
                     const double nv = vb.norm();
                     const Eigen::Vector3d e0(seed.axis[3 * b], seed.axis[3 * b + 1], seed.axis[3 * b + 2]);
+                    // The stored axis is a unit vector or zero: comparing with 0.5 is robust to rounding in the file.
                     const bool seedMoves = e0.squaredNorm() > 0.5;
                     const bool moves = nv > DEGENERATE;
                     const Eigen::Vector3d e = moves ? Eigen::Vector3d(vb / nv) : e0;
@@ -188,6 +201,9 @@ namespace michi
                                 w += tau * delta.cross(e0);  // the new block does not move: the seed's offset
                             else
                             {
+                                // Table 2, Step 2: tau (delta x e~), normalised here: delta is perpendicular to the
+                                // seed's e but not in general to e~, and an unnormalised cross product would shrink the
+                                // offset.
                                 const Eigen::Vector3d c = delta.cross(e);
                                 const double nc = c.norm();
                                 if (nc > 1e-9)
@@ -219,6 +235,8 @@ namespace michi
                     Eigen::VectorXd &w = out[m + 1];
                     w = s + seed.ratio[m] * V;
                     const double tau = seed.deviation[m];
+                    // Same start and goal give e = e0 and the identity rotation: the seed's own path comes back
+                    // exactly (paper 001, Fig. 5).
                     if (tau > 0.)
                         w += tau * (turn ? rotateInPlane<Eigen::VectorXd>(Eigen::VectorXd(e0), e, delta) : delta);
                 }
@@ -241,6 +259,7 @@ namespace michi
 
         unsigned int PathSeedCode::blocks() const
         {
+            // Number of 3-joint blocks, rounded up (a partial last block is zero-padded).
             return variant == SeedVariant::BLOCKS ? (dimension + 2) / 3 : 1;
         }
 

@@ -25,6 +25,7 @@ namespace michi
             record.goal = path.back();
             for (std::size_t i = 0; i + 1 < path.size(); ++i)
                 record.length += (path[i + 1] - path[i]).norm();
+            // The library is shared: a benchmark thread reads its size while a solve() learns into it.
             std::lock_guard<std::mutex> lock(mutex_);
             if (dimension_ != 0 && record.code.dimension != dimension_)
                 throw std::invalid_argument("PathSeedLibrary: a path of dimension " +
@@ -43,6 +44,8 @@ namespace michi
                 return out;
             // OMPL's nearest-neighbour structure over seed indices; index seeds_.size() stands for the query
             const std::size_t query = seeds_.size();
+            // Linear: the structure is rebuilt for every query (the library may have grown), and a linear one needs no
+            // build step.
             ompl::NearestNeighborsLinear<std::size_t> nn;
             nn.setDistanceFunction(
                 [&](const std::size_t a, const std::size_t b)
@@ -51,6 +54,9 @@ namespace michi
                     const Eigen::VectorXd &ga = a == query ? goal : seeds_[a].goal;
                     const Eigen::VectorXd &sb = b == query ? start : seeds_[b].start;
                     const Eigen::VectorXd &gb = b == query ? goal : seeds_[b].goal;
+                    // Query distance in the joint space of (start, goal) pairs: a seed recorded for a nearby start and
+                    // goal decodes to a path close to its own, so it is the most likely to fit (paper 001 leaves the
+                    // choice of seeds open).
                     return std::sqrt((sa - sb).squaredNorm() + (ga - gb).squaredNorm());
                 });
             std::vector<std::size_t> all(seeds_.size());
@@ -135,9 +141,12 @@ namespace michi
                     if (fixed && n != expected)
                         fail("'" + name + "' has " + std::to_string(n) + " values, expected " +
                              std::to_string(expected));
+                    // A corrupt count must fail with the line, not with std::bad_alloc from the vector below.
                     if (n > 100000000)
                         fail("'" + name + "' count too large");
                     std::vector<double> v(n);
+                    // A NaN or infinity would decode into states the checkers cannot judge: refuse them here,
+                    // naming the line.
                     for (std::size_t i = 0; i < n; ++i)
                         if (!(line >> v[i]) || !std::isfinite(v[i]))
                             fail("'" + name + "': value " + std::to_string(i + 1) + " of " + std::to_string(n) +
@@ -157,11 +166,14 @@ namespace michi
         void PathSeedLibrary::save(const std::string &file) const
         {
             std::lock_guard<std::mutex> lock(mutex_);
+            // Written to a sibling file and renamed over the old one: an interrupted save never leaves a truncated
+            // library.
             const std::string tmp = file + ".tmp";
             {
                 std::ofstream out(tmp);
                 if (!out)
                     throw std::runtime_error(file + ": cannot write the path seed library");
+                // 17 significant digits: every double reads back exactly, so a reloaded seed decodes to the same path.
                 out << std::setprecision(17);
                 out << FILE_MAGIC << ' ' << FILE_VERSION << '\n';
                 out << "variant " << seedVariantName(variant_) << '\n';
@@ -254,16 +266,21 @@ namespace michi
                 s.goal = Eigen::Map<const Eigen::VectorXd>(goal.data(), dimension);
                 const std::size_t B = s.code.blocks();
                 s.code.axis = r.values("axis", s.code.directionWidth(), true);
+                // Per waypoint and block (paper 001: joints 1-3, 4-6, ... for N > 3): one ratio r and one deviation tau
+                // each; the directions delta take directionWidth() values per waypoint.
                 s.code.ratio = r.values("ratio", M * B, true);
                 s.code.deviation = r.values("deviation", M * B, true);
                 s.code.direction = r.values("direction", M * s.code.directionWidth(), true);
+                // tau is a norm |w - l| (paper 001): a negative one can only come from a damaged file.
                 for (double t : s.code.deviation)
                     if (t < 0.)
                         r.fail("'deviation' values must not be negative");
                 lib->seeds_.push_back(std::move(s));
             }
+            // An empty library takes the dimension of the first path added, as a new one does.
             lib->dimension_ = count > 0 ? dimension : 0;
             std::string rest;
+            // Trailing data means a count is wrong somewhere: a silent stop would drop seeds unnoticed.
             while (std::getline(in, rest))
                 if (rest.find_first_not_of(" \t\r") != std::string::npos)
                     r.fail("data after the last seed");
