@@ -25,6 +25,8 @@ namespace michi
 
         LeadingValuesProjection::LeadingValuesProjection(const ob::StateSpace *space, unsigned int dims)
             : ob::ProjectionEvaluator(space)
+            // At most 3 leading values by default: KPIECE-style planners keep a grid over the projection, and their
+            // cells grow exponentially with its dimension.
             , dims_(dims == 0 ? std::min(3u, space->getDimension()) : std::min(dims, space->getDimension()))
         {
         }
@@ -34,6 +36,8 @@ namespace michi
             return dims_;
         }
 
+        // Our own projection because OMPL 1.5.2's RealVectorIdentityProjectionEvaluator aborts the KPIECE family on
+        // 1-D/2-D spaces (DESIGN.md, known traps). Cells are 1/20 of each value's extent.
         void LeadingValuesProjection::defaultCellSizes()
         {
             // extent of each leading value: the bounds of a RealVector (sub)space, 2 pi for SO(2)
@@ -100,8 +104,11 @@ namespace michi
                     sub = rv;
                 }
                 sub->setName(j.name);
+                // Weight 1 for every joint: distance is the plain sum over joints, as in the bounded space, so planners
+                // behave alike whichever of the two spaces makeJointStateSpace() picks.
                 addSubspace(sub, 1.);
             }
+            // Locked like OMPL's own compound spaces (SE2, SE3): no one may add joints after construction.
             lock();
         }
 
@@ -116,6 +123,8 @@ namespace michi
             for (const auto &j : joints)
                 if (j.continuous)
                     return std::make_shared<CompoundJointStateSpace>(joints);
+            // Only a continuous joint needs SO(2)'s wrap-around; otherwise a flat RealVector space is cheaper to copy,
+            // interpolate and measure.
             return std::make_shared<BoundedJointStateSpace>(joints);
         }
 

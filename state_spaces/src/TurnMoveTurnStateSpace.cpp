@@ -50,6 +50,8 @@ namespace michi
                 m.heading = yaw2;
                 return m;
             }
+            // Paper 003's robot only turns in place and moves straight: turn to face the target, move, turn to the goal
+            // heading.
             const double ahead = std::atan2(dy, dx);
             m.heading = ahead;
             m.turn1 = turnBetween(yaw1, ahead);
@@ -63,6 +65,8 @@ namespace michi
                 b.heading = behind;
                 b.turn1 = turnBetween(yaw1, behind);
                 b.turn2 = turnBetween(behind, yaw2);
+                // Backwards wins only when strictly cheaper: a tie keeps the forward motion, so distance() and
+                // interpolate() choose the same motion for the same pair of states.
                 if (cost(b) < cost(m))
                     return b;
             }
@@ -122,6 +126,8 @@ namespace michi
             if (along < m.move)
             {
                 const double f = along / m.move;
+                // The straight move: position linear in the arc, heading fixed (the heading of travel, or its opposite
+                // when reversing).
                 s->setXY(x1 + (x2 - x1) * f, y1 + (y2 - y1) * f);
                 s->setYaw(m.heading);
                 return;
