@@ -28,6 +28,7 @@ namespace michi
                 axes_.axis1 == axes_.axis2 || groupIndex_[axes_.axis1] < 0 || groupIndex_[axes_.axis2] < 0)
                 throw std::invalid_argument("FclIntervalSource: axes " + std::to_string(axes_.axis1) + ", " +
                                             std::to_string(axes_.axis2) + " must be two joints of the checker's group");
+            // The joints other than the two axes stay at this configuration; by default the group's zero pose.
             if (axes_.configuration.empty())
                 axes_.configuration = bodies->fullConfiguration(std::vector<double>(bodies->dimension(), 0.).data());
             if (axes_.configuration.size() != static_cast<std::size_t>(n))
@@ -58,8 +59,12 @@ namespace michi
             for (std::size_t b = 0; b < nb; ++b)
             {
                 const int link = bodies->bodyLink(b);
+                // Per body, a Lipschitz bound: how far any point of it moves per radian of each joint. With distances
+                // these turn one FCL query into a whole certified-free interval of theta2.
                 bound1_[b] = model.displacementBound(axes_.axis1, link);
                 bound2_[b] = model.displacementBound(axes_.axis2, link);
+                // Joints with a half width may be anywhere within it (a stack's outer joint cell): their
+                // worst-case motion is charged to every body up front.
                 for (int v = 0; v < n; ++v)
                     if (v != axes_.axis1 && v != axes_.axis2 && axes_.halfWidths[v] > 0.)
                         boundOther_[b] += model.displacementBound(v, link) * axes_.halfWidths[v];
@@ -121,6 +126,9 @@ namespace michi
                 double w = inf;
                 auto limit = [&](double distance, double fixedMotion, double rate)
                 {
+                    // A body at distance d stays clear while theta2 changes by less than (d - margin - motion from the
+                    // other joints) / rate. A body theta2 does not move (rate 0) with no slack collides for every
+                    // theta2.
                     const double slack = distance - margin_ - fixedMotion;
                     if (rate > 0.)
                         w = std::min(w, slack / rate);
@@ -143,6 +151,9 @@ namespace michi
             double x = lo2, guess = 0.;
             while (x < hi2 && !always)
             {
+                // Stepping: certify at s = x + guess (90 % of the last free half width), so that the interval about s
+                // usually starts before x and the free stretch continues without a gap; if it does not reach back to x,
+                // certify at x itself.
                 double s = std::min(x + guess, hi2);
                 double w = certify(s);
                 if (guess > 0. && (w < step_ || s - w > x))
@@ -159,6 +170,8 @@ namespace michi
                 }
                 else
                 {
+                    // Not certifiable within one step: the whole step counts as colliding (conservative), at the cost
+                    // of step_ resolution.
                     out.push_back({x, std::min(x + step_, hi2)});
                     x += step_;
                     guess = 0.;

@@ -94,6 +94,8 @@ namespace michi
             }
             const auto &axes = checker_->axes();
             const double width = (axes.hi1 - axes.lo1) / static_cast<double>(checker_->tileCount());
+            // An unwrapped theta1 may run up to half a turn past +-pi: the tile borders' images one period away cut it
+            // too.
             for (double shift : wraps1_ ? std::vector<double>{-twoPi, 0., twoPi} : std::vector<double>{0.})
                 for (std::size_t k = 1; k < checker_->tileCount(); ++k)
                     cutAt(axes.lo1 + static_cast<double>(k) * width + shift, a1, d1);
@@ -106,6 +108,8 @@ namespace michi
                 double xa = a1 + ta * d1, ya = a2 + ta * d2, xb = a1 + tb * d1, yb = a2 + tb * d2;
                 if (wraps1_)
                 {
+                    // Each piece lies within one period after the cuts: shifting by its midpoint's period brings the
+                    // whole piece into [-pi, pi), where the tiles are.
                     const double s = wrapShift(0.5 * (xa + xb));
                     xa -= s;
                     xb -= s;
@@ -125,6 +129,9 @@ namespace michi
 
         int JMapMotionValidator::decide(const ompl::base::State *s1, const ompl::base::State *s2, double *contact) const
         {
+            // Decisions: 0 valid by the map alone, 1 invalid by the map alone, 2 ask the fallback validator. The map
+            // cannot judge a state outside the bounds, so the fallback does (and reports it invalid as OMPL's
+            // validators do).
             if (!si_->satisfiesBounds(s2))
                 return 2;
             std::vector<double> from, to;
@@ -133,8 +140,11 @@ namespace michi
             space.copyToReals(to, s2);
             *contact = firstContact(from.data(), to.data());
             const bool conservative = checker_->settings().mode == JMapCheckerSettings::Mode::CONSERVATIVE;
+            // The polygons contain the collision region with a margin: only in conservative mode is a contact with
+            // them final; otherwise the exact fallback decides near obstacles.
             if (*contact <= 1.)
                 return conservative ? 1 : 2;
+            // No contact with any polygon: free, provided the map covers the whole robot (see JMapValidityChecker).
             return checker_->answersAlone() ? 0 : 2;
         }
 

@@ -34,12 +34,15 @@ namespace michi
         std::size_t JMapStack::sliceIndex(double value) const
         {
             const double k = std::floor((value - outerLo_) / (outerHi_ - outerLo_) * outerSlices_);
+            // Clamped so the upper limit itself (and values rounding past either end) use the end slices.
             return static_cast<std::size_t>(std::max(0., std::min<double>(outerSlices_ - 1, k)));
         }
 
         std::pair<double, double> JMapStack::cell(std::size_t k) const
         {
             const double step = (outerHi_ - outerLo_) / outerSlices_;
+            // The last cell ends exactly at outerHi_, not at a rounded sum, so the cells cover the whole range without
+            // a gap.
             const double hi = k + 1 == static_cast<std::size_t>(outerSlices_) ? outerHi_ : outerLo_ + (k + 1) * step;
             return {outerLo_ + k * step, hi};
         }
@@ -56,6 +59,9 @@ namespace michi
             JMapAxes axes = base_;
             axes.configuration[outer_] = 0.5 * (c.first + c.second);
             axes.halfWidths.resize(axes.configuration.size(), 0.);
+            // Paper 000's stack has one 2-D map per quantised theta1. Each map here is built for the outer joint
+            // anywhere in its cell (centre +- half width), so a state between two slices is still covered
+            // (conservative).
             axes.halfWidths[outer_] = 0.5 * (c.second - c.first);
             const JMapIntervalSourcePtr source = makeSource_(axes);
             return JMap::build(*source, settings_);
@@ -63,6 +69,8 @@ namespace michi
 
         const JMapPtr &JMapStack::map(std::size_t k)
         {
+            // Built on first use: a query touches few outer cells, and a whole stack of FCL-certified maps takes
+            // minutes.
             if (!maps_.at(k))
                 maps_[k] = slice(k);
             return maps_[k];

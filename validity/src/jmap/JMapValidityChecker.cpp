@@ -37,6 +37,8 @@ namespace michi
             const auto &pairs = bodies.selfCheckPairs();
             if (pairs.empty())
                 return true;
+            // With more joints than the map's two, other joints change the self-distances: no 2-D grid can prove them
+            // safe.
             if (bodies.dimension() != 2)
                 return false;
             const int i1 = valueIndex(bodies, axes.axis1), i2 = valueIndex(bodies, axes.axis2);
@@ -56,6 +58,9 @@ namespace michi
                     // how far each body can move from the cell centre to anywhere in the cell
                     bodies.bodyDisplacementBounds(centre, corner, bounds);
                     fcl.bodyDistances(centre, noBodies, allPairs, obstacle, self);
+                    // Certified per cell: two bodies at distance d apart at the centre, each moving at most b_i
+                    // within the cell, cannot touch anywhere in it when d > b_1 + b_2. One cell that fails this
+                    // ends the proof (conservative).
                     for (std::size_t k = 0; k < pairs.size(); ++k)
                         if (!(self[k] > bounds[pairs[k].first] + bounds[pairs[k].second]))
                             return false;
@@ -80,10 +85,14 @@ namespace michi
             const auto &bodies = groupBodies(*fcl_);
             value1_ = valueIndex(bodies, axes_.axis1);
             value2_ = valueIndex(bodies, axes_.axis2);
+            // The map alone decides a free point only when it covers the whole robot, all its joints, and
+            // self-collision is impossible; otherwise FCL must confirm what the map calls free.
             answersAlone_ = coversRobot && bodies.dimension() == 2 && selfCollisionImpossible(*fcl_, axes_);
             tileCount_ = static_cast<std::size_t>(settings_.tiles);
             tileScale_ = static_cast<double>(tileCount_) / (axes_.hi1 - axes_.lo1);
             scene_ = fcl_->scene().get();
+            // Tiles along axis 1, built on first use: a planner that stays in part of the range never pays for the
+            // rest.
             tiles_ = std::make_unique<std::atomic<const JMap *>[]>(tileCount_);
             for (std::size_t k = 0; k < tileCount_; ++k)
                 tiles_[k] = nullptr;
@@ -92,6 +101,8 @@ namespace michi
 
         std::size_t JMapValidityChecker::tileIndex(double theta1) const
         {
+            // Clamped so that theta1 == hi1 (and rounding just outside) falls in the last tile rather than past the
+            // array.
             const long k = static_cast<long>(std::floor((theta1 - axes_.lo1) * tileScale_));
             return static_cast<std::size_t>(std::clamp<long>(k, 0, static_cast<long>(tileCount_) - 1));
         }
@@ -99,11 +110,15 @@ namespace michi
         void JMapValidityChecker::dropIfSceneChanged() const
         {
             const std::uint64_t now = scene_->changeCount();
+            // Double-checked: the common case (scene unchanged) costs one atomic load, and only one thread drops the
+            // tiles.
             if (now == generation_.load(std::memory_order_acquire))
                 return;
             std::lock_guard<std::mutex> lock(buildMutex_);
             if (now == generation_.load())
                 return;
+            // Only unpublished: the old maps stay alive in owned_, since another thread may still be reading one it
+            // was given.
             for (std::size_t k = 0; k < tileCount_; ++k)
                 tiles_[k].store(nullptr, std::memory_order_release);
             generation_ = now;
@@ -128,6 +143,7 @@ namespace michi
             const int tiles = static_cast<int>(tileCount_);
             settings.slices = (settings_.map.slices + tiles - 1) / tiles;
             owned_.push_back(JMap::build(*makeSource_(axes), settings));
+            // release pairs with the acquire loads above: a thread that sees the pointer also sees the finished map.
             tiles_[k].store(owned_.back().get(), std::memory_order_release);
             return *owned_.back();
         }
@@ -162,6 +178,9 @@ namespace michi
             const JMap &map = tile(t1);
             if (map.collides(t1, t2))
             {
+                // The polygons contain the true collision region with some margin (paper 000's conservative
+                // approximation): near their boundary FCL gives the exact answer, deeper inside the map's
+                // "collides" is trusted.
                 if (settings_.mode == JMapCheckerSettings::Mode::EXACT_FALLBACK &&
                     map.nearBoundary(t1, t2, settings_.fallbackBand))
                 {
@@ -178,6 +197,7 @@ namespace michi
 
         double JMapValidityChecker::clearance(const ompl::base::State *state) const
         {
+            // Clearance comes from FCL: the map has collision regions in joint space, not distances in the workspace.
             return fcl_->clearance(state);
         }
     }  // namespace validity

@@ -11,6 +11,8 @@ namespace michi
         {
             double angleDifference(double a, double b)
             {
+                // The short way round: a continuous joint interpolates (SO(2)) through the smaller angle, so that is
+                // the motion a bound must cover.
                 double d = std::fmod(b - a, 2. * M_PI);
                 if (d > M_PI)
                     d -= 2. * M_PI;
@@ -34,6 +36,8 @@ namespace michi
             for (std::size_t l = 0; l < model_->links().size(); ++l)
             {
                 const auto &link = model_->links()[l];
+                // Only links with collision geometry become bodies: FCL has nothing to check for the others, and every
+                // per-body loop (poses, distances, bounds) skips them.
                 if (link.collisions.empty())
                     continue;
                 bodyOfLink[l] = static_cast<int>(bodies_.size());
@@ -46,6 +50,7 @@ namespace michi
 
         std::vector<double> RobotGroupBodies::fullConfiguration(const double *values) const
         {
+            // Joints outside the planned group keep their fixed values (e.g. the other arm, or a mobile base).
             std::vector<double> q = fixedValues_;
             for (std::size_t i = 0; i < variables_.size(); ++i)
                 q[variables_[i]] = values[i];
@@ -70,6 +75,8 @@ namespace michi
                 const auto &joint = model_->variableJoint(variables_[i]);
                 const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i])
                                                                              : std::abs(to[i] - from[i]);
+                // No point of the robot moves farther than sum_i (max lever arm of joint i) * |dq_i| (triangle
+                // inequality over the chain): a bound for continuous collision checking without sweeping the geometry.
                 bound += model_->displacementBound(variables_[i]) * dq;
             }
             return bound;
@@ -84,6 +91,8 @@ namespace michi
                 const auto &joint = model_->variableJoint(variables_[i]);
                 const double dq = joint.type == RobotJoint::Type::CONTINUOUS ? angleDifference(from[i], to[i])
                                                                              : std::abs(to[i] - from[i]);
+                // The same bound per body, with each joint's lever arm measured to that link only: far tighter for
+                // links near the base, which inner joints hardly move.
                 for (std::size_t b = 0; b < bodies_.size(); ++b)
                     bounds[b] += model_->displacementBound(variables_[i], bodyLinks_[b]) * dq;
             }
@@ -93,6 +102,7 @@ namespace michi
             : footprint_(std::move(footprint))
         {
             bodies_.push_back(Body{"footprint", {LinkCollision{Shape::prism(footprint_, zMin, zMax)}}});
+            // A point at radius r from the body's origin moves at most r * |dyaw| when the body turns.
             for (const auto &p : footprint_)
                 circumradius_ = std::max(circumradius_, p.norm());
         }
@@ -107,6 +117,8 @@ namespace michi
 
         double PlanarRigidBody::displacementBound(const double *from, const double *to) const
         {
+            // Translation plus the farthest footprint point's arc: a bound on any point's motion whatever the
+            // interpolation between the two poses does.
             return std::hypot(to[0] - from[0], to[1] - from[1]) + circumradius_ * angleDifference(from[2], to[2]);
         }
 
