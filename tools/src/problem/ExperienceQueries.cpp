@@ -146,6 +146,8 @@ namespace michi
             if (const YAML::Node l = e["library"])
             {
                 const fs::path lp(l.IsScalar() ? l.Scalar() : std::string());
+                // Relative paths are relative to the problem file, as for every other file a problem names, so a
+                // problem folder can be moved as a whole.
                 const fs::path lfull = lp.is_absolute() ? lp : fs::path(problemFile).parent_path() / lp;
                 if (!l.IsScalar() || !fs::is_regular_file(lfull))
                     throw ProblemError(problemFile, "experience.library",
@@ -181,14 +183,19 @@ namespace michi
             if (training > count)
                 throw std::invalid_argument("more training queries than queries");
             const PlanningContext ctx = makePlanningContext(problem, 0);
+            // A seeded generator of its own: the same options always write the same queries file.
             ompl::RNG rng(seed);
             ExperienceQueries out;
             out.trainingTime = problem.experience.trainingTime;
             for (std::size_t i = 0; i < count; ++i)
             {
+                // Queries cycle over the problem's own queries, so training and held-out pairs cover each of them
+                // alike.
                 const Query &base = problem.queries[i % problem.queries.size()];
                 Query q;
                 bool found = false;
+                // Rejection sampling: near obstacles most perturbations may collide; 10000 tries bound the work before
+                // the spread is declared too large for this query.
                 for (int attempt = 0; attempt < 10000 && !found; ++attempt)
                 {
                     q = base;
@@ -269,6 +276,8 @@ namespace michi
         std::string writePathSeedLibrary(const Problem &problem, const std::string &variant, unsigned int seed,
                                          const std::string &file)
         {
+            // Before anything draws from OMPL's generator: RRT-Connect's training paths, and so the library, follow
+            // from --seed.
             ompl::RNG::setSeed(seed);
             const PlanningContext ctx = makePlanningContext(problem, 0);
             planners::PathSeedLibrary library(planners::seedVariantFromName(variant));
@@ -316,12 +325,18 @@ namespace michi
                 og::RRTConnect rrt(si);
                 rrt.setProblemDefinition(pdef);
                 rrt.setup();
+                // Paper 001's seeds come from RRT-Connect with a time limit (5 s there); a query it does not solve
+                // gives no seed.
                 if (rrt.solve(ob::timedPlannerTerminationCondition(problem.experience.trainingTime)) !=
                     ob::PlannerStatus::EXACT_SOLUTION)
                     continue;
                 og::PathGeometric path(*pdef->getSolutionPath()->as<og::PathGeometric>());
                 og::PathSimplifier simplifier(si);
+                // Simplified before it is stored: RRT-Connect's raw paths zigzag, and the zigzag would be decoded into
+                // every new query.
                 simplifier.simplify(path, 1.);
+                // The simplifier's shortcuts are checked motions, but the whole path is checked once more before it
+                // becomes experience.
                 if (path.check())
                     paths.push_back(path);
             }

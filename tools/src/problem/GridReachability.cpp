@@ -18,12 +18,16 @@ namespace michi
             if (space == nullptr || space->getDimension() != 2 || !(step > 0.))
                 throw std::invalid_argument("GridComponents needs a 2-D RealVectorStateSpace and a positive step");
             bounds_ = space->getBounds();
+            // floor: cells are at least step wide, so a cell centre never lies outside the bounds.
             nx_ = static_cast<int>(std::floor((bounds_.high[0] - bounds_.low[0]) / step));
             ny_ = static_cast<int>(std::floor((bounds_.high[1] - bounds_.low[1]) / step));
             if (nx_ < 1 || ny_ < 1)
                 throw std::invalid_argument("GridComponents: the step is larger than the space");
             a_ = si->allocState();
             b_ = si->allocState();
+            // Validity of every cell centre first, then the flood fill: a neighbour pair is joined only when both
+            // centres are valid and the motion validator accepts the straight motion between them, so a component is a
+            // set of states really connected (at this resolution) under the problem's own checker.
             std::vector<char> valid(nx_ * ny_, 0);
             for (int i = 0; i < nx_; ++i)
                 for (int j = 0; j < ny_; ++j)
@@ -78,6 +82,8 @@ namespace michi
             const int cj =
                 static_cast<int>(std::floor((q[1] - bounds_.low[1]) / (bounds_.high[1] - bounds_.low[1]) * ny_));
             set(a_, q[0], q[1]);
+            // A query state rarely sits on a cell centre: it attaches to every component it reaches by a valid straight
+            // motion to one of the 3 x 3 nearest cell centres (it may touch several, e.g. in a narrow passage).
             for (int i = ci - 1; i <= ci + 1; ++i)
                 for (int j = cj - 1; j <= cj + 1; ++j)
                     if (i >= 0 && j >= 0 && i < nx_ && j < ny_ && label_[i * ny_ + j] >= 0)
@@ -92,6 +98,8 @@ namespace michi
         bool GridComponents::reachable(const std::vector<double> &start, const std::vector<double> &goal) const
         {
             const auto from = attach(start), to = attach(goal);
+            // Any shared component proves a path (query -> centre -> grid -> centre -> query); no shared one says only
+            // that none was found at this resolution.
             for (const int f : from)
                 for (const int t : to)
                     if (f == t)

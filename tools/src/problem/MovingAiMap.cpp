@@ -43,6 +43,9 @@ namespace michi
 
         bool MovingAiMap::blockedCharacter(char c)
         {
+            // MovingAI's map characters: '@' and 'O' out of bounds, 'T' trees, 'W' water (not passable from ground):
+            // blocked.
+            // '.', 'G' (ground) and 'S' (swamp, passable from ground in MovingAI's description) are free.
             return c == '@' || c == 'O' || c == 'T' || c == 'W';
         }
 
@@ -80,6 +83,7 @@ namespace michi
                 words >> word;
                 if (word.empty())
                     continue;
+                // The header's lines may come in any order; "map" ends it and the rows follow.
                 if (word == "map")
                     break;
                 if (!(words >> value) || (words >> extra))
@@ -87,6 +91,7 @@ namespace michi
                                        "'" + line + "': " + expected);
                 if (word == "type")
                 {
+                    // Octile is the only type the benchmark sets use; another type would mean other movement rules.
                     if (value != "octile")
                         throw ProblemError(path, "header.type", "map type '" + value + "', expected 'octile'");
                     haveType = true;
@@ -114,6 +119,8 @@ namespace michi
                     throw ProblemError(path, key,
                                        "missing: the header says " + std::to_string(map.height) +
                                            " rows, the file has " + std::to_string(map.rows.size()));
+                // A row of the wrong length would shift every cell after it: refuse it, naming the row, rather than
+                // guess.
                 if (static_cast<int>(line.size()) != map.width)
                     throw ProblemError(path, key,
                                        std::to_string(line.size()) + " characters, the header says width " +
@@ -136,6 +143,8 @@ namespace michi
                                            const Eigen::Vector2d &origin)
         {
             return Eigen::Vector2d(origin.x() + (x + 0.5) * resolution,
+                                   // Row 0 is the map's top line: y is flipped so the map reads the right way up with y
+                                   // pointing up in the world.
                                    origin.y() + (map.height - 1 - y + 0.5) * resolution);
         }
 
@@ -158,6 +167,8 @@ namespace michi
                         ++c;
                         continue;
                     }
+                    // One box per horizontal run of blocked cells, not one per cell: far fewer FCL objects on large
+                    // maps.
                     const int start = c;
                     while (c < map.width && map.blocked(c, r))
                         ++c;
@@ -192,6 +203,7 @@ namespace michi
                 std::istringstream words(line);
                 std::string word, version;
                 words >> word >> version;
+                // '1' and '1.0' name the same format version.
                 if (word != "version" || (version != "1" && version != "1.0"))
                     throw ProblemError(path, "version", "first line '" + line + "', expected 'version 1'");
             }
