@@ -121,5 +121,8 @@ BENCHMARK_CAPTURE(clearance, xarm6_ring, std::string("xarm6_ring"));
 BENCHMARK_CAPTURE(motion, discrete_xarm6_ring, std::string("xarm6_ring"), 0);
 BENCHMARK_CAPTURE(motion, workspace_xarm6_ring, std::string("xarm6_ring"), 2);
 BENCHMARK_CAPTURE(motion, conservative_xarm6_ring, std::string("xarm6_ring"), 1);
+BENCHMARK_CAPTURE(isValid, panda_table_pick, std::string("panda_table_pick"));
+BENCHMARK_CAPTURE(clearance, panda_table_pick, std::string("panda_table_pick"));
+BENCHMARK_CAPTURE(motion, discrete_panda_table_pick, std::string("panda_table_pick"), 0);
 
 BENCHMARK_MAIN();

@@ -5,6 +5,7 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <mutex>
 #include <sstream>
 
 namespace michi
@@ -63,28 +64,109 @@ namespace michi
                 return data->best <= 0.;
             }
 
-            /** FCL objects of every body shape, posed for one configuration (one set per query and thread). */
-            struct PosedBodies
+            /** FCL objects of every body shape (made once: FCL's constructor computes the local bounding box over
+                every mesh vertex, which used to be most of a check's time), posed for one configuration. */
+            struct BodyObjects
             {
                 std::vector<std::vector<std::unique_ptr<fcl::CollisionObjectd>>> objects;
+                std::vector<std::vector<Eigen::Isometry3d>> origins;  ///< shape origin in the body frame
+                std::vector<Eigen::Isometry3d> poses;
 
-                PosedBodies(const CollisionBodies &bodies, const double *values)
+                explicit BodyObjects(const CollisionBodies &bodies)
                 {
-                    std::vector<Eigen::Isometry3d> poses;
-                    bodies.bodyPoses(values, poses);
-                    objects.resize(poses.size());
-                    for (std::size_t b = 0; b < poses.size(); ++b)
-                        for (const auto &s : bodies.bodies()[b].shapes)
+                    const auto &all = bodies.bodies();
+                    objects.resize(all.size());
+                    origins.resize(all.size());
+                    for (std::size_t b = 0; b < all.size(); ++b)
+                        for (const auto &s : all[b].shapes)
                             for (const auto &g : s.shape->geometries())
-                                objects[b].push_back(std::make_unique<fcl::CollisionObjectd>(g, poses[b] * s.origin));
+                            {
+                                objects[b].push_back(std::make_unique<fcl::CollisionObjectd>(g));
+                                origins[b].push_back(s.origin);
+                            }
+                }
+
+                void pose(const CollisionBodies &bodies, const double *values)
+                {
+                    bodies.bodyPoses(values, poses);
+                    for (std::size_t b = 0; b < poses.size(); ++b)
+                        for (std::size_t k = 0; k < objects[b].size(); ++k)
+                        {
+                            objects[b][k]->setTransform(poses[b] * origins[b][k]);
+                            objects[b][k]->computeAABB();
+                        }
                 }
             };
         }  // namespace
+
+        /** Body objects for one query at a time: a query takes a set from the pool (or makes one) and gives it back,
+            so threads never share one and a set is built once per thread that ever ran a query concurrently. */
+        class FclValidityChecker::ObjectPool
+        {
+        public:
+            explicit ObjectPool(const CollisionBodies &bodies) : bodies_(bodies)
+            {
+            }
+
+            /** The posed objects of one query; returned to the pool on destruction. */
+            class Lease
+            {
+            public:
+                Lease(ObjectPool &pool, std::unique_ptr<BodyObjects> objects)
+                    : pool_(pool), objects_(std::move(objects))
+                {
+                }
+                Lease(const Lease &) = delete;
+                Lease &operator=(const Lease &) = delete;
+                ~Lease()
+                {
+                    pool_.release(std::move(objects_));
+                }
+                const std::vector<std::vector<std::unique_ptr<fcl::CollisionObjectd>>> &objects() const
+                {
+                    return objects_->objects;
+                }
+
+            private:
+                ObjectPool &pool_;
+                std::unique_ptr<BodyObjects> objects_;
+            };
+
+            Lease acquire(const double *values)
+            {
+                std::unique_ptr<BodyObjects> objects;
+                {
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    if (!free_.empty())
+                    {
+                        objects = std::move(free_.back());
+                        free_.pop_back();
+                    }
+                }
+                if (!objects)
+                    objects = std::make_unique<BodyObjects>(bodies_);
+                objects->pose(bodies_, values);
+                return Lease(*this, std::move(objects));
+            }
+
+        private:
+            void release(std::unique_ptr<BodyObjects> objects)
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                free_.push_back(std::move(objects));
+            }
+            const CollisionBodies &bodies_;
+            std::mutex mutex_;
+            std::vector<std::unique_ptr<BodyObjects>> free_;
+        };
+
+        FclValidityChecker::~FclValidityChecker() = default;
 
         FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr &si, CollisionBodiesPtr bodies,
                                                ScenePtr scene)
             : ompl::base::StateValidityChecker(si), bodies_(std::move(bodies)), scene_(std::move(scene))
         {
+            pool_ = std::make_unique<ObjectPool>(*bodies_);
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
             if (si->getStateSpace()->getDimension() != bodies_->dimension())
                 throw std::invalid_argument(
@@ -134,12 +216,13 @@ namespace michi
         std::string FclValidityChecker::describeCollision(const double *values) const
         {
             ++queries_;
-            PosedBodies posed(*bodies_, values);
+            const auto lease = pool_->acquire(values);
+            const auto &objects = lease.objects();
             const auto &bodies = bodies_->bodies();
             {
                 auto lock = scene_->lockShared();
-                for (std::size_t b = 0; b < posed.objects.size(); ++b)
-                    for (const auto &object : posed.objects[b])
+                for (std::size_t b = 0; b < objects.size(); ++b)
+                    for (const auto &object : objects[b])
                     {
                         CollisionData data;
                         data.query = object.get();
@@ -149,8 +232,8 @@ namespace michi
                     }
             }
             for (const auto &pair : bodies_->selfCheckPairs())
-                for (const auto &a : posed.objects[pair.first])
-                    for (const auto &b : posed.objects[pair.second])
+                for (const auto &a : objects[pair.first])
+                    for (const auto &b : objects[pair.second])
                     {
                         fcl::CollisionRequestd request;
                         fcl::CollisionResultd result;
@@ -167,12 +250,13 @@ namespace michi
 
         Proximity FclValidityChecker::proximity(const double *values, bool includeSelf, double relativeError) const
         {
-            PosedBodies posed(*bodies_, values);
+            const auto lease = pool_->acquire(values);
+            const auto &objects = lease.objects();
             Proximity best;
             {
                 auto lock = scene_->lockShared();
-                for (std::size_t b = 0; b < posed.objects.size(); ++b)
-                    for (const auto &object : posed.objects[b])
+                for (std::size_t b = 0; b < objects.size(); ++b)
+                    for (const auto &object : objects[b])
                     {
                         DistanceData data;
                         data.request.enable_nearest_points = true;
@@ -194,8 +278,8 @@ namespace michi
             }
             if (includeSelf)
                 for (const auto &pair : bodies_->selfCheckPairs())
-                    for (const auto &a : posed.objects[pair.first])
-                        for (const auto &b : posed.objects[pair.second])
+                    for (const auto &a : objects[pair.first])
+                        for (const auto &b : objects[pair.second])
                         {
                             fcl::DistanceRequestd request;
                             request.enable_nearest_points = true;
@@ -221,15 +305,16 @@ namespace michi
                                                std::vector<double> &self) const
         {
             const double inf = std::numeric_limits<double>::infinity();
-            PosedBodies posed(*bodies_, values);
-            obstacle.assign(posed.objects.size(), inf);
+            const auto lease = pool_->acquire(values);
+            const auto &objects = lease.objects();
+            obstacle.assign(objects.size(), inf);
             {
                 auto lock = scene_->lockShared();
-                for (std::size_t b = 0; b < posed.objects.size(); ++b)
+                for (std::size_t b = 0; b < objects.size(); ++b)
                 {
                     if (!wantBodies[b])
                         continue;
-                    for (const auto &object : posed.objects[b])
+                    for (const auto &object : objects[b])
                     {
                         DistanceData data;
                         data.request.gjk_solver_type = fcl::GST_INDEP;
@@ -246,8 +331,8 @@ namespace michi
             {
                 if (!wantPairs[k])
                     continue;
-                for (const auto &a : posed.objects[pairs[k].first])
-                    for (const auto &b : posed.objects[pairs[k].second])
+                for (const auto &a : objects[pairs[k].first])
+                    for (const auto &b : objects[pairs[k].second])
                     {
                         fcl::DistanceRequestd request;
                         request.gjk_solver_type = fcl::GST_INDEP;

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace michi
@@ -27,13 +28,15 @@ namespace michi
 
         /** \brief Collision checking of a robot against a scene and itself with FCL. isValid() is a boolean
             collision query; clearance() is FCL's exact distance to the nearest obstacle (self distance is not
-            included). Safe to call from several threads at once: every query uses its own FCL objects and holds
-            the scene's shared lock. States are read through StateSpace::copyToReals, so any space whose reals
-            are the bodies' configuration works (joint spaces, SE2). */
+            included). Safe to call from several threads at once: every query takes its own set of the robot's FCL
+            objects from a pool (built once, only posed per query) and holds the scene's shared lock. States are read
+           through StateSpace::copyToReals, so any space whose reals are the bodies' configuration works (joint spaces,
+           SE2). */
         class FclValidityChecker : public ompl::base::StateValidityChecker
         {
         public:
             FclValidityChecker(const ompl::base::SpaceInformationPtr &si, CollisionBodiesPtr bodies, ScenePtr scene);
+            ~FclValidityChecker() override;
 
             bool isValid(const ompl::base::State *state) const override;
             /** \brief Validity and clearance in one query. */
@@ -72,10 +75,12 @@ namespace michi
             }
 
         private:
+            class ObjectPool;
             void toReals(const ompl::base::State *state, std::vector<double> &values) const;
             CollisionBodiesPtr bodies_;
             ScenePtr scene_;
             mutable std::atomic<std::uint64_t> queries_{0};
+            std::unique_ptr<ObjectPool> pool_;  ///< FCL objects of the bodies, one set per concurrent query
         };
 
         using FclValidityCheckerPtr = std::shared_ptr<FclValidityChecker>;
