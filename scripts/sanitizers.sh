@@ -2,11 +2,12 @@
 # Sanitizer and fuzz jobs (docs/reliability.md), run by scripts/test.sh after the main test suite.
 #  1. build-asan: clang, Release with -O1 -g, MICHI_SANITIZE=address (ASan+UBSan on the libraries, the `michi`
 #     command and the tests) and MICHI_FUZZ=ON (the same libraries instrumented for coverage, plus the libFuzzer
-#     targets). Runs the default test set (not `slow`, not `install`) under ASan+UBSan, then scripts/fuzz.sh (each
+#     targets). Runs the named subset MICHI_ASAN_TESTS (tests/CMakeLists.txt; `asan-all`: the whole default set,
+#     about an hour on 2 cores) under ASan+UBSan, then scripts/fuzz.sh (each
 #     fuzz target for MICHI_FUZZ_SECONDS seconds) in the same build.
 #  2. build-tsan: clang, MICHI_SANITIZE=thread; builds and runs only the tests that start threads (MICHI_TSAN_TESTS
 #     in tests/CMakeLists.txt, label tsan).
-# Usage: scripts/sanitizers.sh [asan|tsan|fuzz|all]   (default all). Build directories: $MICHI_ASAN_DIR (build-asan),
+# Usage: scripts/sanitizers.sh [asan|asan-all|tsan|fuzz|all]   (default all). Build directories: $MICHI_ASAN_DIR (build-asan),
 # $MICHI_TSAN_DIR (build-tsan). Findings inside OMPL/FCL are suppressed in tests/sanitizers/*.supp, with the bug named.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +19,8 @@ tsan_dir=${MICHI_TSAN_DIR:-build-tsan}
 cxx=${MICHI_SANITIZER_CXX:-clang++}
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-common=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -g -DNDEBUG" -DCMAKE_CXX_COMPILER="$cxx"
+# -gline-tables-only: file and line in every report at a fraction of -g's compile and link time
+common=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -gline-tables-only -DNDEBUG" -DCMAKE_CXX_COMPILER="$cxx"
     -DMICHI_BUILD_BENCHMARKS=OFF "${launcher[@]}")
 supp="$src/tests/sanitizers"
 # fast_unwind_on_malloc=0: OMPL, FCL, urdfdom and assimp have no frame pointers, so the fast unwinder stops at their
@@ -31,11 +33,13 @@ export TSAN_OPTIONS="suppressions=$supp/tsan.supp:halt_on_error=1:second_deadloc
 stamp() { echo "sanitizers: $(date +%T) $*" >&2; }
 
 run_asan() {
-    stamp "configure $asan_dir (ASan+UBSan, libFuzzer)"
-    cmake -S . -B "$asan_dir" "${common[@]}" -DMICHI_SANITIZE=address -DMICHI_FUZZ=ON >/dev/null
+    local all=${1:-OFF}
+    stamp "configure $asan_dir (ASan+UBSan, libFuzzer; every test: $all)"
+    cmake -S . -B "$asan_dir" "${common[@]}" -DMICHI_SANITIZE=address -DMICHI_FUZZ=ON -DMICHI_ASAN_ALL_TESTS="$all" \
+        >/dev/null
     stamp "build $asan_dir"
     cmake --build "$asan_dir" -j"$jobs"
-    stamp "ctest under ASan+UBSan (all but slow, install and the libFuzzer runs)"
+    stamp "ctest under ASan+UBSan (MICHI_ASAN_TESTS, or all but slow and install with asan-all)"
     # the termination tests time a planner's return to 0.1 s: a timing, not behaviour, under a 3-10x sanitizer slowdown
     ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -LE 'slow|install|libfuzzer' --timeout 900 \
         -E 'ReturnsWithinATenthOfASecond'
@@ -58,9 +62,10 @@ run_tsan() {
 start=$(date +%s)
 case "$what" in
     asan) run_asan ;;
+    asan-all) run_asan ON ;;
     fuzz) run_fuzz ;;
     tsan) run_tsan ;;
     all) run_asan; run_fuzz; run_tsan ;;
-    *) echo "usage: scripts/sanitizers.sh [asan|tsan|fuzz|all]" >&2; exit 2 ;;
+    *) echo "usage: scripts/sanitizers.sh [asan|asan-all|tsan|fuzz|all]" >&2; exit 2 ;;
 esac
 stamp "done ($what) in $(( $(date +%s) - start )) s"

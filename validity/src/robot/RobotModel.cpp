@@ -131,6 +131,20 @@ namespace michi
             if (!urdfModel->getRoot())
                 throw UrdfError(source + ": URDF has no root link");
 
+            // urdfdom links hold their children by shared_ptr: a self-loop joint is a cycle that would never be
+            // freed, so the children are dropped when this function leaves, whichever way it leaves
+            struct BreakCycles
+            {
+                urdf::ModelInterfaceSharedPtr model;
+                ~BreakCycles()
+                {
+                    for (auto &kv : model->links_)
+                    {
+                        kv.second->child_links.clear();
+                        kv.second->child_joints.clear();
+                    }
+                }
+            } breakCycles{urdfModel};
             std::shared_ptr<RobotModel> model(new RobotModel);
             model->name_ = urdfModel->getName();
             model->source_ = source;
@@ -201,6 +215,13 @@ namespace michi
                     queue.push_back(child);
                 }
             }
+            // a joint whose child is its own parent makes urdfdom give that link a parent, so it is no root, yet no
+            // walk from the root reaches it: it and everything below it would silently leave collision checking
+            if (queue.size() != urdfModel->links_.size())
+                for (const auto &kv : urdfModel->links_)
+                    if (!reached.count(kv.first))
+                        throw UrdfError(source + ": link '" + kv.first + "' is not connected to the root '" +
+                                        urdfModel->getRoot()->name + "' (a joint cycle?)");
             // joints in the same breadth-first order (the parent joint of each non-root link)
             for (std::size_t l = 1; l < queue.size(); ++l)
             {
