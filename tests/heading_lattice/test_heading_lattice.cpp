@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 namespace ob = ompl::base;
 using michi::planners::HeadingLattice;
@@ -81,7 +82,6 @@ TEST(HeadingLattice, KeepsTheGraphAcrossQueriesAndRebuildsWhenTheSceneChanges)
     auto planner = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
     ASSERT_FALSE(solvePath(ctx, planner).empty());
     EXPECT_EQ(planner->buildCount(), 1u);
-    const std::size_t nodes = planner->nodes().size();
 
     // a new query off the lattice nodes (start between nodes, odd heading), same map: the graph is reused
     ob::ScopedState<ob::SE2StateSpace> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
@@ -100,12 +100,15 @@ TEST(HeadingLattice, KeepsTheGraphAcrossQueriesAndRebuildsWhenTheSceneChanges)
     // PlannerData holds every node and the query states
     ob::PlannerData data(ctx.setup->getSpaceInformation());
     planner->getPlannerData(data);
+    const std::size_t nodes = planner->nodes().size();
+    EXPECT_GT(nodes, 0u);
     EXPECT_EQ(data.numVertices(), nodes + 2);
     EXPECT_EQ(data.numStartVertices(), 1u);
     EXPECT_EQ(data.numGoalVertices(), 1u);
     EXPECT_GT(data.numEdges(), nodes);
 
-    // an obstacle in the room at the corner: the lattice is built again and no path turns there any more
+    // an obstacle in the room at the corner: the lattice is updated (not built again) and no path turns there
+    // any more
     problem.scene->add(michi::validity::Obstacle{
         "block",
         michi::validity::Shape::prism({{7.3, 1.8}, {7.7, 1.8}, {7.7, 2.2}, {7.3, 2.2}}, 0., 1.),
@@ -113,8 +116,12 @@ TEST(HeadingLattice, KeepsTheGraphAcrossQueriesAndRebuildsWhenTheSceneChanges)
         {}});
     ctx.setup->getProblemDefinition()->clearSolutionPaths();
     EXPECT_NE(ctx.setup->solve(5.), ob::PlannerStatus::EXACT_SOLUTION);
-    EXPECT_EQ(planner->buildCount(), 2u);
-    EXPECT_LT(planner->nodes().size(), nodes);
+    EXPECT_EQ(planner->buildCount(), 1u);
+    EXPECT_EQ(planner->updateCount(), 1u);
+    EXPECT_GT(planner->lastUpdate().nodesReset, 0u);
+    // no node kept as free where the footprint would overlap the block
+    for (const auto &n : planner->nodes())
+        EXPECT_FALSE(n.x > 7.3 && n.x < 7.7 && n.y > 1.8 && n.y < 2.2) << n.x << " " << n.y;
 }
 
 TEST(HeadingLattice, DiskOfTheCircumradiusCannotPass)
@@ -176,4 +183,96 @@ TEST(HeadingLattice, RefusesSpacesThatAreNotSe2)
     ss.setStartAndGoalStates(start, goal);
     ss.setPlanner(std::make_shared<HeadingLattice>(ss.getSpaceInformation()));
     EXPECT_EQ(ss.solve(1.), ob::PlannerStatus::ABORT);
+}
+
+TEST(HeadingLattice, ClosedDoorUpdatesOnlyTheLatticeAroundIt)
+{
+    // se2_rooms (400 x 400 cells of 0.05 m): solve query 0, close the first door the path goes through (a box over
+    // the wall there, 2 m x 0.3 m: 240 cells, 0.15 % of the map), solve again
+    const auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/se2_rooms.yaml");
+    auto ctx = michi::tools::makePlanningContext(problem);
+    auto planner = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
+    ctx.setup->setPlanner(planner);
+    ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
+    auto path = ctx.setup->getSolutionPath();
+    path.interpolate(2000);
+    // the first crossing of a wall line (x or y = 5, 10 or 15)
+    bool vertical = false;
+    double wall = 0., along = 0.;
+    for (std::size_t i = 0; i + 1 < path.getStateCount() && wall == 0.; ++i)
+    {
+        const auto *a = path.getState(i)->as<ob::SE2StateSpace::StateType>();
+        const auto *b = path.getState(i + 1)->as<ob::SE2StateSpace::StateType>();
+        for (double w : {5., 10., 15.})
+        {
+            if ((a->getX() - w) * (b->getX() - w) <= 0. && a->getX() != b->getX())
+            {
+                vertical = true;
+                wall = w;
+                along = a->getY();
+                break;
+            }
+            if ((a->getY() - w) * (b->getY() - w) <= 0. && a->getY() != b->getY())
+            {
+                wall = w;
+                along = a->getX();
+                break;
+            }
+        }
+    }
+    ASSERT_NE(wall, 0.);
+    const double halfAcross = 0.15, halfAlong = 1.0;
+    auto inDoor = [&](double x, double y)
+    {
+        return vertical ? std::abs(x - wall) < halfAcross && std::abs(y - along) < halfAlong
+                        : std::abs(y - wall) < halfAcross && std::abs(x - along) < halfAlong;
+    };
+    std::vector<Eigen::Vector2d> box;
+    for (const auto &corner :
+         {std::make_pair(-1., -1.), std::make_pair(1., -1.), std::make_pair(1., 1.), std::make_pair(-1., 1.)})
+    {
+        const double across = corner.first * halfAcross, length = corner.second * halfAlong;
+        box.emplace_back(vertical ? wall + across : along + length, vertical ? along + length : wall + across);
+    }
+    const double cells = 4. * halfAcross * halfAlong / (0.05 * 0.05);
+    EXPECT_LE(cells, 0.01 * 400 * 400);
+    const auto before = planner->work();
+    problem.scene->add(michi::validity::Obstacle{
+        "door", michi::validity::Shape::prism(box, 0., 1.), Eigen::Isometry3d::Identity(), {}});
+    ctx.setup->getProblemDefinition()->clearSolutionPaths();
+    ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(planner->buildCount(), 1u);
+    EXPECT_EQ(planner->updateCount(), 1u);
+    const auto &update = planner->lastUpdate();
+    const auto &after = planner->work();
+    // the new path does not go through the closed door
+    auto second = ctx.setup->getSolutionPath();
+    EXPECT_TRUE(second.check());
+    second.interpolate(4000);
+    for (std::size_t i = 0; i < second.getStateCount(); ++i)
+    {
+        const auto *s = second.getState(i)->as<ob::SE2StateSpace::StateType>();
+        ASSERT_FALSE(inDoor(s->getX(), s->getY())) << s->getX() << " " << s->getY();
+    }
+
+    // a rebuild: a fresh planner on the changed map, the same query
+    auto fresh = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
+    ctx.setup->setPlanner(fresh);
+    ctx.setup->getProblemDefinition()->clearSolutionPaths();
+    ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
+    const std::uint64_t rebuild = fresh->work().nodeChecks + fresh->work().edgeChecks;
+    // the update: checks forgotten near the door and checked again
+    const std::uint64_t forgotten = update.nodesReset + update.edgesReset;
+    const std::uint64_t rechecked =
+        (after.nodeRechecks - before.nodeRechecks) + (after.edgeRechecks - before.edgeRechecks);
+    RecordProperty("forgotten", std::to_string(forgotten));
+    RecordProperty("known", std::to_string(update.nodesKnown + update.edgesKnown));
+    RecordProperty("rechecked", std::to_string(rechecked));
+    RecordProperty("rebuild_checks", std::to_string(rebuild));
+    std::cout << "closed door: " << forgotten << " of " << update.nodesKnown + update.edgesKnown
+              << " checked nodes and edges forgotten, " << rechecked << " checked again; a rebuild checks " << rebuild
+              << std::endl;
+    EXPECT_GT(forgotten, 0u);
+    EXPECT_LE(10 * forgotten, update.nodesKnown + update.edgesKnown);
+    EXPECT_LE(10 * rechecked, rebuild);
 }

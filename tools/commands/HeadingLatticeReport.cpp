@@ -161,6 +161,7 @@ namespace michi
                 unsigned int headings{0};
                 std::size_t nodes{0}, edges{0};
                 double build{0.}, first{0.}, second{0.}, length{0.};
+                std::uint64_t checks1{0}, checks2{0};  ///< node + edge + join checks of query 0 and the next
                 bool solved{false}, reused{false}, solved2{false};
             };
 
@@ -308,6 +309,12 @@ namespace michi
                     auto started = ompl::time::now();
                     auto status = planner->solve(ob::timedPlannerTerminationCondition(options.timeLimit));
                     row.first = ompl::time::seconds(ompl::time::now() - started);
+                    auto checks = [&]
+                    {
+                        const auto &w = planner->work();
+                        return w.nodeChecks + w.edgeChecks + w.queryChecks;
+                    };
+                    row.checks1 = checks();
                     row.build = planner->lastBuildTime();
                     row.headings = planner->getHeadingCount();
                     row.nodes = planner->nodes().size();
@@ -340,6 +347,7 @@ namespace michi
                     started = ompl::time::now();
                     status = planner->solve(ob::timedPlannerTerminationCondition(options.timeLimit));
                     row.second = ompl::time::seconds(ompl::time::now() - started);
+                    row.checks2 = checks() - row.checks1;
                     row.solved2 = status == ob::PlannerStatus::EXACT_SOLUTION;
                     row.reused = planner->buildCount() == builds;
                     rows.push_back(row);
@@ -351,16 +359,19 @@ namespace michi
                 }
 
             std::ostringstream md;
-            md << "| cell_size (m) | angle_step (deg) | headings | nodes | edges | build (s) | query 0 search (s) | "
-                  "query "
-               << (problem.queries.size() > 1 ? 1 : 0)
-               << " on the kept graph (s) | solved | path length "
-                  "|\n|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
+            const int next = problem.queries.size() > 1 ? 1 : 0;
+            md << "| cell_size (m) | angle_step (deg) | headings | free nodes | edges | build (s) | query 0 search (s) "
+                  "| "
+                  "query 0 checks | query "
+               << next << " on the kept lattice (s) | query " << next
+               << " checks | solved | path length "
+                  "|\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
             for (const auto &r : rows)
                 md << "| " << num(r.cell) << " | " << num(r.angle * 180. / M_PI, "%.2f") << " | " << r.headings << " | "
-                   << r.nodes << " | " << r.edges << " | " << num(r.build, "%.3f") << " | "
-                   << num(r.first - r.build, "%.3f") << " | " << num(r.second, "%.3f") << (r.reused ? "" : " (rebuilt)")
-                   << " | " << (r.solved ? "yes" : "no") << " / " << (r.solved2 ? "yes" : "no") << " | "
+                   << r.nodes << " | " << r.edges << " | " << num(r.build, "%.4f") << " | "
+                   << num(r.first - r.build, "%.4f") << " | " << r.checks1 << " | " << num(r.second, "%.4f")
+                   << (r.reused ? "" : " (rebuilt)") << " | " << r.checks2 << " | " << (r.solved ? "yes" : "no")
+                   << " / " << (r.solved2 ? "yes" : "no") << " | "
                    << (r.solved ? num(r.length, "%.3f") : std::string("-")) << " |\n";
             writeAtomically(md.str(), (boost::filesystem::path(options.outDir) / "lattice.md").string());
             return md.str();

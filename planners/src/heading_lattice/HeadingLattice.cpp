@@ -9,14 +9,13 @@
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/util/Time.h>
 
-#include <boost/graph/astar_search.hpp>
-#include <boost/range/iterator_range.hpp>
 #include <boost/math/constants/constants.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
+#include <array>
+#include <map>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -28,34 +27,21 @@ namespace michi
         namespace
         {
             const double PI = boost::math::constants::pi<double>();
+            const double INF = std::numeric_limits<double>::infinity();
+            /** Node and edge states: unchecked, valid, invalid, and stale (checked once, forgotten by a scene change).
+             */
+            constexpr std::uint8_t UNCHECKED = 0, VALID = 1, INVALID = 2, STALE = 3;
+            /** The most an 8-connected grid path exceeds a straight lattice drive it follows, per metre: the
+                2-D heuristic is divided by it, so it stays a lower bound (see docs/heading-lattice.md). */
+            const double OCTILE_EXCESS = std::sqrt(4. - 2. * std::sqrt(2.));
 
             using state_spaces::wrapAngle;
 
-            /** Lattice geometry of one heading: the paper's equation (1) when |tan| <= 1 ("columns"), else (2). */
-            struct HeadingRow
+            bool heapLess(float fa, float ga, float fb, float gb)
             {
-                bool columns;  ///< |cos| >= |sin|: nodes at (x, y + x tan)
-                double slope;  ///< tan (columns) or cot (rows)
-                int forward;   ///< +1 / -1: sign of cos (columns) or sin (rows)
-            };
-
-            HeadingRow headingRow(double theta)
-            {
-                const double c = std::cos(theta), s = std::sin(theta);
-                HeadingRow r;
-                r.columns = std::abs(c) >= std::abs(s) - 1e-12;
-                r.slope = r.columns ? s / c : c / s;
-                r.forward = (r.columns ? c : s) > 0. ? 1 : -1;
-                return r;
+                // std heaps are max-heaps: "less" = lower priority; smaller f first, then larger g (deeper)
+                return fa > fb || (fa == fb && ga < gb);
             }
-
-            struct FoundGoal
-            {
-                std::size_t vertex;
-            };
-            struct Stopped
-            {
-            };
         }  // namespace
 
         HeadingLattice::HeadingLattice(const ob::SpaceInformationPtr &si) : ob::Planner(si, "HeadingLattice")
@@ -127,46 +113,45 @@ namespace michi
             clearQuery();
         }
 
+        void HeadingLattice::freeQuery()
+        {
+            for (auto &q : queries_)
+                si_->freeState(q.state);
+            queries_.clear();
+            direct_.clear();
+            goalLinks_.clear();
+        }
+
         void HeadingLattice::clearQuery()
         {
-            // query vertices are the last ones: drop their edges (and the edges into them), then the vertices
-            const std::size_t lattice = nodes_.size();
-            if (built_ && boost::num_vertices(graph_) > lattice)
-            {
-                for (std::size_t v = boost::num_vertices(graph_); v-- > lattice;)
-                    boost::clear_out_edges(v, graph_);
-                for (std::size_t u = 0; u < lattice; ++u)
-                    boost::remove_out_edge_if(
-                        u,
-                        [&](const Graph::edge_descriptor &e)
-                        {
-                            return boost::target(e, graph_) >= lattice;
-                        },
-                        graph_);
-                while (boost::num_vertices(graph_) > lattice)
-                    boost::remove_vertex(boost::num_vertices(graph_) - 1, graph_);
-            }
-            for (auto *s : queryStates_)
-                si_->freeState(s);
-            queryStates_.clear();
-            queryIsStart_.clear();
+            freeQuery();
             rawPath_.clear();
             pis_.restart();
         }
 
         void HeadingLattice::freeGraph()
         {
-            for (auto *s : queryStates_)
-                si_->freeState(s);
-            queryStates_.clear();
-            queryIsStart_.clear();
+            freeQuery();
             for (auto *s : exportStates_)
                 si_->freeState(s);
             exportStates_.clear();
-            graph_.clear();
-            nodes_.clear();
+            if (scratch_ != nullptr)
+                si_->freeState(scratch_);
+            scratch_ = nullptr;
+            for (auto *v : {&nodeState_, &edgeState_, &hState_, &groupFree_})
+                std::vector<std::uint8_t>().swap(*v);
+            std::vector<float>().swap(g_);
+            std::vector<float>().swap(hDist_);
+            std::vector<std::uint32_t>().swap(parent_);
+            std::vector<std::uint32_t>().swap(stamp_);
+            hOpen_.clear();
+            open_.clear();
+            hReady_ = false;
+            hGoals_.clear();
+            nodeCount_ = groupCount_ = 0;
             built_ = false;
             rawPath_.clear();
+            nodeListDirty_ = true;
         }
 
         void HeadingLattice::clear()
@@ -174,6 +159,7 @@ namespace michi
             ob::Planner::clear();
             freeGraph();
             key_ = MapKey();
+            boxes_.clear();
         }
 
         HeadingLattice::MapKey HeadingLattice::currentKey() const
@@ -183,10 +169,7 @@ namespace michi
             key.motionValidator = si_->getMotionValidator().get();
             if (const auto *fcl =
                     dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get()))
-            {
                 key.scene = fcl->scene().get();
-                key.sceneChanges = fcl->scene() ? fcl->scene()->changeCount() : 0;
-            }
             const auto *se2 = si_->getStateSpace()->as<ob::SE2StateSpace>();
             const auto &b = se2->getBounds();
             key.settings = {cellSize_, angleStep_, b.low[0], b.low[1], b.high[0], b.high[1]};
@@ -205,18 +188,175 @@ namespace michi
             s->setYaw(wrapAngle(yaw));
         }
 
-        void HeadingLattice::setNodeState(unsigned int vertex, ob::State *state) const
+        void HeadingLattice::nodePosition(Vertex id, double &x, double &y) const
         {
-            if (vertex < nodes_.size())
+            const std::uint32_t g = id / headings_;
+            const unsigned int k = id % headings_;
+            const long i = g / rows_, j = g % rows_;
+            const HeadingGeometry &r = geometry_[k];
+            const double c = cellSize_;
+            if (r.columns)
             {
-                const Node &n = nodes_[vertex];
-                setState(state, n.x, n.y, headingAngle(n.heading));
+                const double v = i * r.slope;
+                x = x0_ + i * c;
+                y = y0_ + c * (j + v - std::round(v));
             }
             else
-                si_->copyState(state, queryStates_[vertex - nodes_.size()]);
+            {
+                const double v = j * r.slope;
+                x = x0_ + c * (i + v - std::round(v));
+                y = y0_ + j * c;
+            }
         }
 
-        bool HeadingLattice::build(const ob::PlannerTerminationCondition &ptc)
+        void HeadingLattice::setNodeState(Vertex v, ob::State *state) const
+        {
+            if (isLattice(v))
+            {
+                double x, y;
+                nodePosition(v, x, y);
+                setState(state, x, y, geometry_[v % headings_].yaw);
+            }
+            else
+                si_->copyState(state, queries_[v - nodeCount_].state);
+        }
+
+        bool HeadingLattice::nodeValid(Vertex id)
+        {
+            std::uint8_t &s = nodeState_[id];
+            if (s == UNCHECKED || s == STALE)
+            {
+                setNodeState(id, scratch_);
+                ++work_.nodeChecks;
+                if (s == STALE)
+                    ++work_.nodeRechecks;
+                s = si_->satisfiesBounds(scratch_) && si_->isValid(scratch_) ? VALID : INVALID;
+                nodeListDirty_ = true;
+            }
+            return s == VALID;
+        }
+
+        int HeadingLattice::nodeStatusAt(double x, double y, unsigned int k) const
+        {
+            if (!built_ || k >= headings_)
+                return 0;
+            const long i = std::lround((x - x0_) / cellSize_), j = std::lround((y - y0_) / cellSize_);
+            if (i < 0 || j < 0 || i >= static_cast<long>(columns_) || j >= static_cast<long>(rows_))
+                return 0;
+            return nodeState_[(static_cast<std::size_t>(i) * rows_ + j) * headings_ + k];
+        }
+
+        std::int64_t HeadingLattice::driveNext(Vertex id) const
+        {
+            const std::uint32_t g = id / headings_;
+            const unsigned int k = id % headings_;
+            const long i = g / rows_, j = g % rows_;
+            const HeadingGeometry &r = geometry_[k];
+            long ni, nj;
+            if (r.columns)
+            {
+                const long line = j - std::lround(i * r.slope);
+                ni = i + r.forward;
+                nj = line + std::lround(ni * r.slope);
+            }
+            else
+            {
+                const long line = i - std::lround(j * r.slope);
+                nj = j + r.forward;
+                ni = line + std::lround(nj * r.slope);
+            }
+            if (ni < 0 || nj < 0 || ni >= static_cast<long>(columns_) || nj >= static_cast<long>(rows_))
+                return -1;
+            return (static_cast<std::int64_t>(ni) * rows_ + nj) * headings_ + k;
+        }
+
+        std::int64_t HeadingLattice::drivePrev(Vertex id) const
+        {
+            const std::uint32_t g = id / headings_;
+            const unsigned int k = id % headings_;
+            const long i = g / rows_, j = g % rows_;
+            const HeadingGeometry &r = geometry_[k];
+            long ni, nj;
+            if (r.columns)
+            {
+                const long line = j - std::lround(i * r.slope);
+                ni = i - r.forward;
+                nj = line + std::lround(ni * r.slope);
+            }
+            else
+            {
+                const long line = i - std::lround(j * r.slope);
+                nj = j - r.forward;
+                ni = line + std::lround(nj * r.slope);
+            }
+            if (ni < 0 || nj < 0 || ni >= static_cast<long>(columns_) || nj >= static_cast<long>(rows_))
+                return -1;
+            return (static_cast<std::int64_t>(ni) * rows_ + nj) * headings_ + k;
+        }
+
+        std::vector<HeadingLattice::ObstacleBox> HeadingLattice::sceneBoxes() const
+        {
+            std::vector<ObstacleBox> boxes;
+            const auto *fcl = dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get());
+            if (fcl == nullptr || !fcl->scene())
+                return boxes;
+            for (const auto &o : fcl->scene()->obstacles())
+            {
+                ObstacleBox b{o.name, {INF, INF, -INF, -INF}};
+                auto add = [&](const Eigen::Vector3d &local)
+                {
+                    const Eigen::Vector3d w = o.pose * local;
+                    b.box[0] = std::min(b.box[0], w.x());
+                    b.box[1] = std::min(b.box[1], w.y());
+                    b.box[2] = std::max(b.box[2], w.x());
+                    b.box[3] = std::max(b.box[3], w.y());
+                };
+                const auto &shape = *o.shape;
+                if (shape.type() == validity::Shape::Type::PRISM)
+                {
+                    for (const auto &p : shape.outline())
+                    {
+                        add(Eigen::Vector3d(p.x(), p.y(), shape.size().x()));
+                        add(Eigen::Vector3d(p.x(), p.y(), shape.size().y()));
+                    }
+                }
+                else if (shape.type() == validity::Shape::Type::BOX)
+                {
+                    const Eigen::Vector3d h = 0.5 * shape.size();
+                    for (int c = 0; c < 8; ++c)
+                        add(Eigen::Vector3d((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(),
+                                            (c & 4) ? h.z() : -h.z()));
+                }
+                else
+                {
+                    const double r = shape.boundingRadius();
+                    const Eigen::Vector3d t = o.pose.translation();
+                    b.box[0] = t.x() - r;
+                    b.box[1] = t.y() - r;
+                    b.box[2] = t.x() + r;
+                    b.box[3] = t.y() + r;
+                }
+                if (!o.trajectory.empty())  // a moving obstacle: anywhere its key frames take it
+                    for (const auto &kf : o.trajectory)
+                    {
+                        const double r = shape.boundingRadius();
+                        const Eigen::Vector3d t = kf.pose.translation();
+                        b.box[0] = std::min(b.box[0], t.x() - r);
+                        b.box[1] = std::min(b.box[1], t.y() - r);
+                        b.box[2] = std::max(b.box[2], t.x() + r);
+                        b.box[3] = std::max(b.box[3], t.y() + r);
+                    }
+                boxes.push_back(std::move(b));
+            }
+            std::sort(boxes.begin(), boxes.end(),
+                      [](const ObstacleBox &a, const ObstacleBox &b)
+                      {
+                          return a.name < b.name;
+                      });
+            return boxes;
+        }
+
+        void HeadingLattice::build()
         {
             freeGraph();
             const ompl::time::point started = ompl::time::now();
@@ -230,343 +370,570 @@ namespace michi
             const double c = cellSize_;
             columns_ = static_cast<unsigned int>(std::floor((b.high[0] - x0_) / c + 1e-9)) + 1;
             rows_ = static_cast<unsigned int>(std::floor((b.high[1] - y0_) / c + 1e-9)) + 1;
+            const double ids = static_cast<double>(columns_) * rows_ * headings_;
+            if (ids >= 2e9)
+                throw ompl::Exception(getName(), "the lattice would have more than 2e9 nodes: raise cell_size");
+            groupCount_ = columns_ * rows_;
+            nodeCount_ = groupCount_ * headings_;
             const unsigned int K = headings_;
-            std::vector<HeadingRow> hrows(K);
+            geometry_.resize(K);
             for (unsigned int k = 0; k < K; ++k)
-                hrows[k] = headingRow(headingAngle(k));
-
-            // node (group (i, j), heading k): the heading's lattice point nearest to the grid point (i, j)
-            auto position = [&](long i, long j, unsigned int k)
             {
-                const HeadingRow &r = hrows[k];
-                if (r.columns)
-                {
-                    const double v = i * r.slope;
-                    return std::make_pair(x0_ + i * c, y0_ + c * (j + v - std::round(v)));
-                }
-                const double v = j * r.slope;
-                return std::make_pair(x0_ + c * (i + v - std::round(v)), y0_ + j * c);
-            };
-
-            // nodes where the robot is free (the paper leaves out nodes on obstacles)
-            const std::size_t groups = static_cast<std::size_t>(columns_) * rows_;
-            std::vector<std::int32_t> vertexOf(groups * K, -1);
-            ob::State *state = si_->allocState();
-            ob::State *other = si_->allocState();
-            {
-                setState(state, 0.5 * (b.low[0] + b.high[0]), 0.5 * (b.low[1] + b.high[1]), 0.);
-                setState(other, 0.5 * (b.low[0] + b.high[0]), 0.5 * (b.low[1] + b.high[1]), 2. * PI / K);
-                turnCost_ = si_->distance(state, other);
+                const double theta = headingAngle(k);
+                const double cs = std::cos(theta), sn = std::sin(theta);
+                HeadingGeometry &r = geometry_[k];
+                r.columns = std::abs(cs) >= std::abs(sn) - 1e-12;
+                r.slope = r.columns ? sn / cs : cs / sn;
+                r.forward = (r.columns ? cs : sn) > 0. ? 1 : -1;
+                r.length = c / (r.columns ? std::abs(cs) : std::abs(sn));
+                r.yaw = theta;
             }
-            bool stopped = false;
-            for (unsigned int i = 0; i < columns_ && !stopped; ++i)
+            scratch_ = si_->allocState();
             {
-                for (unsigned int j = 0; j < rows_; ++j)
+                ob::State *other = si_->allocState();
+                setState(scratch_, 0.5 * (b.low[0] + b.high[0]), 0.5 * (b.low[1] + b.high[1]), 0.);
+                setState(other, 0.5 * (b.low[0] + b.high[0]), 0.5 * (b.low[1] + b.high[1]), 2. * PI / K);
+                turnCost_ = si_->distance(scratch_, other);
+                si_->freeState(other);
+            }
+            // how far the footprint reaches from the robot's origin: a turn by pi moves no point farther than
+            // pi times that (the robot's displacement bound); without one, any change resets everything
+            reach_ = std::hypot(b.high[0] - b.low[0], b.high[1] - b.low[1]);
+            if (const auto *fcl =
+                    dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get()))
+                if (fcl->bodies())
                 {
-                    if (ptc)
-                    {
-                        stopped = true;
-                        break;
-                    }
+                    const double from[3] = {0., 0., 0.}, to[3] = {0., 0., PI};
+                    reach_ = fcl->bodies()->displacementBound(from, to) / PI;
+                }
+            // the straight-line heuristic is a lower bound as long as a turn edge (which shifts the position by
+            // up to a cell between the headings' lattice points) costs at least the shift
+            double shift = 0.;
+            Vertex probe = 0;
+            for (unsigned int i = 0; i < std::min(columns_, 24u); ++i)
+                for (unsigned int j = 0; j < std::min(rows_, 24u); ++j)
                     for (unsigned int k = 0; k < K; ++k)
                     {
-                        const auto p = position(i, j, k);
-                        setState(state, p.first, p.second, headingAngle(k));
-                        if (!si_->satisfiesBounds(state) || !si_->isValid(state))
-                            continue;
-                        const std::size_t g = static_cast<std::size_t>(i) * rows_ + j;
-                        vertexOf[g * K + k] = static_cast<std::int32_t>(nodes_.size());
-                        nodes_.push_back(Node{p.first, p.second, k, static_cast<unsigned int>(g)});
+                        probe = (i * rows_ + j) * K + k;
+                        double ax, ay, bx, by;
+                        nodePosition(probe, ax, ay);
+                        nodePosition((i * rows_ + j) * K + (k + 1) % K, bx, by);
+                        shift = std::max(shift, std::hypot(ax - bx, ay - by));
                     }
-                }
-            }
-            si_->freeState(state);
-            si_->freeState(other);
-            if (stopped)
-            {
-                nodes_.clear();
-                return false;
-            }
+            euclidWeight_ = shift > turnCost_ ? turnCost_ / shift : 1.;
 
-            // edges: along each heading to the next lattice point (driving), between adjacent headings of a group
-            // (turning in place); validity is checked lazily, when A* uses an edge
-            graph_.clear();  // (no Graph(n) assignment: Boost copies graphs there, which trips -Wmaybe-uninitialized)
-            for (std::size_t v = 0; v < nodes_.size(); ++v)
-                boost::add_vertex(graph_);
-            for (std::size_t v = 0; v < nodes_.size(); ++v)
-            {
-                const Node &n = nodes_[v];
-                const long i = n.group / rows_, j = n.group % rows_;
-                const unsigned int k = n.heading;
-                const HeadingRow &r = hrows[k];
-                long ni, nj;
-                if (r.columns)
-                {
-                    const long line = j - std::lround(i * r.slope);
-                    ni = i + r.forward;
-                    nj = line + std::lround(ni * r.slope);
-                }
-                else
-                {
-                    const long line = i - std::lround(j * r.slope);
-                    nj = j + r.forward;
-                    ni = line + std::lround(nj * r.slope);
-                }
-                if (ni >= 0 && nj >= 0 && ni < static_cast<long>(columns_) && nj < static_cast<long>(rows_))
-                {
-                    const std::int32_t w = vertexOf[(static_cast<std::size_t>(ni) * rows_ + nj) * K + k];
-                    if (w >= 0)
-                    {
-                        const double length =
-                            c / (r.columns ? std::abs(std::cos(headingAngle(k))) : std::abs(std::sin(headingAngle(k))));
-                        boost::add_edge(v, w, EdgeProperty{length, 0, 0}, graph_);
-                        if (reversible_)
-                            boost::add_edge(w, v, EdgeProperty{length, 0, 0}, graph_);
-                    }
-                }
-                const std::int32_t t = vertexOf[static_cast<std::size_t>(n.group) * K + (k + 1) % K];
-                if (t >= 0)
-                {
-                    boost::add_edge(v, t, EdgeProperty{turnCost_, 1, 0}, graph_);
-                    boost::add_edge(t, v, EdgeProperty{turnCost_, 1, 0}, graph_);
-                }
-                if ((v & 4095) == 0 && ptc)
-                {
-                    graph_.clear();
-                    nodes_.clear();
-                    return false;
-                }
-            }
+            nodeState_.assign(nodeCount_, UNCHECKED);
+            edgeState_.assign(nodeCount_, 0);
+            groupFree_.assign(groupCount_, 0);
+            hDist_.assign(groupCount_, std::numeric_limits<float>::infinity());
+            hState_.assign(groupCount_, 0);
+            hReady_ = false;
+            boxes_ = sceneBoxes();
+            if (const auto *fcl =
+                    dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get()))
+                sceneChanges_ = fcl->scene() ? fcl->scene()->changeCount() : 0;
             built_ = true;
+            nodeListDirty_ = true;
             ++buildCount_;
             lastBuildTime_ = ompl::time::seconds(ompl::time::now() - started);
-            OMPL_INFORM("%s: lattice of %u x %u cells of %g m, %u headings: %zu free nodes, %zu edges (%.3f s)",
-                        getName().c_str(), columns_, rows_, c, K, nodes_.size(), boost::num_edges(graph_),
-                        lastBuildTime_);
-            return true;
+            OMPL_DEBUG("%s: lattice of %u x %u cells of %g m, %u headings (%u nodes, checked on demand; %.4f s)",
+                       getName().c_str(), columns_, rows_, c, K, nodeCount_, lastBuildTime_);
         }
 
-        bool HeadingLattice::connectQueryState(const ob::State *query, bool start)
+        void HeadingLattice::update()
         {
-            const auto *s = query->as<ob::SE2StateSpace::StateType>();
-            const Vertex q = boost::add_vertex(graph_);
-            queryStates_.push_back(si_->cloneState(query));
-            queryIsStart_.push_back(start ? 1 : 0);
-            ob::State *node = si_->allocState();
-            bool joined = false;
-            double radius = connectionCells_ * cellSize_;
-            for (int attempt = 0; attempt < 4 && !joined; ++attempt, radius *= 2.)
+            std::vector<ObstacleBox> now = sceneBoxes();
+            std::vector<std::array<double, 4>> changed;
             {
-                // nodes of the groups around the state, nearest (in the space's distance) first
-                std::vector<std::pair<double, Vertex>> candidates;
-                const long span = static_cast<long>(std::ceil(radius / cellSize_)) + 1;
-                const long ci = std::lround((s->getX() - x0_) / cellSize_);
-                const long cj = std::lround((s->getY() - y0_) / cellSize_);
-                // the nodes of a group are contiguous in vertex order: find them by binary search on the group
-                for (long i = std::max(0L, ci - span); i <= std::min<long>(columns_ - 1, ci + span); ++i)
-                    for (long j = std::max(0L, cj - span); j <= std::min<long>(rows_ - 1, cj + span); ++j)
+                std::map<std::string, const ObstacleBox *> before;
+                for (const auto &o : boxes_)
+                    before[o.name] = &o;
+                for (const auto &o : now)
+                {
+                    auto it = before.find(o.name);
+                    if (it == before.end() || !std::equal(o.box, o.box + 4, it->second->box))
                     {
-                        const unsigned int g = static_cast<unsigned int>(i * rows_ + j);
-                        auto it = std::lower_bound(nodes_.begin(), nodes_.end(), g,
-                                                   [](const Node &n, unsigned int group)
-                                                   {
-                                                       return n.group < group;
-                                                   });
-                        for (; it != nodes_.end() && it->group == g; ++it)
+                        changed.push_back({o.box[0], o.box[1], o.box[2], o.box[3]});
+                        if (it != before.end())
+                            changed.push_back(
+                                {it->second->box[0], it->second->box[1], it->second->box[2], it->second->box[3]});
+                    }
+                    if (it != before.end())
+                        before.erase(it);
+                }
+                for (const auto &kv : before)
+                    changed.push_back({kv.second->box[0], kv.second->box[1], kv.second->box[2], kv.second->box[3]});
+            }
+            UpdateReport report;
+            report.changedObstacles = changed.size();
+            auto known = [](std::uint8_t status)
+            {
+                return status == VALID || status == INVALID;
+            };
+            auto knownEdges = [&](std::uint8_t e)
+            {
+                return static_cast<std::size_t>(known(e & 3)) + static_cast<std::size_t>(known(e >> 2));
+            };
+            for (std::size_t v = 0; v < nodeCount_; ++v)
+            {
+                report.nodesKnown += known(nodeState_[v]);
+                report.edgesKnown += knownEdges(edgeState_[v]);
+            }
+            // a node sees an obstacle within reach_ of its position (within half a cell of its group's point); its
+            // drive reaches the next group, its turn stays at its position: 2.5 cells cover both
+            const double margin = reach_ + 2.5 * cellSize_;
+            const unsigned int K = headings_;
+            for (const auto &box : changed)
+            {
+                const long i0 = std::max(0L, static_cast<long>(std::floor((box[0] - margin - x0_) / cellSize_)));
+                const long j0 = std::max(0L, static_cast<long>(std::floor((box[1] - margin - y0_) / cellSize_)));
+                const long i1 =
+                    std::min<long>(columns_ - 1, static_cast<long>(std::ceil((box[2] + margin - x0_) / cellSize_)));
+                const long j1 =
+                    std::min<long>(rows_ - 1, static_cast<long>(std::ceil((box[3] + margin - y0_) / cellSize_)));
+                for (long i = i0; i <= i1; ++i)
+                    for (long j = j0; j <= j1; ++j)
+                    {
+                        const std::size_t g = static_cast<std::size_t>(i) * rows_ + j;
+                        groupFree_[g] = 0;
+                        for (unsigned int k = 0; k < K; ++k)
                         {
-                            if (std::hypot(it->x - s->getX(), it->y - s->getY()) > radius)
-                                continue;
-                            const auto v = static_cast<Vertex>(it - nodes_.begin());
-                            setNodeState(v, node);
-                            candidates.emplace_back(start ? si_->distance(query, node) : si_->distance(node, query), v);
+                            std::uint8_t &n = nodeState_[g * K + k], &e = edgeState_[g * K + k];
+                            report.nodesReset += known(n);
+                            report.edgesReset += knownEdges(e);
+                            if (known(n))
+                                n = STALE;
+                            if (known(e & 3))
+                                e = static_cast<std::uint8_t>((e & ~3) | STALE);
+                            if (known(e >> 2))
+                                e = static_cast<std::uint8_t>((e & 3) | (STALE << 2));
                         }
                     }
-                std::sort(candidates.begin(), candidates.end());
-                for (const auto &cand : candidates)
-                {
-                    setNodeState(cand.second, node);
-                    const bool ok = start ? si_->checkMotion(query, node) : si_->checkMotion(node, query);
-                    if (!ok)
-                        continue;
-                    if (start)
-                        boost::add_edge(q, cand.second, EdgeProperty{cand.first, 2, 1}, graph_);
-                    else
-                        boost::add_edge(cand.second, q, EdgeProperty{cand.first, 2, 1}, graph_);
-                    joined = true;
-                }
             }
-            // a direct motion to the query states of the other kind nearby
-            for (std::size_t o = 0; o + 1 < queryStates_.size(); ++o)
+            // joins of the query states are few: check them again
+            for (auto &q : queries_)
+                std::fill(q.status.begin(), q.status.end(), UNCHECKED);
+            for (auto &d : direct_)
+                d.status = UNCHECKED;
+            resetHeuristic();
+            hGoals_.clear();
+            boxes_ = std::move(now);
+            nodeListDirty_ = true;
+            lastUpdate_ = report;
+            ++updateCount_;
+            OMPL_INFORM(
+                "%s: the scene changed (%zu obstacle boxes): %zu of %zu checked nodes and %zu of %zu checked "
+                "edges forgotten",
+                getName().c_str(), report.changedObstacles, report.nodesReset, report.nodesKnown, report.edgesReset,
+                report.edgesKnown);
+        }
+
+        void HeadingLattice::connectQueryState(QueryVertex &q)
+        {
+            // lattice nodes of the groups around the state within the radius, nearest (space's distance) first;
+            // neither the nodes nor the joins are checked here: the search checks what it uses
+            const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
+            q.nodes.clear();
+            q.costs.clear();
+            q.status.clear();
+            std::vector<std::pair<double, Vertex>> candidates;
+            const long span = static_cast<long>(std::ceil(q.radius / cellSize_)) + 1;
+            const long ci = std::lround((s->getX() - x0_) / cellSize_);
+            const long cj = std::lround((s->getY() - y0_) / cellSize_);
+            for (long i = std::max(0L, ci - span); i <= std::min<long>(columns_ - 1, ci + span); ++i)
+                for (long j = std::max(0L, cj - span); j <= std::min<long>(rows_ - 1, cj + span); ++j)
+                    for (unsigned int k = 0; k < headings_; ++k)
+                    {
+                        const Vertex v = static_cast<Vertex>((i * rows_ + j) * headings_ + k);
+                        double x, y;
+                        nodePosition(v, x, y);
+                        if (std::hypot(x - s->getX(), y - s->getY()) > q.radius)
+                            continue;
+                        setNodeState(v, scratch_);
+                        candidates.emplace_back(
+                            q.start ? si_->distance(q.state, scratch_) : si_->distance(scratch_, q.state), v);
+                    }
+            std::sort(candidates.begin(), candidates.end());
+            for (const auto &cand : candidates)
             {
-                if (queryIsStart_[o] == (start ? 1 : 0))
-                    continue;
-                const ob::State *from = start ? query : queryStates_[o];
-                const ob::State *to = start ? queryStates_[o] : query;
-                const double d = si_->distance(from, to);
-                if (d <= connectionCells_ * cellSize_ && si_->checkMotion(from, to))
-                {
-                    const Vertex ov = nodes_.size() + o;
-                    boost::add_edge(start ? q : ov, start ? ov : q, EdgeProperty{d, 2, 1}, graph_);
-                    joined = true;
-                }
+                q.nodes.push_back(cand.second);
+                q.costs.push_back(cand.first);
+                q.status.push_back(UNCHECKED);
             }
-            si_->freeState(node);
-            return joined;
+        }
+
+        void HeadingLattice::resetHeuristic()
+        {
+            if (hReady_ || !hOpen_.empty())
+            {
+                std::fill(hDist_.begin(), hDist_.end(), std::numeric_limits<float>::infinity());
+                std::fill(hState_.begin(), hState_.end(), 0);
+            }
+            hOpen_.clear();
+            hReady_ = false;
+        }
+
+        double HeadingLattice::groupDistance(std::uint32_t g, const ob::PlannerTerminationCondition &ptc, bool &stopped)
+        {
+            // a resumable Dijkstra over the groups (8-connected, steps of c and c sqrt 2) from the groups joined to
+            // a goal, through groups with at least one free node (checked here, cached for the search)
+            const unsigned int K = headings_;
+            auto isFree = [&](std::uint32_t group)
+            {
+                std::uint8_t &f = groupFree_[group];
+                if (f == 0)
+                {
+                    f = 2;
+                    for (unsigned int k = 0; k < K; ++k)
+                        if (nodeValid(group * K + k))
+                        {
+                            f = 1;
+                            break;
+                        }
+                }
+                return f == 1;
+            };
+            auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
+            {
+                return a.first > b.first || (a.first == b.first && a.second > b.second);
+            };
+            const double c = cellSize_, diagonal = cellSize_ * std::sqrt(2.);
+            unsigned int count = 0;
+            while (hState_[g] != 2 && !hOpen_.empty())
+            {
+                if ((++count & 255u) == 0 && ptc())
+                {
+                    stopped = true;
+                    return 0.;
+                }
+                std::pop_heap(hOpen_.begin(), hOpen_.end(), greater);
+                const auto top = hOpen_.back();
+                hOpen_.pop_back();
+                const std::uint32_t u = top.second;
+                if (hState_[u] == 2 || top.first > hDist_[u])
+                    continue;
+                hState_[u] = 2;
+                ++work_.heuristicGroups;
+                const long i = u / rows_, j = u % rows_;
+                for (int di = -1; di <= 1; ++di)
+                    for (int dj = -1; dj <= 1; ++dj)
+                    {
+                        if (di == 0 && dj == 0)
+                            continue;
+                        const long ni = i + di, nj = j + dj;
+                        if (ni < 0 || nj < 0 || ni >= static_cast<long>(columns_) || nj >= static_cast<long>(rows_))
+                            continue;
+                        const auto w = static_cast<std::uint32_t>(ni * rows_ + nj);
+                        if (hState_[w] == 2)
+                            continue;
+                        const float d = static_cast<float>(hDist_[u] + (di != 0 && dj != 0 ? diagonal : c));
+                        if (d < hDist_[w] && isFree(w))
+                        {
+                            hDist_[w] = d;
+                            hState_[w] = 1;
+                            hOpen_.emplace_back(d, w);
+                            std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
+                        }
+                    }
+            }
+            return hState_[g] == 2 ? hDist_[g] : INF;
+        }
+
+        double HeadingLattice::heuristic(Vertex v, const ob::PlannerTerminationCondition &ptc, bool &stopped)
+        {
+            if (!isLattice(v))
+                return 0.;
+            double x, y;
+            nodePosition(v, x, y);
+            double euclid = INF;
+            // drives and the join to a goal cost at least the straight-line distance (turns: see build())
+            for (std::size_t i = 0; i + 2 < hGoals_.size(); i += 3)
+                euclid = std::min(euclid, std::hypot(x - hGoals_[i], y - hGoals_[i + 1]));
+            const double grid = groupDistance(v / headings_, ptc, stopped);
+            if (grid == INF)
+                return INF;
+            return std::max({0., euclidWeight_ * euclid, grid / OCTILE_EXCESS - cellSize_});
+        }
+
+        void HeadingLattice::rebuildGoalLinks()
+        {
+            goalLinks_.clear();
+            for (std::uint32_t qi = 0; qi < queries_.size(); ++qi)
+                if (!queries_[qi].start)
+                    for (std::uint32_t ci = 0; ci < queries_[qi].nodes.size(); ++ci)
+                        goalLinks_.push_back({queries_[qi].nodes[ci], {qi, ci}});
+            std::sort(goalLinks_.begin(), goalLinks_.end());
+        }
+
+        void HeadingLattice::prepareHeuristic()
+        {
+            std::vector<double> goals;
+            for (const auto &q : queries_)
+                if (!q.start)
+                {
+                    const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
+                    goals.insert(goals.end(), {s->getX(), s->getY(), q.radius});
+                }
+            if (hReady_ && goals == hGoals_)
+                return;  // kept: the same goals on the same map
+            resetHeuristic();
+            hGoals_ = goals;
+            auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
+            {
+                return a.first > b.first || (a.first == b.first && a.second > b.second);
+            };
+            for (const auto &q : queries_)
+                if (!q.start)
+                    for (Vertex v : q.nodes)
+                    {
+                        const std::uint32_t g = v / headings_;
+                        if (hState_[g] == 0)
+                        {
+                            hDist_[g] = 0.f;
+                            hState_[g] = 1;
+                            hOpen_.emplace_back(0.f, g);
+                            std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
+                        }
+                    }
+            hReady_ = true;
+        }
+
+        std::uint8_t *HeadingLattice::edgeSlot(Vertex a, Vertex b, int &shift)
+        {
+            shift = 0;
+            if (isLattice(a) && isLattice(b))
+            {
+                const unsigned int K = headings_;
+                if (a / K == b / K)
+                {
+                    shift = 2;
+                    if (b % K == (a % K + 1) % K)
+                        return &edgeState_[a];
+                    if (a % K == (b % K + 1) % K)
+                        return &edgeState_[b];
+                    return nullptr;
+                }
+                if (driveNext(a) == static_cast<std::int64_t>(b))
+                    return &edgeState_[a];
+                if (driveNext(b) == static_cast<std::int64_t>(a))
+                    return &edgeState_[b];
+                return nullptr;
+            }
+            if (!isLattice(a) && !isLattice(b))
+            {
+                for (auto &d : direct_)
+                    if (d.from == a && d.to == b)
+                        return &d.status;
+                return nullptr;
+            }
+            QueryVertex &q = query(isLattice(a) ? b : a);
+            const Vertex node = isLattice(a) ? a : b;
+            for (std::size_t i = 0; i < q.nodes.size(); ++i)
+                if (q.nodes[i] == node)
+                    return &q.status[i];
+            return nullptr;
+        }
+
+        HeadingLattice::Node HeadingLattice::nodeOf(Vertex v) const
+        {
+            Node n;
+            nodePosition(v, n.x, n.y);
+            n.heading = v % headings_;
+            n.group = v / headings_;
+            return n;
+        }
+
+        bool HeadingLattice::checkEdgeMotion(Vertex a, Vertex b)
+        {
+            ob::State *sa = si_->allocState(), *sb = si_->allocState();
+            setNodeState(a, sa);
+            setNodeState(b, sb);
+            bool ok;
+            if (isLattice(a) && isLattice(b) && a / headings_ == b / headings_)
+            {
+                // a turn in place between the headings, at both nodes' positions
+                ++work_.edgeChecks;
+                ob::State *c = si_->allocState(), *d = si_->allocState();
+                const auto *pa = sa->as<ob::SE2StateSpace::StateType>();
+                const auto *pb = sb->as<ob::SE2StateSpace::StateType>();
+                setState(c, pa->getX(), pa->getY(), pb->getYaw());
+                setState(d, pb->getX(), pb->getY(), pa->getYaw());
+                ok = si_->checkMotion(sa, c) && si_->checkMotion(d, sb);
+                si_->freeState(c);
+                si_->freeState(d);
+            }
+            else
+            {
+                ++(isLattice(a) && isLattice(b) ? work_.edgeChecks : work_.queryChecks);
+                ok = si_->checkMotion(sa, sb);
+            }
+            si_->freeState(sa);
+            si_->freeState(sb);
+            return ok;
         }
 
         std::vector<HeadingLattice::Vertex> HeadingLattice::search(const ob::PlannerTerminationCondition &ptc,
                                                                    bool &stopped)
         {
             stopped = false;
-            const std::size_t lattice = nodes_.size();
-            // a source joined to every start at no cost (removed again below)
-            const Vertex source = boost::add_vertex(graph_);
-            std::vector<char> isGoal(boost::num_vertices(graph_), 0);
-            std::vector<std::pair<double, double>> goals;
-            for (std::size_t o = 0; o < queryStates_.size(); ++o)
+            ++work_.searches;
+            const std::size_t n = static_cast<std::size_t>(nodeCount_) + queries_.size();
+            if (g_.size() < n)
             {
-                const auto *s = queryStates_[o]->as<ob::SE2StateSpace::StateType>();
-                if (queryIsStart_[o])
-                    boost::add_edge(source, lattice + o, EdgeProperty{0., 2, 1}, graph_);
+                g_.resize(n);
+                parent_.resize(n);
+                stamp_.resize(n, 0);
+            }
+            if (++searchStamp_ == 0)
+            {
+                std::fill(stamp_.begin(), stamp_.end(), 0);
+                searchStamp_ = 1;
+            }
+            open_.clear();
+            auto less = [](const OpenEntry &a, const OpenEntry &b)
+            {
+                return heapLess(a.f, a.g, b.f, b.g);
+            };
+            auto relax = [&](Vertex u, Vertex w, double cost)
+            {
+                const float ng = static_cast<float>(g_[u] + cost);
+                if (stamp_[w] == searchStamp_ && !(ng < g_[w]))
+                    return;
+                const double h = heuristic(w, ptc, stopped);
+                if (stopped || h == INF)
+                    return;
+                stamp_[w] = searchStamp_;
+                g_[w] = ng;
+                parent_[w] = u;
+                open_.push_back(OpenEntry{static_cast<float>(ng + h), ng, w});
+                std::push_heap(open_.begin(), open_.end(), less);
+            };
+            for (std::size_t qi = 0; qi < queries_.size(); ++qi)
+                if (queries_[qi].start)
+                {
+                    const auto v = static_cast<Vertex>(nodeCount_ + qi);
+                    stamp_[v] = searchStamp_;
+                    g_[v] = 0.f;
+                    parent_[v] = v;
+                    open_.push_back(OpenEntry{0.f, 0.f, v});
+                    std::push_heap(open_.begin(), open_.end(), less);
+                }
+            const unsigned int K = headings_;
+            unsigned int count = 0;
+            while (!open_.empty())
+            {
+                if ((++count & 255u) == 0 && ptc())
+                {
+                    stopped = true;
+                    return {};
+                }
+                std::pop_heap(open_.begin(), open_.end(), less);
+                const OpenEntry e = open_.back();
+                open_.pop_back();
+                if (e.g > g_[e.v])
+                    continue;  // a better way to it was found after this entry
+                const Vertex u = e.v;
+                ++work_.expansions;
+                if (!isLattice(u))
+                {
+                    const QueryVertex &q = query(u);
+                    if (!q.start)
+                    {
+                        std::vector<Vertex> path;
+                        for (Vertex v = u;; v = parent_[v])
+                        {
+                            path.push_back(v);
+                            if (parent_[v] == v)
+                                break;
+                        }
+                        std::reverse(path.begin(), path.end());
+                        return path;
+                    }
+                    for (std::size_t i = 0; i < q.nodes.size() && !stopped; ++i)
+                        if (q.status[i] != INVALID && nodeValid(q.nodes[i]))
+                            relax(u, q.nodes[i], q.costs[i]);
+                    for (const auto &d : direct_)
+                        if (d.from == u && d.status != INVALID && !stopped)
+                            relax(u, d.to, d.cost);
+                }
                 else
                 {
-                    isGoal[lattice + o] = 1;
-                    goals.emplace_back(s->getX(), s->getY());
+                    const std::uint32_t group = u / K;
+                    const unsigned int k = u % K;
+                    const double length = geometry_[k].length;
+                    const std::int64_t next = driveNext(u);
+                    if (next >= 0 && (edgeState_[u] & 3) != INVALID && nodeValid(static_cast<Vertex>(next)))
+                        relax(u, static_cast<Vertex>(next), length);
+                    if (reversible_ && !stopped)
+                    {
+                        const std::int64_t prev = drivePrev(u);
+                        if (prev >= 0 && (edgeState_[prev] & 3) != INVALID && nodeValid(static_cast<Vertex>(prev)))
+                            relax(u, static_cast<Vertex>(prev), length);
+                    }
+                    const Vertex up = group * K + (k + 1) % K, down = group * K + (k + K - 1) % K;
+                    if (!stopped && (edgeState_[u] >> 2) != INVALID && nodeValid(up))
+                        relax(u, up, turnCost_);
+                    if (!stopped && (edgeState_[down] >> 2) != INVALID && nodeValid(down))
+                        relax(u, down, turnCost_);
+                    auto it = std::lower_bound(goalLinks_.begin(), goalLinks_.end(),
+                                               std::make_pair(u, std::make_pair(0u, 0u)));
+                    for (; it != goalLinks_.end() && it->first == u && !stopped; ++it)
+                    {
+                        const QueryVertex &q = queries_[it->second.first];
+                        if (q.status[it->second.second] != INVALID)
+                            relax(u, static_cast<Vertex>(nodeCount_ + it->second.first), q.costs[it->second.second]);
+                    }
                 }
+                if (stopped)
+                    return {};
             }
-            std::vector<std::pair<double, double>> where(boost::num_vertices(graph_));
-            for (std::size_t v = 0; v < lattice; ++v)
-                where[v] = {nodes_[v].x, nodes_[v].y};
-            for (std::size_t o = 0; o < queryStates_.size(); ++o)
-            {
-                const auto *s = queryStates_[o]->as<ob::SE2StateSpace::StateType>();
-                where[lattice + o] = {s->getX(), s->getY()};
-            }
-            where[source] = where.empty() ? std::make_pair(0., 0.) : where[0];
-
-            // straight-line distance to the nearest goal: the drives a path needs at least (turns cost extra)
-            struct Heuristic : boost::astar_heuristic<Graph, double>
-            {
-                const std::vector<std::pair<double, double>> *where, *goals;
-                Vertex source;
-                double operator()(Vertex v) const
-                {
-                    if (v == source)
-                        return 0.;
-                    double best = std::numeric_limits<double>::infinity();
-                    for (const auto &g : *goals)
-                        best = std::min(best, std::hypot((*where)[v].first - g.first, (*where)[v].second - g.second));
-                    return best;
-                }
-            } heuristic;
-            heuristic.where = &where;
-            heuristic.goals = &goals;
-            heuristic.source = source;
-
-            struct Visitor : boost::default_astar_visitor
-            {
-                const std::vector<char> *isGoal;
-                const ob::PlannerTerminationCondition *ptc;
-                unsigned int *count;
-                void examine_vertex(Vertex u, const Graph &) const
-                {
-                    if (u < isGoal->size() && (*isGoal)[u])
-                        throw FoundGoal{u};
-                    if ((++*count & 1023u) == 0 && (*ptc)())
-                        throw Stopped{};
-                }
-            } visitor;
-            unsigned int count = 0;
-            visitor.isGoal = &isGoal;
-            visitor.ptc = &ptc;
-            visitor.count = &count;
-
-            const std::size_t n = boost::num_vertices(graph_);
-            std::vector<Vertex> predecessor(n);
-            std::vector<double> distance(n), rank(n);
-            std::vector<Vertex> path;
-            try
-            {
-                boost::astar_search(
-                    graph_, source, heuristic,
-                    boost::predecessor_map(
-                        boost::make_iterator_property_map(predecessor.begin(), boost::get(boost::vertex_index, graph_)))
-                        .distance_map(boost::make_iterator_property_map(distance.begin(),
-                                                                        boost::get(boost::vertex_index, graph_)))
-                        .rank_map(
-                            boost::make_iterator_property_map(rank.begin(), boost::get(boost::vertex_index, graph_)))
-                        .weight_map(boost::get(&EdgeProperty::weight, graph_))
-                        .visitor(visitor));
-            }
-            catch (const FoundGoal &found)
-            {
-                for (Vertex v = found.vertex; v != source; v = predecessor[v])
-                    path.push_back(v);
-                std::reverse(path.begin(), path.end());
-            }
-            catch (const Stopped &)
-            {
-                stopped = true;
-            }
-            boost::clear_out_edges(source, graph_);
-            boost::remove_vertex(source, graph_);
-            return path;
+            return {};
         }
 
         void HeadingLattice::removeEdgePair(Vertex a, Vertex b)
         {
-            boost::remove_edge(a, b, graph_);
-            if (reversible_ || (a < nodes_.size() && b < nodes_.size() && nodes_[a].group == nodes_[b].group))
-                boost::remove_edge(b, a, graph_);
+            int shift;
+            if (std::uint8_t *slot = edgeSlot(a, b, shift))
+                *slot = static_cast<std::uint8_t>((*slot & ~(3 << shift)) | (INVALID << shift));
         }
 
-        bool HeadingLattice::checkEdges(const std::vector<Vertex> &path)
+        bool HeadingLattice::checkEdges(const std::vector<Vertex> &path, const ob::PlannerTerminationCondition &ptc,
+                                        bool &stopped)
         {
-            bool all = true;
-            ob::State *a = si_->allocState(), *b = si_->allocState(), *c = si_->allocState(), *d = si_->allocState();
+            stopped = false;
             for (std::size_t p = 0; p + 1 < path.size(); ++p)
             {
-                auto e = boost::edge(path[p], path[p + 1], graph_);
-                if (!e.second || graph_[e.first].checked)
+                int shift;
+                std::uint8_t *slot = edgeSlot(path[p], path[p + 1], shift);
+                const int before = slot == nullptr ? VALID : (*slot >> shift) & 3;
+                if (before == VALID || before == INVALID)
                     continue;
-                setNodeState(path[p], a);
-                setNodeState(path[p + 1], b);
-                bool ok;
-                if (graph_[e.first].kind == 1)
+                if (before == STALE)
+                    ++work_.edgeRechecks;
+                if (ptc())
                 {
-                    // a turn in place between the headings, at both nodes' positions
-                    const auto *sa = a->as<ob::SE2StateSpace::StateType>();
-                    const auto *sb = b->as<ob::SE2StateSpace::StateType>();
-                    setState(c, sa->getX(), sa->getY(), sb->getYaw());
-                    setState(d, sb->getX(), sb->getY(), sa->getYaw());
-                    ok = si_->checkMotion(a, c) && si_->checkMotion(d, b);
+                    stopped = true;
+                    return false;
                 }
-                else
-                    ok = si_->checkMotion(a, b);
-                if (ok)
-                {
-                    graph_[e.first].checked = 1;
-                    auto back = boost::edge(path[p + 1], path[p], graph_);
-                    if (back.second && (reversible_ || graph_[e.first].kind == 1))
-                        graph_[back.first].checked = 1;
-                }
-                else
-                {
-                    removeEdgePair(path[p], path[p + 1]);
-                    all = false;
-                }
+                const std::uint8_t status = checkEdgeMotion(path[p], path[p + 1]) ? VALID : INVALID;
+                slot = edgeSlot(path[p], path[p + 1], shift);
+                *slot = static_cast<std::uint8_t>((*slot & ~(3 << shift)) | (status << shift));
+                if (status != VALID)
+                    return false;
             }
-            for (auto *s : {a, b, c, d})
-                si_->freeState(s);
-            return all;
+            return true;
         }
 
         bool HeadingLattice::makePath(const std::vector<Vertex> &path, og::PathGeometric &out)
         {
-            const std::size_t lattice = nodes_.size();
             auto isTurn = [&](std::size_t p)
             {
-                return path[p] < lattice && path[p + 1] < lattice && nodes_[path[p]].group == nodes_[path[p + 1]].group;
+                return isLattice(path[p]) && isLattice(path[p + 1]) && path[p] / headings_ == path[p + 1] / headings_;
+            };
+            auto countedCheck = [&](const ob::State *a, const ob::State *b)
+            {
+                ++work_.queryChecks;
+                return si_->checkMotion(a, b);
             };
             ob::State *work = si_->allocState();
             std::vector<ob::State *> emitted;
@@ -590,7 +957,7 @@ namespace michi
                     std::size_t e = p;
                     while (e + 1 < path.size() && isTurn(e))
                         ++e;
-                    const Node &first = nodes_[path[p]], &final = nodes_[path[e]];
+                    const Node first = nodeOf(path[p]), final = nodeOf(path[e]);
                     std::vector<std::pair<double, double>> places;
                     places.emplace_back(0.5 * (first.x + final.x), 0.5 * (first.y + final.y));  // the paper's centre
                     // where the line driven in on and the line driven out on meet
@@ -613,8 +980,8 @@ namespace michi
                         for (std::size_t r = p; r <= e && good; ++r)
                         {
                             ob::State *s = si_->allocState();
-                            setState(s, place.first, place.second, headingAngle(nodes_[path[r]].heading));
-                            good = si_->checkMotion(prev, s);
+                            setState(s, place.first, place.second, geometry_[path[r] % headings_].yaw);
+                            good = countedCheck(prev, s);
                             run.push_back(s);
                             prev = s;
                         }
@@ -622,7 +989,7 @@ namespace michi
                         if (good && e + 1 < path.size())
                         {
                             setNodeState(path[e + 1], work);
-                            good = si_->checkMotion(prev, work);
+                            good = countedCheck(prev, work);
                         }
                         if (good)
                         {
@@ -643,7 +1010,7 @@ namespace michi
                     continue;
                 }
                 setNodeState(path[p], work);
-                if (!si_->checkMotion(last(), work))
+                if (!countedCheck(last(), work))
                 {
                     // only after a corrected turn can a drive fail here: do not use that drive again
                     removeEdgePair(path[p - 1], path[p]);
@@ -678,24 +1045,57 @@ namespace michi
             if (!built_ || !(key == key_))
             {
                 if (built_)
-                    OMPL_INFORM("%s: the map changed: building the lattice again", getName().c_str());
-                // the query states are joined to the old graph: take them in again
+                    OMPL_INFORM("%s: a different map or settings: laying out the lattice again", getName().c_str());
+                // the query states are joined to the old lattice: take them in again
                 clearQuery();
-                key_ = MapKey();
-                if (!build(ptc))
-                {
-                    OMPL_INFORM("%s: stopped while building the lattice", getName().c_str());
-                    return ob::PlannerStatus::TIMEOUT;
-                }
+                build();
                 key_ = key;
             }
             else
+            {
                 lastBuildTime_ = 0.;
+                const auto *fcl =
+                    dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get());
+                const std::uint64_t changes = fcl != nullptr && fcl->scene() ? fcl->scene()->changeCount() : 0;
+                if (changes != sceneChanges_)
+                {
+                    update();
+                    sceneChanges_ = changes;
+                }
+            }
+            if (ptc)
+                return ob::PlannerStatus::TIMEOUT;  // nothing checked yet
 
+            const double radius = connectionCells_ * cellSize_;
+            auto addQuery = [&](const ob::State *state, bool start)
+            {
+                QueryVertex q;
+                q.state = si_->cloneState(state);
+                q.start = start;
+                q.radius = radius;
+                connectQueryState(q);
+                const auto v = static_cast<Vertex>(nodeCount_ + queries_.size());
+                // a direct motion between a start and a goal that are close
+                for (std::size_t o = 0; o < queries_.size(); ++o)
+                {
+                    if (queries_[o].start == start)
+                        continue;
+                    const ob::State *from = start ? state : queries_[o].state;
+                    const ob::State *to = start ? queries_[o].state : state;
+                    const double d = si_->distance(from, to);
+                    const auto ov = static_cast<Vertex>(nodeCount_ + o);
+                    if (d <= radius)
+                        direct_.push_back(DirectEdge{start ? v : ov, start ? ov : v, d, UNCHECKED});
+                }
+                queries_.push_back(std::move(q));
+            };
             while (const ob::State *st = pis_.nextStart())
-                if (!connectQueryState(st, true))
-                    OMPL_WARN("%s: the start cannot be joined to the lattice", getName().c_str());
-            if (std::find(queryIsStart_.begin(), queryIsStart_.end(), 1) == queryIsStart_.end())
+                addQuery(st, true);
+            if (std::none_of(queries_.begin(), queries_.end(),
+                             [](const QueryVertex &q)
+                             {
+                                 return q.start;
+                             }))
             {
                 OMPL_ERROR("%s: no valid start state", getName().c_str());
                 return ob::PlannerStatus::INVALID_START;
@@ -705,28 +1105,61 @@ namespace michi
                 const ob::State *g = pis_.nextGoal(ptc);
                 if (g == nullptr)
                     break;
-                if (!connectQueryState(g, false))
-                    OMPL_WARN("%s: a goal cannot be joined to the lattice", getName().c_str());
+                addQuery(g, false);
             }
-            if (std::find(queryIsStart_.begin(), queryIsStart_.end(), 0) == queryIsStart_.end())
+            if (std::all_of(queries_.begin(), queries_.end(),
+                            [](const QueryVertex &q)
+                            {
+                                return q.start;
+                            }))
             {
                 OMPL_ERROR("%s: no valid goal state", getName().c_str());
                 return ob::PlannerStatus::INVALID_GOAL;
             }
+            rebuildGoalLinks();
 
             while (!ptc)
             {
+                prepareHeuristic();
                 bool stopped = false;
                 const std::vector<Vertex> path = search(ptc, stopped);
                 if (stopped)
                     break;
                 if (path.empty())
                 {
-                    OMPL_INFORM("%s: no path in the lattice (%zu nodes)", getName().c_str(), nodes_.size());
+                    // a start or goal none of whose joins is left: join it farther out (up to 3 doublings)
+                    bool widened = false;
+                    for (auto &q : queries_)
+                    {
+                        bool live = false;
+                        for (std::size_t i = 0; i < q.nodes.size() && !live; ++i)
+                            live = q.status[i] != INVALID && nodeState_[q.nodes[i]] != INVALID;
+                        if (!live && q.attempts < 3)
+                        {
+                            q.radius *= 2.;
+                            ++q.attempts;
+                            connectQueryState(q);
+                            widened = true;
+                        }
+                        else if (!live)
+                            OMPL_WARN("%s: a %s cannot be joined to the lattice", getName().c_str(),
+                                      q.start ? "start" : "goal");
+                    }
+                    if (widened)
+                    {
+                        rebuildGoalLinks();
+                        continue;
+                    }
+                    OMPL_INFORM("%s: no path in the lattice (%llu nodes checked)", getName().c_str(),
+                                static_cast<unsigned long long>(work_.nodeChecks));
                     return ob::PlannerStatus::ABORT;
                 }
-                if (!checkEdges(path))
+                if (!checkEdges(path, ptc, stopped))
+                {
+                    if (stopped)
+                        break;
                     continue;
+                }
                 auto solution = std::make_shared<og::PathGeometric>(si_);
                 if (!makePath(path, *solution))
                     continue;
@@ -748,19 +1181,48 @@ namespace michi
             return ob::PlannerStatus::TIMEOUT;
         }
 
+        const std::vector<HeadingLattice::Node> &HeadingLattice::nodes() const
+        {
+            if (nodeListDirty_)
+            {
+                nodeList_.clear();
+                nodeIndex_.assign(nodeCount_, ~0u);
+                for (Vertex v = 0; v < nodeCount_; ++v)
+                    if (nodeState_[v] == VALID)
+                    {
+                        nodeIndex_[v] = static_cast<std::uint32_t>(nodeList_.size());
+                        nodeList_.push_back(nodeOf(v));
+                    }
+                nodeListDirty_ = false;
+            }
+            return nodeList_;
+        }
+
         std::vector<std::pair<unsigned int, unsigned int>> HeadingLattice::latticeEdges() const
         {
             std::vector<std::pair<unsigned int, unsigned int>> edges;
             if (!built_)
                 return edges;
-            // per vertex (boost::edges() trips GCC's -Wmaybe-uninitialized inside Boost)
-            for (std::size_t u = 0; u < nodes_.size(); ++u)
-                for (const auto &e : boost::make_iterator_range(boost::out_edges(u, graph_)))
+            nodes();
+            const unsigned int K = headings_;
+            for (Vertex u = 0; u < nodeCount_; ++u)
+            {
+                if (nodeState_[u] != VALID)
+                    continue;
+                const std::int64_t next = driveNext(u);
+                if (next >= 0 && nodeState_[next] == VALID && (edgeState_[u] & 3) != INVALID)
                 {
-                    const auto v = boost::target(e, graph_);
-                    if (v < nodes_.size())
-                        edges.emplace_back(static_cast<unsigned int>(u), static_cast<unsigned int>(v));
+                    edges.emplace_back(nodeIndex_[u], nodeIndex_[next]);
+                    if (reversible_)
+                        edges.emplace_back(nodeIndex_[next], nodeIndex_[u]);
                 }
+                const Vertex up = (u / K) * K + (u % K + 1) % K;
+                if (nodeState_[up] == VALID && (edgeState_[u] >> 2) != INVALID)
+                {
+                    edges.emplace_back(nodeIndex_[u], nodeIndex_[up]);
+                    edges.emplace_back(nodeIndex_[up], nodeIndex_[u]);
+                }
+            }
             return edges;
         }
 
@@ -769,29 +1231,45 @@ namespace michi
             ob::Planner::getPlannerData(data);
             if (!built_)
                 return;
-            const std::size_t n = boost::num_vertices(graph_);
+            const auto &list = nodes();
+            const std::size_t lattice = list.size(), n = lattice + queries_.size();
             // states for every vertex, owned here (PlannerData keeps pointers until decoupleFromPlanner())
             while (exportStates_.size() < n)
                 exportStates_.push_back(si_->allocState());
-            for (std::size_t v = 0; v < n; ++v)
-                setNodeState(static_cast<unsigned int>(v), exportStates_[v]);
-            const std::size_t lattice = nodes_.size();
             std::vector<unsigned int> index(n);
-            for (std::size_t v = 0; v < n; ++v)
+            for (std::size_t v = 0; v < lattice; ++v)
             {
-                const int tag = v < lattice ? static_cast<int>(nodes_[v].heading) : -1;
-                const ob::PlannerDataVertex vertex(exportStates_[v], tag);
-                if (v >= lattice && queryIsStart_[v - lattice])
-                    index[v] = data.addStartVertex(vertex);
-                else if (v >= lattice)
-                    index[v] = data.addGoalVertex(vertex);
-                else
-                    index[v] = data.addVertex(vertex);
+                setState(exportStates_[v], list[v].x, list[v].y, geometry_[list[v].heading].yaw);
+                index[v] = data.addVertex(ob::PlannerDataVertex(exportStates_[v], static_cast<int>(list[v].heading)));
             }
-            for (std::size_t u = 0; u < n; ++u)
-                for (const auto &e : boost::make_iterator_range(boost::out_edges(u, graph_)))
-                    data.addEdge(index[u], index[boost::target(e, graph_)], ob::PlannerDataEdge(),
-                                 ob::Cost(graph_[e].weight));
+            for (std::size_t o = 0; o < queries_.size(); ++o)
+            {
+                si_->copyState(exportStates_[lattice + o], queries_[o].state);
+                const ob::PlannerDataVertex vertex(exportStates_[lattice + o], -1);
+                index[lattice + o] = queries_[o].start ? data.addStartVertex(vertex) : data.addGoalVertex(vertex);
+            }
+            for (const auto &e : latticeEdges())
+            {
+                const Node &a = list[e.first], &b = list[e.second];
+                const double cost = a.group == b.group ? turnCost_ : geometry_[a.heading].length;
+                data.addEdge(index[e.first], index[e.second], ob::PlannerDataEdge(), ob::Cost(cost));
+            }
+            for (std::size_t o = 0; o < queries_.size(); ++o)
+            {
+                const QueryVertex &q = queries_[o];
+                for (std::size_t i = 0; i < q.nodes.size(); ++i)
+                {
+                    if (q.status[i] == INVALID || nodeState_[q.nodes[i]] != VALID)
+                        continue;
+                    const unsigned int node = index[nodeIndex_[q.nodes[i]]], self = index[lattice + o];
+                    data.addEdge(q.start ? self : node, q.start ? node : self, ob::PlannerDataEdge(),
+                                 ob::Cost(q.costs[i]));
+                }
+            }
+            for (const auto &d : direct_)
+                if (d.status != INVALID)
+                    data.addEdge(index[lattice + (d.from - nodeCount_)], index[lattice + (d.to - nodeCount_)],
+                                 ob::PlannerDataEdge(), ob::Cost(d.cost));
         }
     }  // namespace planners
 }  // namespace michi

@@ -4,9 +4,8 @@
 #include <ompl/base/Planner.h>
 #include <ompl/geometric/PathGeometric.h>
 
-#include <boost/graph/adjacency_list.hpp>
-
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace michi
@@ -31,13 +30,20 @@ namespace michi
            headings before and after meet). Every motion of the returned path is checked with the space's
            motion validator (the footprint, densely).
 
-           Edges are checked lazily (LazyPRM's way): a path found by A* is checked edge by edge, colliding edges
-           (and the turn edges of a run whose corrected motions collide) are removed
-           and A* runs again. The graph (nodes and the edges found so far) is kept across queries (new start and
-           goal, new problem definition) as long as the map is the same: the same validity checker, motion
-           validator and state space settings, and, when the checker is michi's FclValidityChecker, the same
-           scene change count. clear() forgets it, as OMPL's planners do. Without randomness, the same query on the
-           same map gives the same path every time.
+           The lattice is implicit and made on demand around the search (issue 14): a node is an id
+           (group * headings + k) into flat arrays holding its validity (checked with si->isValid the first time
+           the search or the heuristic needs it, then cached) and the state of its drive and turn edges. A* runs
+           on that graph with an admissible heuristic: the larger of the straight-line distance to the goal and a
+           2-D Dijkstra over the groups with a free node (resumable, from the goal's groups, kept per goal and
+           map), divided by the most an 8-connected path exceeds a straight drive. Edges are checked lazily
+           (LazyPRM's way): a path found by A* is checked edge by edge with the space's motion validator, the
+           results cached; on a colliding edge (or turn edges of a run whose corrected motions collide) A* runs
+           again. The lattice is kept across queries (new start and goal, new problem definition) as long as the
+           map is the same: the same validity checker, motion validator and state space settings. When the
+           checker is michi's FclValidityChecker and its scene changes (an obstacle added, removed or moved: a
+           door closes), only the nodes and edges within reach of the obstacles that changed are forgotten
+           (checked again when needed), counted in lastUpdate() and work(). clear() forgets everything, as
+           OMPL's planners do. Without randomness, the same query on the same map gives the same path every time.
 
            @par External documentation
            K. Fujimoto, T. Moriya, Y. Nakayama, 移動方向を限定したロボットの経路生成のためのグラフ作成方法
@@ -86,18 +92,16 @@ namespace michi
                 unsigned int heading;  ///< k: heading k * getHeadingStep()
                 unsigned int group;    ///< index of the heading-0 grid point (i, j): i * rows + j
             };
-            /** \brief The nodes of the built graph (vertex order; empty before the first solve()). */
-            const std::vector<Node> &nodes() const
-            {
-                return nodes_;
-            }
+            /** \brief The nodes checked so far and found free, in id order (the lattice is made on demand, around
+                the searches; empty before the first solve()). */
+            const std::vector<Node> &nodes() const;
             /** \brief The heading step in use (2 pi / heading count). */
             double getHeadingStep() const;
             unsigned int getHeadingCount() const
             {
                 return headings_;
             }
-            /** \brief Edges of the built graph between lattice nodes, as vertex index pairs (each direction). */
+            /** \brief Edges between nodes() not known to collide, as index pairs into nodes() (each direction). */
             std::vector<std::pair<unsigned int, unsigned int>> latticeEdges() const;
             /** \brief The path A* found in the last successful solve(), before correction (lattice nodes plus the
                 start and goal), for pictures; empty if none. */
@@ -110,54 +114,139 @@ namespace michi
             {
                 return lastBuildTime_;
             }
-            /** \brief How many times the graph was built since construction (for tests of the reuse). */
+            /** \brief How many times the lattice was laid out from scratch since construction (a new map,
+                new settings, clear()); scene changes are updates, not builds. */
             unsigned int buildCount() const
             {
                 return buildCount_;
             }
+            /** \brief How many times a scene change was taken in as an update (only the nodes and edges near
+                the obstacles that changed forgotten). */
+            unsigned int updateCount() const
+            {
+                return updateCount_;
+            }
+            /** \brief Work done since construction, counted: every validity check of a node, every motion
+                check (lattice edges, start and goal joins, path correction), A* searches and expansions. */
+            struct WorkCounters
+            {
+                std::uint64_t nodeChecks{0};       ///< si->isValid on lattice nodes
+                std::uint64_t edgeChecks{0};       ///< lattice edges checked (each may take several checkMotion)
+                std::uint64_t nodeRechecks{0};     ///< node checks of nodes a scene change made stale
+                std::uint64_t edgeRechecks{0};     ///< edge checks of edges a scene change made stale
+                std::uint64_t queryChecks{0};      ///< start / goal joins and path correction motions checked
+                std::uint64_t searches{0};         ///< A* runs
+                std::uint64_t expansions{0};       ///< A* vertex expansions
+                std::uint64_t heuristicGroups{0};  ///< groups settled by the 2-D heuristic
+            };
+            const WorkCounters &work() const
+            {
+                return work_;
+            }
+            /** \brief What the last update (scene change) did. */
+            struct UpdateReport
+            {
+                std::size_t changedObstacles{0};  ///< obstacles added, removed or moved
+                std::size_t nodesReset{0};        ///< checked nodes forgotten (checked again when a search needs them)
+                std::size_t edgesReset{0};        ///< checked edges forgotten
+                std::size_t nodesKnown{0};        ///< checked nodes before the update (what a rebuild would redo)
+                std::size_t edgesKnown{0};        ///< checked edges before the update
+            };
+            const UpdateReport &lastUpdate() const
+            {
+                return lastUpdate_;
+            }
+            /** \brief Is lattice node (x, y, heading k) known free, known blocked, or unchecked (1, 2, 0)? */
+            int nodeStatusAt(double x, double y, unsigned int k) const;
 
         private:
-            struct EdgeProperty
+            using Vertex = std::uint32_t;  ///< lattice node id (group * K + heading), or a query vertex after them
+            /** \brief A start or goal state and its connections to nearby lattice nodes (checked lazily). */
+            struct QueryVertex
             {
-                double weight;
-                std::uint8_t kind;     ///< 0 move, 1 turn, 2 query (start / goal connection, checked)
-                std::uint8_t checked;  ///< motion known to be valid
+                ompl::base::State *state{nullptr};
+                bool start{false};
+                double radius{0.};                 ///< connection radius in use (doubled while no connection is left)
+                int attempts{0};                   ///< doublings done
+                std::vector<Vertex> nodes;         ///< lattice nodes joined to it
+                std::vector<double> costs;         ///< the space's distance of each connection
+                std::vector<std::uint8_t> status;  ///< 0 unchecked, 1 valid, 2 invalid
             };
-            using Graph =
-                boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS, boost::no_property, EdgeProperty>;
-            using Vertex = Graph::vertex_descriptor;
+            /** \brief An edge between query vertices (start -> goal), checked lazily. */
+            struct DirectEdge
+            {
+                Vertex from, to;
+                double cost;
+                std::uint8_t status;
+            };
 
-            /** \brief What the graph was built for; a different key means a different map. */
+            /** \brief What the lattice was made for; a different key means a different lattice. */
             struct MapKey
             {
                 const void *checker{nullptr};
                 const void *motionValidator{nullptr};
                 const void *scene{nullptr};
-                std::uint64_t sceneChanges{0};
                 std::vector<double> settings;
                 bool operator==(const MapKey &o) const
                 {
                     return checker == o.checker && motionValidator == o.motionValidator && scene == o.scene &&
-                           sceneChanges == o.sceneChanges && settings == o.settings;
+                           settings == o.settings;
                 }
             };
+            /** \brief A 2-D box (x min, y min, x max, y max) an obstacle covers, by obstacle name. */
+            struct ObstacleBox
+            {
+                std::string name;
+                double box[4];
+            };
             MapKey currentKey() const;
-            /** \brief Build the lattice; false (and an empty graph) if ptc stopped it. */
-            bool build(const ompl::base::PlannerTerminationCondition &ptc);
+            /** \brief Lay out an empty lattice (nothing checked) for the current space and settings. */
+            void build();
+            /** \brief The scene changed: forget the node and edge checks near the obstacles that changed. */
+            void update();
+            std::vector<ObstacleBox> sceneBoxes() const;
             void freeGraph();
-            void setNodeState(unsigned int vertex, ompl::base::State *state) const;
+            void freeQuery();
+            void setNodeState(Vertex v, ompl::base::State *state) const;
             void setState(ompl::base::State *state, double x, double y, double yaw) const;
             double headingAngle(unsigned int k) const;
-            /** \brief Add a query vertex for \e state joined to nearby nodes (from it if \e start, else to it). */
-            bool connectQueryState(const ompl::base::State *state, bool start);
-            /** \brief A* from the start vertices to any goal vertex; the vertex path, empty if none. */
+            void nodePosition(Vertex id, double &x, double &y) const;
+            /** \brief Is the node free (checked once, then cached)? */
+            bool nodeValid(Vertex id);
+            /** \brief The next node along the node's heading line (forwards), or -1 outside the lattice. */
+            std::int64_t driveNext(Vertex id) const;
+            std::int64_t drivePrev(Vertex id) const;
+            /** \brief Join a query state to the nodes within its radius (validity of the joins checked lazily). */
+            void connectQueryState(QueryVertex &q);
+            /** \brief The 2-D heuristic of group \e g (metres to the goals, a lower bound), resumed on demand. */
+            double groupDistance(std::uint32_t g, const ompl::base::PlannerTerminationCondition &ptc, bool &stopped);
+            void resetHeuristic();
+            double heuristic(Vertex v, const ompl::base::PlannerTerminationCondition &ptc, bool &stopped);
+            /** \brief A* from the starts to any goal (unchecked edges assumed valid); the vertex path. */
             std::vector<Vertex> search(const ompl::base::PlannerTerminationCondition &ptc, bool &stopped);
-            /** \brief Check the unchecked edges of \e path; remove the colliding ones. True if all are valid. */
-            bool checkEdges(const std::vector<Vertex> &path);
-            /** \brief The corrected path of \e path as states, every motion checked; removes the turn edges of a
-                run that cannot be followed and returns false then. */
+            /** \brief Check the unchecked edges of \e path (cached); false if one is invalid. */
+            bool checkEdges(const std::vector<Vertex> &path, const ompl::base::PlannerTerminationCondition &ptc,
+                            bool &stopped);
+            /** \brief Where the status of the edge a -> b (0 unchecked, 1 valid, 2 invalid) is stored: the byte and
+                the bit shift of its two bits; nullptr if there is no such edge. */
+            std::uint8_t *edgeSlot(Vertex a, Vertex b, int &shift);
+            Node nodeOf(Vertex v) const;
+            void rebuildGoalLinks();
+            void prepareHeuristic();
+            /** \brief Check the motion of edge a -> b with the space's motion validator. */
+            bool checkEdgeMotion(Vertex a, Vertex b);
+            /** \brief The corrected path of \e path as states, every motion checked; marks the turn edges of a
+                run that cannot be followed invalid and returns false then. */
             bool makePath(const std::vector<Vertex> &path, ompl::geometric::PathGeometric &out);
             void removeEdgePair(Vertex a, Vertex b);
+            bool isLattice(Vertex v) const
+            {
+                return v < nodeCount_;
+            }
+            QueryVertex &query(Vertex v)
+            {
+                return queries_[v - nodeCount_];
+            }
 
             double cellSize_{0.25};
             double angleStep_{0.39269908169872414};  // pi / 8
@@ -166,19 +255,64 @@ namespace michi
             unsigned int headings_{0};
             double x0_{0.}, y0_{0.};
             unsigned int columns_{0}, rows_{0};
-            bool reversible_{true};  ///< the space allows driving backwards
-            double turnCost_{0.};    ///< cost of one heading step in place
+            std::uint32_t groupCount_{0};
+            std::uint32_t nodeCount_{0};
+            bool reversible_{true};    ///< the space allows driving backwards
+            double turnCost_{0.};      ///< cost of one heading step in place
+            double reach_{0.};         ///< how far the footprint reaches from the robot's origin (for updates)
+            double euclidWeight_{1.};  ///< heuristic weight of the straight-line distance (turns shift nodes)
+            struct HeadingGeometry
+            {
+                bool columns;   ///< |cos| >= |sin|: nodes at (x, y + x tan), eq. (1); else (x + y cot, y), eq. (2)
+                double slope;   ///< tan (columns) or cot (rows)
+                int forward;    ///< +1 / -1: sign of cos (columns) or sin (rows)
+                double length;  ///< drive length to the next node
+                double yaw;
+            };
+            std::vector<HeadingGeometry> geometry_;
 
-            Graph graph_;
             bool built_{false};
             MapKey key_;
-            std::vector<Node> nodes_;  ///< lattice vertices 0 .. nodes_.size()-1; query vertices follow
-            std::vector<ompl::base::State *> queryStates_;
-            std::vector<char> queryIsStart_;
+            std::uint64_t sceneChanges_{0};
+            std::vector<ObstacleBox> boxes_;  ///< the scene's obstacles when the lattice was last made current
+
+            // flat per-node arrays (index: node id)
+            std::vector<std::uint8_t> nodeState_;  ///< 0 unchecked, 1 free, 2 blocked, 3 stale (check again)
+            std::vector<std::uint8_t> edgeState_;  ///< bits 0-1: drive to driveNext(), bits 2-3: turn to heading k+1
+            // A* scratch (index: vertex), reset by a stamp
+            std::vector<float> g_;
+            std::vector<std::uint32_t> parent_;
+            std::vector<std::uint32_t> stamp_;
+            std::uint32_t searchStamp_{0};
+            // the 2-D heuristic over groups (index: group), resumable Dijkstra from the goals
+            std::vector<float> hDist_;
+            std::vector<std::uint8_t> hState_;                    ///< 0 unseen, 1 open, 2 closed
+            std::vector<std::uint8_t> groupFree_;                 ///< 0 unknown, 1 some node free, 2 none
+            std::vector<std::pair<float, std::uint32_t>> hOpen_;  ///< heap (min first)
+            bool hReady_{false};
+            std::vector<double> hGoals_;  ///< goal positions the heuristic was made for (x, y pairs)
+
+            std::vector<QueryVertex> queries_;
+            /** \brief For each lattice node joined to a goal: (query index, connection index). */
+            std::vector<std::pair<Vertex, std::pair<std::uint32_t, std::uint32_t>>> goalLinks_;
+            struct OpenEntry
+            {
+                float f, g;
+                Vertex v;
+            };
+            std::vector<OpenEntry> open_;
+            ompl::base::State *scratch_{nullptr};
+            std::vector<DirectEdge> direct_;
             mutable std::vector<ompl::base::State *> exportStates_;
+            mutable std::vector<Node> nodeList_;
+            mutable std::vector<std::uint32_t> nodeIndex_;  ///< node id -> index in nodeList_ (or ~0u)
+            mutable bool nodeListDirty_{true};
             std::vector<std::vector<double>> rawPath_;
             double lastBuildTime_{0.};
             unsigned int buildCount_{0};
+            unsigned int updateCount_{0};
+            WorkCounters work_;
+            UpdateReport lastUpdate_;
         };
     }  // namespace planners
 }  // namespace michi
