@@ -1,5 +1,7 @@
 #include "ReplanMethodRun.h"
 
+#include <michi/planners/dual_roadmap/InterferencePrediction.h>
+
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/PathGeometric.h>
@@ -37,20 +39,7 @@ namespace michi
             double MethodRun::firstInterferenceFree(const ob::SpaceInformationPtr &esi, const ConfigurationPath &path,
                                                     double lookahead)
             {
-                ob::ScopedState<> a(esi), b(esi);
-                toState(esi, path[0], a.get());
-                double arc = 0.;
-                for (std::size_t i = 1; i < path.size() && arc < lookahead; ++i)
-                {
-                    toState(esi, path[i], b.get());
-                    const double len = esi->distance(a.get(), b.get());
-                    std::pair<ob::State *, double> last(nullptr, 0.);
-                    if (!esi->satisfiesBounds(b.get()) || !esi->checkMotion(a.get(), b.get(), last))
-                        return arc + last.second * len;
-                    arc += len;
-                    esi->copyState(a.get(), b.get());
-                }
-                return std::numeric_limits<double>::infinity();
+                return planners::firstInterference(esi, path, lookahead);  // paper 002's check, public in planners
             }
 
             NonStopHooks MethodRun::hooks()

@@ -4,6 +4,7 @@
 // Private to michi_tools (not installed): what the pieces of `michi replan` share (ReplanCommand.cpp,
 // ReplanSettings.cpp, ReplanMethods.cpp, ReplanEpisode.cpp, ReplanHooks.cpp, ReplanReport.cpp, ReplanFrames.cpp).
 
+#include <michi/planners/dual_roadmap/InterferencePrediction.h>
 #include <michi/planners/dual_roadmap/NonStopExecutor.h>
 #include <michi/planners/dual_roadmap/PathDeformation.h>
 #include <michi/tools/problem/Problem.h>
@@ -11,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include <map>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -83,42 +85,27 @@ namespace michi
             };
 
             /** The world as the robot senses it: static obstacles, and each moving obstacle grown by the margin
-                and repeated along its observed velocity over the prediction horizon. */
+                and repeated along its observed velocity over the prediction horizon (planners::PredictedObstacles,
+                paper 002's prediction, which a user's own OMPL code can use without this runner). */
             struct SensedWorld
             {
                 validity::ScenePtr scene{std::make_shared<validity::Scene>()};
-                int copies{1};
-                double horizon{0.};
+                std::unique_ptr<planners::PredictedObstacles> predicted;
 
                 /** \e grown false: the movers' true shapes. */
                 void build(const std::vector<validity::Obstacle> &statics, const std::vector<Mover> &movers, int n,
                            double h, bool grown = true)
                 {
-                    copies = n;
-                    horizon = h;
-                    for (const auto &o : statics)
-                        scene->add(o);
+                    scene->add(statics);
+                    predicted = std::make_unique<planners::PredictedObstacles>(scene, n, h);
                     for (const auto &m : movers)
-                        for (int i = 0; i < copies; ++i)
-                        {
-                            validity::Obstacle o;
-                            o.name = m.name + "~" + std::to_string(i);
-                            o.shape = grown ? m.grown : m.shape;
-                            o.pose = validity::Scene::poseAt(m.trajectory, 0.);
-                            scene->add(o);
-                        }
+                        predicted->add(m.name, grown ? m.grown : m.shape, validity::Scene::poseAt(m.trajectory, 0.));
                 }
                 void update(const std::vector<Mover> &movers, const std::vector<Eigen::Isometry3d> &poses,
                             const std::vector<Eigen::Vector3d> &velocities)
                 {
                     for (std::size_t k = 0; k < movers.size(); ++k)
-                        for (int i = 0; i < copies; ++i)
-                        {
-                            Eigen::Isometry3d pose = poses[k];
-                            const double f = copies > 1 ? static_cast<double>(i) / (copies - 1) : 0.;
-                            pose.translation() += velocities[k] * horizon * f;
-                            scene->setPose(movers[k].name + "~" + std::to_string(i), pose);
-                        }
+                        predicted->observe(movers[k].name, poses[k], velocities[k]);
                 }
             };
 
