@@ -5,15 +5,18 @@
 #include <michi/tools/bench/BenchmarkRunner.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/commands/VerifyChecker.h>
 #include <michi/tools/pictures/SvgPlot.h>
 #include <michi/tools/problem/PathFile.h>
 #include <michi/tools/problem/Problem.h>
+#include <michi/tools/problem/Dataset.h>
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <boost/filesystem.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -49,20 +52,48 @@ namespace michi
                     std::optional<double> time;
                     std::optional<std::size_t> query;
                     std::optional<std::string> checker;
+                    std::string queries;
                     bool verbose{false};
                 };
+
+                /** --checker for bench: one checker, or fcl,X to compare X with FCL in one run. */
+                std::string benchChecker(const std::string &text)
+                {
+                    const auto &names = checkerNames();
+                    auto known = [&](const std::string &n)
+                    {
+                        return std::find(names.begin(), names.end(), n) != names.end();
+                    };
+                    const auto parts = splitComma(text);
+                    const bool single = parts.size() == 1 && known(parts[0]) && text == parts[0];
+                    const bool pair = parts.size() == 2 && known(parts[0]) && known(parts[1]) &&
+                                      (parts[0] == "fcl") != (parts[1] == "fcl") && text == parts[0] + "," + parts[1];
+                    if (!single && !pair)
+                    {
+                        std::string list;
+                        for (const auto &n : names)
+                            list += (list.empty() ? "" : ", ") + n;
+                        throw UsageError("--checker: expected one of " + list +
+                                         " or fcl,X (X one of them but fcl), got '" + text + "'");
+                    }
+                    return text;
+                }
 
                 int runBench(const BenchArgs &args)
                 {
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
                     setOmplLogLevel(args.verbose);
-                    // --checker fcl,jmap: both checkers side by side in one benchmark
+                    // --checker fcl,X: both checkers side by side in one benchmark
                     const bool compare = args.checker && args.checker->find(',') != std::string::npos;
                     Problem problem = loadProblem(args.problem);
                     if (args.checker && !compare)
                         problem.checker = *args.checker;
                     BenchOptions options;
-                    options.compareCheckers = compare;
+                    if (compare)
+                        for (const auto &name : splitComma(*args.checker))
+                            if (name != "fcl")
+                                options.compareChecker = name;
+                    options.queries = args.queries;
                     options.outDir = args.out;
                     options.planners = splitComma(args.planners);
                     options.runs = args.runs.value_or(0);        // 0: the problem's benchmark.runs
@@ -177,13 +208,29 @@ namespace michi
                      "--checker",
                      [args](const std::string &text)
                      {
-                         if (text != "fcl" && text != "jmap" && text != "fcl,jmap" && text != "jmap,fcl")
-                             throw UsageError("--checker: expected fcl, jmap or fcl,jmap, got '" + text + "'");
-                         args->checker = text;
+                         args->checker = benchChecker(text);
                      },
                      std::string(CHECKER_HELP) +
-                         "; fcl,jmap runs every planner with both (J-map runs named <planner>_jmap)")
-                    ->type_name("fcl|jmap|fcl,jmap");
+                         "; fcl,X runs every planner with both (runs with X named <planner>_X), e.g. fcl,jmap or "
+                         "fcl,grid")
+                    ->type_name("fcl|jmap|grid|fcl,X");
+                c->add_option_function<std::string>(
+                     "--queries",
+                     [args](const std::string &text)
+                     {
+                         try
+                         {
+                             parseQuerySelection(text);  // checked here; applied against the problem later
+                         }
+                         catch (const std::invalid_argument &e)
+                         {
+                             throw UsageError(std::string("--queries: ") + e.what());
+                         }
+                         args->queries = text;
+                     },
+                     "plan query i of the problem in run i, one run per query: all, or A-B (indices, inclusive); "
+                     "overrides --runs and the problem's benchmark.queries")
+                    ->type_name("all|A-B");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
@@ -205,11 +252,48 @@ namespace michi
                 addInteger(*c, "--query", args->query, 0, 1000000, "the problem's query to solve (default 0)")
                     ->type_name("I");
                 addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
-                addChoice(*c, "--checker", args->checker, {"fcl", "jmap"}, CHECKER_HELP);
+                addChoice(*c, "--checker", args->checker, checkerNames(), CHECKER_HELP);
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
                     return runPlan(*args);
+                };
+            }
+
+            Runner addVerifyChecker(CLI::App &michi)
+            {
+                struct Args
+                {
+                    std::string problem;
+                    std::optional<std::string> checker;
+                    std::optional<std::size_t> states;
+                    std::optional<unsigned int> seed;
+                    bool verbose{false};
+                };
+                auto args = std::make_shared<Args>();
+                CLI::App *c = michi.add_subcommand(
+                    "verify-checker",
+                    "check N uniform states and N random short motions with a fast checker and with FCL on the same "
+                    "scene; prints one JSON line (unsafe_states, unsafe_motions, false_invalid_fraction, query_ns, "
+                    "reference_query_ns)");
+                addProblem(*c, args->problem);
+                addChoice(*c, "--checker", args->checker, checkerNames(), "the checker to verify against FCL")
+                    ->required();
+                addInteger(*c, "--states", args->states, 1, 1000000000, "states, and as many motions (default 100000)");
+                addSeed(*c, args->seed, "ompl::RNG seed (default 1)");
+                addVerbose(*c, args->verbose);
+                return [args]
+                {
+                    setOmplLogLevel(args->verbose);
+                    const Problem problem = loadProblem(args->problem);
+                    VerifyCheckerOptions options;
+                    options.checker = *args->checker;
+                    options.states = args->states.value_or(100000);
+                    options.seed = args->seed.value_or(1);
+                    options.progress = &std::cerr;
+                    const VerifyCheckerResult result = verifyChecker(problem, options);
+                    std::cout << result.json() << std::endl;
+                    return result.unsafeStates == 0 && result.unsafeMotions == 0 ? 0 : 1;
                 };
             }
 

@@ -114,6 +114,7 @@ namespace michi
             Runner addBench(CLI::App &michi);
             Runner addPlan(CLI::App &michi);
             Runner addListPlanners(CLI::App &michi);
+            Runner addVerifyChecker(CLI::App &michi);
             Runner addCircles(CLI::App &michi);
             Runner addJMap(CLI::App &michi);
             Runner addRandomScenes(CLI::App &michi);

@@ -29,6 +29,7 @@ namespace
     const std::vector<std::pair<const char *, Runner (*)(CLI::App &)>> COMMANDS{
         {"bench", addBench},
         {"plan", addPlan},
+        {"verify-checker", addVerifyChecker},
         {"circles", addCircles},
         {"jmap", addJMap},
         {"random-scenes", addRandomScenes},

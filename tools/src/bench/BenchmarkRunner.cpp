@@ -1,5 +1,5 @@
 #include <michi/tools/bench/BenchmarkRunner.h>
-#include <michi/validity/jmap/JMapMotionValidator.h>
+#include <michi/tools/problem/Dataset.h>
 #include <michi/tools/problem/ExperienceQueries.h>
 #include <michi/tools/FileOutput.h>
 
@@ -57,17 +57,22 @@ namespace michi
         }  // namespace
 
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
-                                    double timeLimit, unsigned int runs, bool compareCheckers)
+                                    double timeLimit, unsigned int runs, const std::string &compareChecker)
         {
             std::ostringstream md;
             md << "# " << problem.name << "\n\n";
             if (!problem.description.empty())
                 md << problem.description << "\n\n";
             md << "OMPL Benchmark, " << runs << " runs per planner, time limit " << timeLimit << " s per run, "
-               << (compareCheckers ? "FCL validity checker and " + problem.motionValidator +
-                                         " motion validator; planners suffixed _jmap: J-map validity checker and J-map "
-                                         "motion validator (" +
-                                         problem.motionValidator + " where the map cannot decide)"
+               << (compareChecker == "jmap"
+                       ? "FCL validity checker and " + problem.motionValidator +
+                             " motion validator; planners suffixed _jmap: J-map validity checker and J-map "
+                             "motion validator (" +
+                             problem.motionValidator + " where the map cannot decide)"
+                   : !compareChecker.empty() ? "FCL validity checker and " + problem.motionValidator +
+                                                   " motion validator; planners suffixed _" + compareChecker + ": " +
+                                                   compareChecker + " validity checker and its motion validator"
+                   : problem.checker == "grid" ? std::string("grid validity checker, grid motion validator")
                    : problem.checker == "jmap"
                        ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
                              " for what the map cannot decide)"
@@ -96,7 +101,25 @@ namespace michi
             if (options.outDir.empty())
                 throw std::invalid_argument("no output folder given");
             const double timeLimit = options.timeLimit > 0. ? options.timeLimit : problem.benchmark.timeLimit;
-            const unsigned int runs = options.runs > 0 ? options.runs : problem.benchmark.runs;
+            unsigned int runs = options.runs > 0 ? options.runs : problem.benchmark.runs;
+            // a dataset run: run i of every planner plans query i of the selection
+            const std::string queries = !options.queries.empty() ? options.queries : problem.benchmark.queries;
+            Dataset dataset;
+            if (!queries.empty())
+            {
+                try
+                {
+                    dataset = datasetOf(problem, parseQuerySelection(queries));
+                }
+                catch (const std::invalid_argument &e)
+                {
+                    throw ProblemError(problem.file, "benchmark.queries", e.what());
+                }
+                if (dataset.entries.empty())
+                    throw ProblemError(problem.file, "benchmark.queries", "selects no query");
+                runs = static_cast<unsigned int>(dataset.entries.size());
+            }
+            const bool datasetRun = !dataset.entries.empty();
             std::vector<PlannerSpec> specs;
             if (options.planners.empty())
                 specs = problem.planners;
@@ -113,23 +136,22 @@ namespace michi
 
             ompl::RNG::setSeed(problem.benchmark.seed);
             ContextOptions contextOptions;
-            contextOptions.query = options.query;
-            if (options.compareCheckers)
-                contextOptions.checker = "jmap";  // the context then holds both checkers and both motion validators
+            contextOptions.query = datasetRun ? dataset.entries.front().query : options.query;
+            const std::string &compare = options.compareChecker;
+            const bool compareCheckers = !compare.empty();
+            if (compare == "fcl")
+                throw std::invalid_argument("compareChecker: name a checker other than fcl");
+            if (compareCheckers)
+                contextOptions.checker = compare;  // the context then holds both checkers and both motion validators
             PlanningContext ctx = makePlanningContext(problem, contextOptions);  // checks start and goal
             auto si = ctx.setup->getSpaceInformation();
-            // checker and motion validator of each planner instance (compareCheckers: FCL ones, then J-map ones)
+            if (datasetRun)
+                checkDatasetQueries(problem, ctx, dataset);
+            // checker and motion validator of each planner instance (compareCheckers: FCL ones, then the other's)
             std::map<const ob::Planner *, std::pair<ob::StateValidityCheckerPtr, ob::MotionValidatorPtr>> checking;
-            const ob::StateValidityCheckerPtr jmapChecker = si->getStateValidityChecker();
-            const ob::MotionValidatorPtr jmapMotions = si->getMotionValidator();
-            ob::MotionValidatorPtr fclMotions;
-            if (options.compareCheckers)
-            {
-                auto mv = std::dynamic_pointer_cast<validity::JMapMotionValidator>(jmapMotions);
-                if (!mv)
-                    throw std::logic_error("the J-map context has no J-map motion validator");
-                fclMotions = mv->fallback();
-            }
+            const ob::StateValidityCheckerPtr fastChecker = si->getStateValidityChecker();
+            const ob::MotionValidatorPtr fastMotions = si->getMotionValidator();
+            const ob::MotionValidatorPtr fclMotions = ctx.referenceMotions;
 
             ot::Benchmark benchmark(*ctx.setup, problem.name);
             std::vector<ob::PlannerPtr> planners;
@@ -149,30 +171,43 @@ namespace michi
                 ob::PlannerPtr planner = make();
                 benchmark.addPlanner(planner);
                 planners.push_back(planner);
-                if (!options.compareCheckers)
+                if (!compareCheckers)
                     continue;
                 checking[planner.get()] = {ctx.checker, fclMotions};
-                auto withJMap = make();
-                withJMap->setName(withJMap->getName() + "_jmap");
-                benchmark.addPlanner(withJMap);
-                planners.push_back(withJMap);
-                checking[withJMap.get()] = {jmapChecker, jmapMotions};
+                auto withFast = make();
+                withFast->setName(withFast->getName() + "_" + compare);
+                benchmark.addPlanner(withFast);
+                planners.push_back(withFast);
+                checking[withFast.get()] = {fastChecker, fastMotions};
             }
             benchmark.addExperimentParameter("query", "INTEGER", std::to_string(options.query));
             // experience planners learn the training queries' solutions before the runs (not timed); run i of every
             // planner plans held-out query i mod n (docs/path-seed.md, ExperienceQueries.h)
             const auto &heldOut = problem.experience.heldOut;
             std::map<std::string, std::size_t> heldOutRun;
-            const bool cycleHeldOut = options.heldOut && !heldOut.empty();
+            const bool cycleHeldOut = options.heldOut && !heldOut.empty() && !datasetRun;
+            std::map<const ob::Planner *, std::size_t> datasetNext;  // next dataset entry of each planner
+            std::map<const ob::Planner *, std::size_t> runQuery;     // query of the run in progress
+            if (datasetRun)
+            {
+                benchmark.addExperimentParameter("dataset", "VARCHAR(128)", dataset.name);
+                benchmark.addExperimentParameter("dataset_queries", "INTEGER", std::to_string(dataset.entries.size()));
+            }
             if (cycleHeldOut)
             {
                 checkHeldOutQueries(problem, ctx);
                 benchmark.addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
             }
-            if (cycleHeldOut || options.compareCheckers)
+            if (cycleHeldOut || compareCheckers || datasetRun)
                 benchmark.setPreRunEvent(
                     [&](const ob::PlannerPtr &planner)
                     {
+                        if (datasetRun)
+                        {
+                            const auto &entry = dataset.entries[datasetNext[planner.get()]++ % dataset.entries.size()];
+                            runQuery[planner.get()] = entry.query;
+                            setQuery(ctx, problem.queries[entry.query]);
+                        }
                         if (cycleHeldOut)
                             setQuery(ctx, heldOut[heldOutRun[planner->getName()]++ % heldOut.size()]);
                         const auto it = checking.find(planner.get());
@@ -183,8 +218,8 @@ namespace michi
                             si->setMotionValidator(it->second.second);
                         }
                     });
-            if (options.compareCheckers)
-                benchmark.addExperimentParameter("checkers", "VARCHAR(32)", "fcl,jmap");
+            if (compareCheckers)
+                benchmark.addExperimentParameter("checkers", "VARCHAR(32)", "fcl," + compare);
             trainExperiencePlanners(problem, ctx, planners, options.progress);
             benchmark.addExperimentParameter("seed", "INTEGER", std::to_string(problem.benchmark.seed));
 
@@ -199,6 +234,8 @@ namespace michi
                 {
                     std::lock_guard<std::mutex> lock(pathMutex);
                     ++done;
+                    if (datasetRun)
+                        run["query INTEGER"] = std::to_string(runQuery[planner.get()]);
                     const bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
                     if (progress)
                         *progress << "michi bench: [" << done << "/" << totalRuns << "] " << planner->getName() << ": "
@@ -206,6 +243,8 @@ namespace michi
                                   << property(run, "time REAL") << " s" << std::endl;
                     if (!solved || firstPaths.count(planner->getName()))
                         return;
+                    if (datasetRun && runQuery[planner.get()] != contextOptions.query)
+                        return;  // the picture shows the first query's paths
                     const auto pdef = planner->getProblemDefinition();
                     if (!pdef || !pdef->hasExactSolution())
                         return;
@@ -275,7 +314,11 @@ namespace michi
             const fs::path summary = staging.path("summary.md");
             {
                 std::ofstream out(summary.string());
-                out << summaryMarkdown(problem, result.planners, timeLimit, runs, options.compareCheckers);
+                out << summaryMarkdown(problem, result.planners, timeLimit, runs, compare);
+                if (datasetRun)
+                    out << "\nDataset " << dataset.name << ": run i of every planner planned query i ("
+                        << dataset.entries.size() << " queries, " << dataset.entries.front().label << " to "
+                        << dataset.entries.back().label << "); the log's run property `query` names it.\n";
                 if (!out)
                     throw std::runtime_error(summary.string() + ": cannot write");
             }
@@ -283,7 +326,7 @@ namespace michi
                 if (firstPaths.count(planner->getName()))
                     result.paths.push_back(firstPaths[planner->getName()]);
             const fs::path picture = staging.path(problem.name + ".svg");
-            writeProblemSvg(problem, result.paths, picture.string(), options.query);
+            writeProblemSvg(problem, result.paths, picture.string(), contextOptions.query);
             if (!svgToPng(picture.string(), staging.path(problem.name + ".png").string()) && progress)
                 *progress << "michi bench: no PNG copy of the picture (rsvg-convert from librsvg2-bin is missing)"
                           << std::endl;

@@ -9,9 +9,12 @@
 #include <michi/validity/fcl/ConservativeMotionValidator.h>
 #include <michi/validity/jmap/JMapMotionValidator.h>
 #include <michi/validity/fcl/WorkspaceMotionValidator.h>
+#include <michi/validity/grid/GridMotionValidator.h>
 
 #include <ompl/base/ScopedState.h>
+#include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace ob = ompl::base;
@@ -74,6 +77,49 @@ namespace michi
             }
         }  // namespace
 
+        const std::vector<std::string> &checkerNames()
+        {
+            static const std::vector<std::string> names{"fcl", "jmap", "grid"};
+            return names;
+        }
+
+        namespace
+        {
+            /** The one place a fast checker is made and installed in the context's space (its state validity
+                checker and motion validator), over the FCL checker and the problem's FCL-based motion validator
+                that the context already holds. A new checker adds its branch here and its name to
+                checkerNames(). */
+            void installChecker(const Problem &problem, PlanningContext &ctx, const std::string &checker)
+            {
+                auto si = ctx.setup->getSpaceInformation();
+                ctx.checkerName = checker;
+                if (checker == "fcl")
+                    return;
+                if (checker == "jmap")
+                {
+                    ctx.jmap = makeJMapChecker(problem, ctx, problem.jmap);
+                    ctx.setup->setStateValidityChecker(ctx.jmap);
+                    // motions too: a segment on the map; what the map cannot decide goes to the FCL-based validator
+                    si->setMotionValidator(
+                        std::make_shared<validity::JMapMotionValidator>(si, ctx.jmap, ctx.referenceMotions));
+                    return;
+                }
+                if (checker == "grid")
+                {
+                    if (problem.kind != Problem::Kind::SE2)
+                        throw ProblemError(problem.file, "collision.checker",
+                                           "the grid checker is for SE2 robots (robot.type se2)");
+                    ctx.grid = std::make_shared<validity::GridValidityChecker>(si, problem.footprint, ctx.scene,
+                                                                               problem.se2Bounds, problem.grid);
+                    ctx.setup->setStateValidityChecker(ctx.grid);
+                    si->setMotionValidator(std::make_shared<validity::GridMotionValidator>(si, ctx.grid));
+                    return;
+                }
+                // "spheres" (validity/.../spheres/) goes here
+                throw std::invalid_argument("makePlanningContext: unknown checker '" + checker + "'");
+            }
+        }  // namespace
+
         PlanningContext makePlanningContext(const Problem &problem, std::size_t query)
         {
             ContextOptions options;
@@ -85,8 +131,9 @@ namespace michi
         {
             const bool ownQuery = !options.start.empty() || !options.goal.empty();
             if (ownQuery && (options.start.size() != problem.dimension() || options.goal.size() != problem.dimension()))
-                throw ProblemError(problem.file, "start", "a query needs start and goal of " +
-                                                              std::to_string(problem.dimension()) + " values");
+                throw ProblemError(
+                    problem.file, "start",
+                    "a query needs start and goal of " + std::to_string(problem.dimension()) + " values");
             const std::size_t query = options.query;
             if (!ownQuery && query >= problem.queries.size())
                 throw ProblemError(problem.file, "queries",
@@ -95,8 +142,15 @@ namespace michi
             const std::string checker = options.checker.empty() ? problem.checker : options.checker;
             const std::string motionValidator =
                 options.motionValidator.empty() ? problem.motionValidator : options.motionValidator;
-            if (checker != "fcl" && checker != "jmap")
-                throw std::invalid_argument("makePlanningContext: checker must be fcl or jmap, got '" + checker + "'");
+            const auto &names = checkerNames();
+            if (std::find(names.begin(), names.end(), checker) == names.end())
+            {
+                std::string list;
+                for (const auto &n : names)
+                    list += (list.empty() ? "" : ", ") + n;
+                throw std::invalid_argument("makePlanningContext: checker must be one of " + list + ", got '" +
+                                            checker + "'");
+            }
             PlanningContext ctx;
             ctx.scene = options.scene ? options.scene : problem.scene;
             ctx.fixedValues = options.fixedValues.empty() ? problem.fixedValues : options.fixedValues;
@@ -124,6 +178,7 @@ namespace michi
             if (problem.validSegmentFraction > 0.)
                 si->setStateValidityCheckingResolution(problem.validSegmentFraction);
             si->setup();  // the space's value locations (copyFromReals) exist only after setup
+            ctx.referenceMotions = si->getMotionValidator();
 
             const std::string prefix = !ownQuery && (problem.queries.size() > 1 || query > 0)
                                            ? "queries[" + std::to_string(query) + "]."
@@ -134,14 +189,16 @@ namespace michi
             ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
             setState(start, q.start);
             setState(goal, q.goal);
-            if (checker == "jmap")
-            {
-                ctx.jmap = makeJMapChecker(problem, ctx, problem.jmap);
-                ctx.setup->setStateValidityChecker(ctx.jmap);
-                // motions too: a segment on the map; what the map cannot decide goes to the FCL-based validator
-                si->setMotionValidator(
-                    std::make_shared<validity::JMapMotionValidator>(si, ctx.jmap, si->getMotionValidator()));
-            }
+            installChecker(problem, ctx, checker);
+            if (ctx.grid)
+                for (const auto *values : {&q.start, &q.goal})
+                    if (!ctx.grid->isValidPose((*values)[0], (*values)[1], (*values)[2]))
+                        OMPL_WARN(
+                            "%s: %s (%g, %g, %g) is free for FCL but the grid checker's conservative table "
+                            "calls it invalid (its cell or heading bin comes close to an obstacle): planners "
+                            "will not start from it; a finer collision.grid.resolution or more headings help. %s",
+                            problem.file.c_str(), values == &q.start ? "start" : "goal", (*values)[0], (*values)[1],
+                            (*values)[2], ctx.grid->describe().c_str());
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);
             return ctx;

@@ -3,6 +3,8 @@
 #include <michi/tools/problem/MoveItImport.h>
 #include <michi/tools/problem/MovingAiMap.h>
 
+#include <boost/filesystem/path.hpp>
+
 #include <cmath>
 #include <limits>
 #include <set>
@@ -131,6 +133,8 @@ namespace michi
                     {
                         r.fail(key, e.what());
                     }
+                    problem.grid.mapResolution = resolution;  // grid checker cells aligned with the map's
+                    problem.grid.origin = origin;
                     info.present = true;
                     info.bounds = {{origin.x(), origin.x() + map.width * resolution, origin.y(),
                                     origin.y() + map.height * resolution}};
@@ -146,24 +150,37 @@ namespace michi
                     for (const auto &kv : scen)
                     {
                         const std::string k = kv.first.as<std::string>();
-                        if (k != "file" && k != "bucket" && k != "count")
-                            r.fail(sk + "." + k, "unknown key (expected file, bucket, count)");
+                        if (k != "file" && k != "bucket" && k != "buckets" && k != "count")
+                            r.fail(sk + "." + k, "unknown key (expected file, bucket, buckets, count)");
                     }
                     const std::string scenFile = r.path(r.require(scen, "file", sk), sk + ".file");
-                    int bucket = -1;
-                    if (scen["bucket"])
+                    int bucket = -1, lastBucket = -1;
+                    auto bucketNumber = [&](const YAML::Node &n, const std::string &k)
                     {
-                        const double b = r.number(scen["bucket"], sk + ".bucket");
+                        const double b = r.number(n, k);
                         // MovingAI buckets are path lengths / 4: a few thousand at most; a cast of 2^31 would wrap
                         if (b < 0. || b != std::floor(b) || b > 1e6)
-                            r.fail(sk + ".bucket", "expected a bucket number (0, 1, ... 1000000)");
-                        bucket = static_cast<int>(b);
+                            r.fail(k, "expected a bucket number (0, 1, ... 1000000)");
+                        return static_cast<int>(b);
+                    };
+                    if (scen["bucket"] && scen["buckets"])
+                        r.fail(sk + ".buckets", "give bucket or buckets, not both");
+                    if (scen["bucket"])
+                        bucket = lastBucket = bucketNumber(scen["bucket"], sk + ".bucket");
+                    if (const YAML::Node range = scen["buckets"])
+                    {
+                        if (!range.IsSequence() || range.size() != 2)
+                            r.fail(sk + ".buckets", "expected [first, last] (bucket numbers, inclusive)");
+                        bucket = bucketNumber(range[0], sk + ".buckets[0]");
+                        lastBucket = bucketNumber(range[1], sk + ".buckets[1]");
+                        if (lastBucket < bucket)
+                            r.fail(sk + ".buckets", "expected first <= last");
                     }
                     const unsigned int count = scen["count"] ? r.count(scen["count"], sk + ".count")
                                                              : std::numeric_limits<unsigned int>::max();
                     for (const auto &s : readMovingAiScenarios(scenFile))
                     {
-                        if (bucket >= 0 && s.bucket != bucket)
+                        if (bucket >= 0 && (s.bucket < bucket || s.bucket > lastBucket))
                             continue;
                         if (info.queries.size() >= count)
                             break;
@@ -181,11 +198,16 @@ namespace michi
                                                        std::to_string(cell.second) + ") outside the map");
                         const Eigen::Vector2d a = movingAiCellCentre(map, s.startX, s.startY, resolution, origin);
                         const Eigen::Vector2d b = movingAiCellCentre(map, s.goalX, s.goalY, resolution, origin);
-                        info.queries.push_back(Query{{a.x(), a.y(), 0.}, {b.x(), b.y(), 0.}});
+                        info.queries.push_back(
+                            Query{{a.x(), a.y(), 0.},
+                                  {b.x(), b.y(), 0.},
+                                  boost::filesystem::path(scenFile).filename().string() + " " + line});
                     }
                     if (info.queries.empty())
                         r.fail(sk, "no scenario in '" + scenFile + "'" +
-                                       (bucket >= 0 ? " with bucket " + std::to_string(bucket) : std::string()));
+                                       (bucket >= 0 ? " with bucket " + std::to_string(bucket) +
+                                                          (lastBucket > bucket ? "-" + std::to_string(lastBucket) : "")
+                                                    : std::string()));
                 }
             }  // namespace
 
@@ -266,6 +288,8 @@ namespace michi
                     {
                         r.fail(key + ".pgm", e.what());
                     }
+                    problem.grid.mapResolution = resolution;  // grid checker cells aligned with the map's
+                    problem.grid.origin = origin;
                 }
                 if (const YAML::Node moveit = scene["moveit"])
                     readMoveItSceneKey(r, moveit, problem);

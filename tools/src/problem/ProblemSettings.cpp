@@ -1,5 +1,7 @@
 #include "ProblemYaml.h"
 
+#include <michi/tools/problem/Dataset.h>
+
 namespace michi
 {
     namespace tools
@@ -42,6 +44,26 @@ namespace michi
                     settings.fallbackBand = r.number(n, "fallback_band", key, settings.fallbackBand);
                     if (!(settings.fallbackBand >= 0.))
                         r.fail(key + ".fallback_band", "expected a non-negative number of radians");
+                }
+
+                void readGridSettings(const Reader &r, const YAML::Node &n, const std::string &key,
+                                      validity::GridCheckerSettings &settings)
+                {
+                    if (!n.IsMap())
+                        r.fail(key, "expected a mapping (resolution, headings)");
+                    r.keys(n, key, {"resolution", "headings"});
+                    if (n["resolution"])
+                    {
+                        settings.resolution = r.number(n["resolution"], key + ".resolution");
+                        if (!(settings.resolution >= 1e-4) || settings.resolution > 1e3)
+                            r.fail(key + ".resolution", "expected a number of metres in [0.0001, 1000]");
+                    }
+                    if (n["headings"])
+                    {
+                        settings.headings = r.count(n["headings"], key + ".headings");
+                        if (settings.headings < 1 || settings.headings > 1024)
+                            r.fail(key + ".headings", "expected a number of heading bins in 1..1024");
+                    }
                 }
             }  // namespace
 
@@ -108,8 +130,20 @@ namespace michi
                         s.seed = r.count(kv.second, key);
                     else if (k == "simplify")
                         s.simplify = r.flag(kv.second, key);
+                    else if (k == "queries")
+                    {
+                        s.queries = r.text(kv.second, key);
+                        try
+                        {
+                            parseQuerySelection(s.queries);
+                        }
+                        catch (const std::invalid_argument &e)
+                        {
+                            r.fail(key, e.what());
+                        }
+                    }
                     else
-                        r.fail(key, "unknown key (expected time_limit, runs, memory_limit, seed, simplify)");
+                        r.fail(key, "unknown key (expected time_limit, runs, memory_limit, seed, simplify, queries)");
                 }
             }
 
@@ -147,14 +181,18 @@ namespace michi
                     else if (k == "checker")
                     {
                         problem.checker = r.text(kv.second, key);
-                        if (problem.checker != "fcl" && problem.checker != "jmap")
-                            r.fail(key, "expected fcl or jmap, got '" + problem.checker + "'");
+                        if (problem.checker != "fcl" && problem.checker != "jmap" && problem.checker != "grid")
+                            r.fail(key, "expected fcl, jmap or grid, got '" + problem.checker + "'");
+                        if (problem.checker == "grid" && problem.kind != Problem::Kind::SE2)
+                            r.fail(key, "the grid checker is for SE2 robots (robot.type se2)");
                     }
                     else if (k == "jmap")
                         readJMapSettings(r, kv.second, key, problem.jmap);
+                    else if (k == "grid")
+                        readGridSettings(r, kv.second, key, problem.grid);
                     else
                         r.fail(key,
-                               "unknown key (expected checker, jmap, motion_validator, max_step, "
+                               "unknown key (expected checker, jmap, grid, motion_validator, max_step, "
                                "valid_segment_fraction)");
                 }
             }

@@ -21,10 +21,15 @@ namespace michi
             double timeLimit{0.};
             std::size_t query{0};
             bool heldOut{true};  ///< cycle the problem's held-out experience queries (if any) instead of \e query
-            /** \brief Run every planner twice in the same Benchmark: with the FCL checker and the problem's motion
-                validator, and with the J-map checker and JMapMotionValidator (planner names suffixed "_jmap"), so
-                the two are compared under the same conditions. For arms only. */
-            bool compareCheckers{false};
+            /** \brief Non-empty (a name of checkerNames() other than fcl): run every planner twice in the same
+                Benchmark, with the FCL checker and the problem's motion validator, and with this checker and its
+                motion validator (planner names suffixed "_<checker>": "_jmap", "_grid"), so the two are compared
+                under the same conditions. */
+            std::string compareChecker;
+            /** \brief "all" or "A-B": a dataset run (Dataset.h): run i of every planner plans query i of the
+                selection, one run per query (runs is then the number of queries); each run's query index is
+                recorded in the log (run property "query"). Empty: the problem's benchmark.queries. */
+            std::string queries;
             std::string outDir;
             std::ostream *progress{nullptr};  ///< progress lines (stderr in the command), or none
         };
@@ -60,7 +65,7 @@ namespace michi
 
         /** \brief Markdown table of planner summaries. */
         std::string summaryMarkdown(const Problem &problem, const std::vector<PlannerSummary> &planners,
-                                    double timeLimit, unsigned int runs, bool compareCheckers = false);
+                                    double timeLimit, unsigned int runs, const std::string &compareChecker = "");
     }  // namespace tools
 }  // namespace michi
 

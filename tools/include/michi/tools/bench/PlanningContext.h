@@ -4,6 +4,7 @@
 #include <michi/tools/problem/Problem.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
 #include <michi/validity/jmap/JMapValidityChecker.h>
+#include <michi/validity/grid/GridValidityChecker.h>
 
 #include <ompl/geometric/SimpleSetup.h>
 
@@ -24,22 +25,33 @@ namespace michi
             /** \brief The J-map checker when the problem's collision.checker is "jmap" (then it is the space's
                 state validity checker), else null. */
             std::shared_ptr<validity::JMapValidityChecker> jmap;
+            /** \brief The grid checker when the checker is "grid" (then it is the space's state validity
+                checker and validity::GridMotionValidator its motion validator), else null. */
+            std::shared_ptr<validity::GridValidityChecker> grid;
+            std::string checkerName;  ///< the checker installed in the space ("fcl", "jmap", "grid")
+            /** \brief The FCL-based motion validator of the problem's collision.motion_validator, whatever checker
+                is installed: the reference a fast checker is compared with (bench --checker fcl,X,
+                verify-checker). */
+            ompl::base::MotionValidatorPtr referenceMotions;
             validity::CollisionBodiesPtr bodies;
-            validity::ScenePtr scene;          ///< the scene checked (the problem's unless the options gave one)
-            std::vector<double> fixedValues;   ///< the robot's other joints (ARM; the problem's unless given)
+            validity::ScenePtr scene;         ///< the scene checked (the problem's unless the options gave one)
+            std::vector<double> fixedValues;  ///< the robot's other joints (ARM; the problem's unless given)
         };
 
         /** \brief What makePlanningContext() may take from elsewhere than the problem, so callers never copy a
             Problem to change one field. Empty members mean "as the problem says". */
         struct ContextOptions
         {
-            std::size_t query{0};                 ///< which of the problem's queries (ignored when start/goal given)
-            std::vector<double> start, goal;      ///< a query of the caller's own (both or neither)
-            std::string checker;                  ///< "fcl" or "jmap"
-            std::string motionValidator;          ///< "workspace", "conservative" or "discrete"
-            validity::ScenePtr scene;             ///< another scene (replanning's world at one moment)
-            std::vector<double> fixedValues;      ///< the other joints' values (a dual-arm task's configuration)
+            std::size_t query{0};             ///< which of the problem's queries (ignored when start/goal given)
+            std::vector<double> start, goal;  ///< a query of the caller's own (both or neither)
+            std::string checker;              ///< one of checkerNames()
+            std::string motionValidator;      ///< "workspace", "conservative" or "discrete"
+            validity::ScenePtr scene;         ///< another scene (replanning's world at one moment)
+            std::vector<double> fixedValues;  ///< the other joints' values (a dual-arm task's configuration)
         };
+
+        /** \brief The checkers makePlanningContext() can install: fcl, jmap, grid (docs/checking.md). */
+        const std::vector<std::string> &checkerNames();
 
         /** \brief The state space of a problem (joint space of the group, or SE(2) on the map's bounds). */
         ompl::base::StateSpacePtr makeStateSpace(const Problem &problem);

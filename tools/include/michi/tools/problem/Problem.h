@@ -3,6 +3,7 @@
 
 #include <michi/validity/robot/CollisionBodies.h>
 #include <michi/validity/jmap/JMapValidityChecker.h>
+#include <michi/validity/grid/GridValidityChecker.h>
 #include <michi/validity/robot/RobotModel.h>
 #include <michi/validity/scene/Scene.h>
 
@@ -49,6 +50,7 @@ namespace michi
         {
             std::vector<double> start;
             std::vector<double> goal;
+            std::string label;  ///< where it came from ("arena.map.scen line 12"); may be empty
         };
 
         struct BenchmarkSettings
@@ -58,6 +60,9 @@ namespace michi
             unsigned int runs{10};
             unsigned int seed{1};  ///< ompl::RNG::setSeed before the first run
             bool simplify{true};   ///< simplify solutions as OMPL's Benchmark does by default
+            /** \brief benchmark.queries: "" (every run plans one query), "all" or "A-B": run i plans query i of the
+                selection, one run per query (a dataset run, tools/problem/Dataset.h). */
+            std::string queries;
         };
 
         /** \brief How an SE2 robot moves between two states (robot.motion, docs/problem-format.md). */
@@ -119,10 +124,14 @@ namespace michi
                 "discrete" (OMPL's DiscreteMotionValidator at validSegmentFraction). */
             std::string motionValidator{"workspace"};
             double maxStep{0.01};  ///< metres, for "workspace"
-            /** \brief The state validity checker: "fcl" (validity::FclValidityChecker, the default) or "jmap"
-                (validity::JMapValidityChecker over the first two planned joints, paper 000). */
+            /** \brief The state validity checker: "fcl" (validity::FclValidityChecker, the default), "jmap"
+                (validity::JMapValidityChecker over the first two planned joints, paper 000) or "grid"
+                (validity::GridValidityChecker, SE2 robots: docs/checking.md). */
             std::string checker{"fcl"};
             validity::JMapCheckerSettings jmap;  ///< for checker "jmap" (collision.jmap)
+            /** \brief For checker "grid" (collision.grid); a map scene (scene.map, scene.movingai) sets its
+                mapResolution and origin so that table cells align with the map's. */
+            validity::GridCheckerSettings grid;
             ExperienceQueries experience;        ///< training and held-out queries (experience), may be empty
 
             /** \brief Collision bodies of the planned robot (RobotGroupBodies or PlanarRigidBody). */

@@ -1,0 +1,244 @@
+// Tests of the grid-native SE(2) checker (validity/.../grid/, issue 14): against FCL on every bundled SE2 map problem
+// (0 unsafe states and motions, FCL is the reference), the table's geometry on small grids, the motion validator's
+// cell walk for SE(2) and turn-move-turn motions, local updates equal to a rebuild, the memory bound of a 512 x 512
+// map, the problem-file and planning-context plumbing, and dataset selections.
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/commands/VerifyChecker.h>
+#include <michi/tools/problem/Dataset.h>
+#include <michi/validity/grid/GridMotionValidator.h>
+#include <michi/validity/grid/HeadingTable.h>
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <boost/filesystem.hpp>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace michi;
+namespace ob = ompl::base;
+
+namespace
+{
+    std::string problemPath(const std::string &name)
+    {
+        return std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml";
+    }
+
+    /** Every bundled problem whose robot is SE2 and whose scene is static. */
+    std::vector<std::string> se2Problems()
+    {
+        std::vector<std::string> names;
+        for (const auto &e : boost::filesystem::directory_iterator(std::string(MICHI_SOURCE_DIR) + "/problems"))
+        {
+            if (e.path().extension() != ".yaml")
+                continue;
+            const auto problem = tools::loadProblem(e.path().string());
+            bool moving = false;
+            for (const auto &o : problem.scene->obstacles())
+                moving = moving || !o.trajectory.empty();
+            if (problem.kind == tools::Problem::Kind::SE2 && !moving)
+                names.push_back(e.path().stem().string());
+        }
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    validity::OccupancyGrid emptyGrid(int w, int h, double r)
+    {
+        validity::OccupancyGrid g;
+        g.width = w;
+        g.height = h;
+        g.resolution = r;
+        g.cells.assign(static_cast<std::size_t>(w) * h, 0);
+        return g;
+    }
+
+    const std::vector<Eigen::Vector2d> SQUARE{{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-0.1, 0.1}};
+}  // namespace
+
+TEST(GridChecker, NeverValidWhereFclIsInvalidOnEveryBundledMapProblem)
+{
+    const auto names = se2Problems();
+    ASSERT_GE(names.size(), 4u);  // movingai_arena, se2_corridor, se2_corridor_pgm, se2_rooms (and more)
+    for (const auto &name : names)
+    {
+        tools::VerifyCheckerOptions options;
+        options.checker = "grid";
+        options.states = 20000;
+        options.seed = 7;
+        const auto r = tools::verifyChecker(tools::loadProblem(problemPath(name)), options);
+        SCOPED_TRACE(name + ": " + r.json());
+        EXPECT_EQ(r.unsafeStates, 0u);
+        EXPECT_EQ(r.unsafeMotions, 0u);
+        EXPECT_GT(r.referenceValid, 0u);
+        EXPECT_GT(r.motionsValid, 0u);  // the motion check was exercised
+        if (name.find("movingai") != std::string::npos)
+            EXPECT_LT(r.falseInvalidFraction(), 0.1);  // a robot smaller than the map's cells
+    }
+}
+
+TEST(GridTable, OneOccupiedCellBlocksItsNeighbourhoodOnly)
+{
+    auto g = emptyGrid(40, 40, 0.1);
+    g.cells[20 * 40 + 20] = 1;
+    validity::HeadingTable table(g, SQUARE, 16);
+    for (int k = 0; k < 16; ++k)
+    {
+        EXPECT_FALSE(table.valid(20, 20, k));
+        EXPECT_FALSE(table.valid(21, 20, k));  // the square reaches 0.1 m plus half a cell: the neighbours
+        EXPECT_FALSE(table.valid(19, 19, k));
+        EXPECT_TRUE(table.valid(24, 20, k));  // 0.4 m away: beyond the circumradius (0.141) and a cell
+        EXPECT_TRUE(table.valid(5, 5, k));
+    }
+    EXPECT_FALSE(table.valid(-1, 3, 0));  // outside the grid
+    EXPECT_FALSE(table.valid(40, 3, 0));
+    EXPECT_EQ(table.headingBin(0.), 0);
+    EXPECT_EQ(table.headingBin(2 * M_PI), 0);
+    EXPECT_EQ(table.headingBin(-M_PI / 16 + 1e-9), 0);
+    EXPECT_EQ(table.headingBin(M_PI / 16 + 1e-9), 1);
+    EXPECT_EQ(table.headingBin(-M_PI / 16 - 1e-9), 15);
+}
+
+TEST(GridTable, SweepsTheFootprintOverTheHeadingBin)
+{
+    // a long thin bar on cell (30, 30): one occupied cell 0.25 m above its centre, one at (0.4, 0.25)
+    auto g = emptyGrid(60, 60, 0.05);
+    g.cells[35 * 60 + 30] = 1;
+    g.cells[35 * 60 + 38] = 1;
+    const std::vector<Eigen::Vector2d> bar{{-0.5, -0.02}, {0.5, -0.02}, {0.5, 0.02}, {-0.5, 0.02}};
+    validity::HeadingTable table(g, bar, 16);
+    EXPECT_TRUE(table.valid(30, 30, 0));   // yaw within +-pi/16: at x = 0.4 the bar rises 0.1 m at most
+    EXPECT_FALSE(table.valid(30, 30, 4));  // pi/2: the bar crosses the cell above
+    // bin 1 covers yaws pi/16 .. 3 pi/16: at 3 pi/16 the bar passes (0.4, 0.27), inside the cell at (0.4, 0.25)
+    EXPECT_FALSE(table.valid(30, 30, 1));
+    EXPECT_TRUE(table.valid(30, 30, 15));  // the mirror image meets nothing
+}
+
+TEST(GridTable, LocalUpdateEqualsRebuild)
+{
+    ompl::RNG rng(5);
+    auto g = emptyGrid(80, 70, 0.05);
+    for (auto &c : g.cells)
+        c = rng.uniform01() < 0.05 ? 1 : 0;
+    const std::vector<Eigen::Vector2d> robot{{-0.2, -0.07}, {0.2, -0.07}, {0.2, 0.07}, {-0.2, 0.07}};
+    validity::HeadingTable table(g, robot, 16);
+    // close a "door": a short wall of 6 cells (under 1 % of the cells)
+    std::vector<std::pair<int, int>> door;
+    for (int j = 30; j < 36; ++j)
+        door.emplace_back(40, j);
+    const auto box = table.setOccupied(door, true);
+    EXPECT_FALSE(box.empty());
+    EXPECT_LT((box.i1 - box.i0 + 1) * (box.j1 - box.j0 + 1), 80 * 70 / 4);  // recomputed locally
+    auto h = g;
+    for (const auto &c : door)
+        h.cells[c.second * 80 + c.first] = 1;
+    validity::HeadingTable rebuilt(h, robot, 16);
+    for (int k = 0; k < 16; ++k)
+        for (int j = 0; j < 70; ++j)
+            for (int i = 0; i < 80; ++i)
+                ASSERT_EQ(table.valid(i, j, k), rebuilt.valid(i, j, k)) << i << " " << j << " " << k;
+    // and open it again
+    table.setOccupied(door, false);
+    validity::HeadingTable original(g, robot, 16);
+    for (int k = 0; k < 16; ++k)
+        for (int j = 0; j < 70; ++j)
+            for (int i = 0; i < 80; ++i)
+                ASSERT_EQ(table.valid(i, j, k), original.valid(i, j, k));
+}
+
+TEST(GridTable, A512MapWith16HeadingsStaysUnder64MiB)
+{
+    const auto g = emptyGrid(512, 512, 0.1);
+    const std::vector<Eigen::Vector2d> robot{{-0.03, -0.02}, {0.03, -0.02}, {0.03, 0.02}, {-0.03, 0.02}};
+    validity::HeadingTable table(g, robot, 16);
+    EXPECT_LT(table.bytes(), 64u << 20);
+    EXPECT_EQ(table.validCount(), 512u * 512u * 16u);
+}
+
+TEST(GridChecker, PlanningContextInstallsCheckerAndMotionValidator)
+{
+    auto problem = tools::loadProblem(problemPath("se2_corridor"));
+    // the 1.6 m robot fits its 0.8 m corridor only within +-14 degrees: finer heading bins than the default 16
+    problem.grid.headings = 64;
+    problem.grid.resolution = 0.025;
+    tools::ContextOptions options;
+    options.checker = "grid";
+    auto ctx = tools::makePlanningContext(problem, options);
+    ASSERT_TRUE(ctx.grid);
+    EXPECT_EQ(ctx.checkerName, "grid");
+    auto si = ctx.setup->getSpaceInformation();
+    EXPECT_EQ(si->getStateValidityChecker(), ctx.grid);
+    auto mv = std::dynamic_pointer_cast<validity::GridMotionValidator>(si->getMotionValidator());
+    ASSERT_TRUE(mv);
+    ASSERT_TRUE(ctx.referenceMotions);
+    // turn-move-turn: driving from the corridor straight through the wall into the room above is invalid, the
+    // lastValid state is valid and lies before the wall; driving along the corridor is valid
+    ob::ScopedState<> a(si->getStateSpace()), b(si->getStateSpace()), c(si->getStateSpace());
+    si->getStateSpace()->copyFromReals(a.get(), {1.5, 2.0, 0.});
+    si->getStateSpace()->copyFromReals(b.get(), {5.5, 2.0, 0.});
+    si->getStateSpace()->copyFromReals(c.get(), {1.5, 5.0, 0.});
+    EXPECT_TRUE(si->isValid(a.get()));
+    EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+    std::pair<ob::State *, double> last{si->allocState(), 0.};
+    EXPECT_FALSE(si->checkMotion(a.get(), c.get(), last));
+    EXPECT_TRUE(si->isValid(last.first));
+    EXPECT_GE(last.second, 0.);
+    EXPECT_LT(last.second, 0.5);
+    EXPECT_TRUE(ctx.checker->isValid(last.first));
+    si->freeState(last.first);
+    // clearance: a lower bound of FCL's
+    EXPECT_GT(ctx.grid->clearance(a.get()), 0.);
+    EXPECT_LE(ctx.grid->clearance(a.get()), ctx.checker->clearance(a.get()) + 1e-9);
+}
+
+TEST(GridChecker, ProblemFileKeys)
+{
+    const std::string dir = ::testing::TempDir();
+    const std::string base = std::string(MICHI_SOURCE_DIR) + "/problems/";
+    auto write = [&](const std::string &collision)
+    {
+        const std::string path = dir + "/grid_problem.yaml";
+        std::ofstream out(path);
+        out << "name: g\nrobot: {type: se2, footprint: [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]], "
+               "bounds: {x: [0, 2], y: [0, 2]}}\nstart: [0.5, 0.5, 0]\ngoal: [1.5, 1.5, 0]\n"
+            << collision;
+        return path;
+    };
+    const auto p = tools::loadProblem(write("collision: {checker: grid, grid: {resolution: 0.02, headings: 32}}\n"));
+    EXPECT_EQ(p.checker, "grid");
+    EXPECT_DOUBLE_EQ(p.grid.resolution, 0.02);
+    EXPECT_EQ(p.grid.headings, 32u);
+    auto ctx = tools::makePlanningContext(p);
+    ASSERT_TRUE(ctx.grid);
+    EXPECT_EQ(ctx.grid->table().headings(), 32);
+    EXPECT_DOUBLE_EQ(ctx.grid->table().grid().resolution, 0.02);
+    EXPECT_THROW(tools::loadProblem(write("collision: {checker: grids}\n")), tools::ProblemError);
+    EXPECT_THROW(tools::loadProblem(write("collision: {grid: {headings: 0}}\n")), tools::ProblemError);
+    EXPECT_THROW(tools::loadProblem(write("collision: {grid: {cells: 3}}\n")), tools::ProblemError);
+    EXPECT_THROW(tools::loadProblem(write("benchmark: {queries: 3-1}\n")), tools::ProblemError);
+    // a map problem aligns the table with the map's cells
+    const auto arena = tools::loadProblem(base + "movingai_arena.yaml");
+    EXPECT_DOUBLE_EQ(arena.grid.mapResolution, 0.1);
+}
+
+TEST(Dataset, SelectionsAndProblemQueries)
+{
+    EXPECT_TRUE(tools::parseQuerySelection("all").all);
+    const auto s = tools::parseQuerySelection("2-5");
+    EXPECT_FALSE(s.all);
+    EXPECT_EQ(s.first, 2u);
+    EXPECT_EQ(s.last, 5u);
+    EXPECT_EQ(tools::parseQuerySelection("4").last, 4u);
+    for (const char *bad : {"", "-", "a-b", "5-2", "1-", "-3", "1.5", "all,2"})
+        EXPECT_THROW(tools::parseQuerySelection(bad), std::invalid_argument) << bad;
+    const auto arena = tools::loadProblem(problemPath("movingai_arena"));
+    const auto all = tools::datasetOf(arena, tools::parseQuerySelection("all"));
+    ASSERT_EQ(all.entries.size(), arena.queries.size());
+    EXPECT_EQ(all.entries[1].query, 1u);
+    EXPECT_NE(all.entries[1].label.find("arena.map.scen line"), std::string::npos);
+    EXPECT_EQ(tools::datasetOf(arena, tools::parseQuerySelection("1-2")).entries.size(), 2u);
+    EXPECT_THROW(tools::datasetOf(arena, tools::parseQuerySelection("0-99")), tools::ProblemError);
+}

@@ -1,0 +1,140 @@
+#include <michi/tools/commands/VerifyChecker.h>
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+
+namespace ob = ompl::base;
+
+namespace michi
+{
+    namespace tools
+    {
+        std::string VerifyCheckerResult::json() const
+        {
+            auto quote = [](const std::string &s)
+            {
+                std::string out = "\"";
+                for (char c : s)
+                {
+                    if (c == '"' || c == '\\')
+                        out += '\\';
+                    if (static_cast<unsigned char>(c) >= 0x20)
+                        out += c;
+                }
+                return out + "\"";
+            };
+            std::ostringstream j;
+            j << std::setprecision(6);
+            j << "{\"problem\": " << quote(problem) << ", \"checker\": " << quote(checker) << ", \"states\": " << states
+              << ", \"motions\": " << motions << ", \"seed\": " << seed << ", \"unsafe_states\": " << unsafeStates
+              << ", \"unsafe_motions\": " << unsafeMotions << ", \"false_invalid_fraction\": " << falseInvalidFraction()
+              << ", \"reference_valid_states\": " << referenceValid << ", \"valid_motions\": " << motionsValid
+              << ", \"query_ns\": " << queryNs << ", \"reference_query_ns\": " << referenceQueryNs
+              << ", \"speedup\": " << (queryNs > 0. ? referenceQueryNs / queryNs : 0.)
+              << ", \"motion_ns\": " << motionNs << ", \"build_s\": " << buildSeconds << "}";
+            return j.str();
+        }
+
+        VerifyCheckerResult verifyChecker(const Problem &problem, const VerifyCheckerOptions &options)
+        {
+            using Clock = std::chrono::steady_clock;
+            VerifyCheckerResult result;
+            result.problem = problem.name;
+            result.checker = options.checker;
+            result.seed = options.seed;
+            ompl::RNG::setSeed(options.seed);
+            ContextOptions contextOptions;
+            contextOptions.checker = options.checker;
+            const auto built = Clock::now();
+            PlanningContext ctx = makePlanningContext(problem, contextOptions);
+            result.buildSeconds = std::chrono::duration<double>(Clock::now() - built).count();
+            const auto si = ctx.setup->getSpaceInformation();
+            const ob::StateValidityCheckerPtr fast = si->getStateValidityChecker();
+            const ob::MotionValidatorPtr fastMotions = si->getMotionValidator();
+            const validity::FclValidityChecker &reference = *ctx.checker;
+            validity::ConservativeMotionValidator referenceMotions(si, ctx.checker);
+            auto sampler = si->allocStateSampler();
+            const double near = options.motionFraction * si->getMaximumExtent();
+
+            const std::size_t batch = 1000;  // states a planner just made are in the cache; so are these
+            std::vector<ob::State *> states(batch), targets(batch);
+            for (std::size_t i = 0; i < batch; ++i)
+            {
+                states[i] = si->allocState();
+                targets[i] = si->allocState();
+            }
+            std::vector<char> fastValid(batch), refValid(batch);
+            double fastSeconds = 0., refSeconds = 0., motionSeconds = 0.;
+            std::size_t sink = 0;
+            for (std::size_t done = 0; done < options.states; done += batch)
+            {
+                const std::size_t n = std::min(batch, options.states - done);
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    sampler->sampleUniform(states[i]);
+                    sampler->sampleUniformNear(targets[i], states[i], near);
+                    si->enforceBounds(targets[i]);
+                }
+                // states: the fast checker, then FCL, timed over the whole batch
+                auto t0 = Clock::now();
+                for (std::size_t i = 0; i < n; ++i)
+                    fastValid[i] = fast->isValid(states[i]) ? 1 : 0;
+                auto t1 = Clock::now();
+                for (std::size_t i = 0; i < n; ++i)
+                    refValid[i] = reference.isValid(states[i]) ? 1 : 0;
+                auto t2 = Clock::now();
+                fastSeconds += std::chrono::duration<double>(t1 - t0).count();
+                refSeconds += std::chrono::duration<double>(t2 - t1).count();
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    sink += fastValid[i];
+                    if (refValid[i])
+                    {
+                        ++result.referenceValid;
+                        if (!fastValid[i])
+                            ++result.falseInvalid;
+                    }
+                    else if (fastValid[i])
+                        ++result.unsafeStates;
+                }
+                // motions: the fast motion validator; FCL (exact) on those it calls valid
+                t0 = Clock::now();
+                for (std::size_t i = 0; i < n; ++i)
+                    fastValid[i] = fastMotions->checkMotion(states[i], targets[i]) ? 1 : 0;
+                t1 = Clock::now();
+                motionSeconds += std::chrono::duration<double>(t1 - t0).count();
+                for (std::size_t i = 0; i < n; ++i)
+                    if (fastValid[i])
+                    {
+                        ++result.motionsValid;
+                        if (!referenceMotions.checkMotion(states[i], targets[i]))
+                            ++result.unsafeMotions;
+                    }
+                result.states += n;
+                result.motions += n;
+                if (options.progress && (done / batch) % 100 == 99)
+                    *options.progress << "michi verify-checker: " << result.states << " states, unsafe "
+                                      << result.unsafeStates << " / " << result.unsafeMotions << std::endl;
+            }
+            for (std::size_t i = 0; i < batch; ++i)
+            {
+                si->freeState(states[i]);
+                si->freeState(targets[i]);
+            }
+            if (result.states > 0)
+            {
+                result.queryNs = 1e9 * fastSeconds / result.states;
+                result.referenceQueryNs = 1e9 * refSeconds / result.states;
+                result.motionNs = 1e9 * motionSeconds / result.motions;
+            }
+            (void)sink;
+            return result;
+        }
+    }  // namespace tools
+}  // namespace michi

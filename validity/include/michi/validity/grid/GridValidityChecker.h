@@ -1,0 +1,117 @@
+#ifndef MICHI_VALIDITY_GRID_GRID_VALIDITY_CHECKER_
+#define MICHI_VALIDITY_GRID_GRID_VALIDITY_CHECKER_
+
+#include <michi/validity/grid/HeadingTable.h>
+#include <michi/validity/scene/Scene.h>
+
+#include <ompl/base/StateValidityChecker.h>
+
+#include <array>
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace michi
+{
+    namespace validity
+    {
+        /** \brief Settings of the grid checker (collision.grid in a problem file, docs/checking.md). */
+        struct GridCheckerSettings
+        {
+            /** \brief Table cell size (metres); 0: automatic: the map's cell (or 1/200 of the larger side of the
+                bounds when the scene is no map) divided by the smallest whole number that makes a table cell at
+                most a quarter of the footprint's smaller width, within a budget of 6 million cells. */
+            double resolution{0.};
+            /** \brief The map's cell size when the scene is a grid map (set by the problem loader), else 0. */
+            double mapResolution{0.};
+            /** \brief A corner of the map's cells: table cells are aligned with it. */
+            Eigen::Vector2d origin{Eigen::Vector2d::Zero()};
+            unsigned int headings{16};  ///< heading bins over 2 pi
+        };
+
+        /** \brief The table cell size GridCheckerSettings::resolution = 0 stands for. */
+        double automaticGridResolution(const GridCheckerSettings &settings,
+                                       const std::vector<Eigen::Vector2d> &footprint,
+                                       const std::array<double, 4> &bounds);
+
+        /** \brief Grid-native SE(2) state validity checking (issue 14): the scene rasterised into an occupancy
+            grid (rasterizeScene), a HeadingTable of the footprint over it, and a distance transform of the grid.
+
+            isValid() is one bit of the table: the cell of (x, y) and the heading bin of the yaw. The table is
+            conservative: a state it calls valid is free for FCL at every pose of its cell and heading bin, so
+            it never lets a collision through; near obstacles it calls some free states invalid (the footprint is
+            grown by half a table cell and swept over half a heading bin). States outside the grid are invalid.
+
+            clearance() is a lower bound of the distance from the footprint to the obstacles, from the distance
+            transform at points of the footprint's outline (table cells apart), less the cells' sizes; 0 for
+            invalid states.
+
+            The grid covers \e bounds (x min, x max, y min, y max) grown by the footprint's circumradius, so every
+            obstacle a valid state could touch is in it. States are SE(2) (read as x, y, yaw through
+            StateSpace::copyToReals, or directly for SE2StateSpace and its descendants). Thread-safe for queries;
+            refresh() must not run during queries. */
+        class GridValidityChecker : public ompl::base::StateValidityChecker
+        {
+        public:
+            GridValidityChecker(const ompl::base::SpaceInformationPtr &si, std::vector<Eigen::Vector2d> footprint,
+                                ScenePtr scene, const std::array<double, 4> &bounds,
+                                const GridCheckerSettings &settings = GridCheckerSettings());
+
+            bool isValid(const ompl::base::State *state) const override;
+            bool isValid(const ompl::base::State *state, double &dist) const override;
+            double clearance(const ompl::base::State *state) const override;
+
+            /** \brief The same on a pose. */
+            bool isValidPose(double x, double y, double yaw) const
+            {
+                return table_->validPose(x, y, yaw);
+            }
+            double clearancePose(double x, double y, double yaw) const;
+
+            const HeadingTable &table() const
+            {
+                return *table_;
+            }
+            /** \brief Distance (metres) from the centre of cell (i, j) to the centre of the nearest occupied cell;
+                +inf when no cell is occupied or outside the grid. */
+            double cellDistance(int i, int j) const;
+            const std::vector<Eigen::Vector2d> &footprint() const
+            {
+                return footprint_;
+            }
+            const ScenePtr &scene() const
+            {
+                return scene_;
+            }
+            /** \brief Seconds taken by the last build or refresh (rasterisation, table, distance transform). */
+            double buildSeconds() const
+            {
+                return buildSeconds_;
+            }
+            /** \brief Bytes of the table, occupancy, prefix sums and distance transform. */
+            std::size_t bytes() const;
+            /** \brief One line: grid size, resolution, headings, memory, build time. */
+            std::string describe() const;
+
+            /** \brief Rasterise the scene again (it changed: a door closed) and recompute the table only around
+                the cells that changed; returns the box of table cells recomputed (empty: nothing changed). */
+            CellBox refresh();
+
+        private:
+            void distanceTransform();
+            std::vector<Eigen::Vector2d> footprint_;
+            std::vector<Eigen::Vector2d> outline_;  ///< points of the footprint's outline, at most a cell apart
+            ScenePtr scene_;
+            double tolerance_{0.};
+            std::unique_ptr<HeadingTable> table_;
+            std::vector<float> distance_;  ///< cellDistance() per cell, metres
+            double buildSeconds_{0.};
+            bool se2_{false};  ///< the space is an SE2StateSpace (read directly)
+        };
+
+        using GridValidityCheckerPtr = std::shared_ptr<GridValidityChecker>;
+    }  // namespace validity
+}  // namespace michi
+
+#endif

@@ -1,0 +1,180 @@
+#ifndef MICHI_VALIDITY_GRID_HEADING_TABLE_
+#define MICHI_VALIDITY_GRID_HEADING_TABLE_
+
+#include <michi/validity/grid/OccupancyGrid.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace michi
+{
+    namespace validity
+    {
+        /** \brief Cells (dx, dy) relative to a pose's cell: row dy, columns x0..x1 (inclusive). */
+        struct GridSpan
+        {
+            int dy{0};
+            int x0{0};
+            int x1{0};
+        };
+
+        /** \brief A rectangle of cells, columns i0..i1 and rows j0..j1 inclusive; empty when i0 > i1. */
+        struct CellBox
+        {
+            int i0{0}, i1{-1}, j0{0}, j1{-1};
+            bool empty() const
+            {
+                return i0 > i1 || j0 > j1;
+            }
+        };
+
+        /** \brief The bit-packed (x, y, heading) validity table of a planar footprint on an occupancy grid.
+
+            Heading bin k covers yaws [k d - d / 2, k d + d / 2] (d = 2 pi / headings; bin 0 is centred on yaw 0).
+            Entry (i, j, k) is 1 (valid) only when the footprint is free at \e every pose whose position lies in
+            the closed square of cell (i, j) and whose yaw lies in bin k: the footprint is swept over the bin
+            (sampled every d / n, each sample grown by the most a footprint point moves between samples,
+            R d / (2 n)) and grown by the cell (a pose anywhere in its cell, an obstacle anywhere in an occupied
+            cell), and every cell that this grown, swept footprint meets (its "stamp") must be free. Valid entries
+            are therefore free for FCL too, whatever the pose within them; invalid ones may still hold free poses
+            (the table is conservative). The table is the occupancy grid dilated by each heading's stamp, computed
+            with row prefix sums (cells x stamp rows per heading).
+
+            Summaries of 8 x 8-cell blocks and of cells (valid at every heading, invalid at every heading) answer
+            most queries from a few kilobytes and two bits a cell that stay in the cache; the rest read the table.
+
+            Memory: headings x width x height bits plus a byte of occupancy per cell (and, while computing, a
+            32-bit running count per cell of the rows computed). A 2048 x 2048 table with 16 headings holds
+            8 MiB of bits and 12 MiB in all.
+
+            Queries are const and thread-safe; setOccupied() is not (no query may run meanwhile). */
+        class HeadingTable
+        {
+        public:
+            /** \param footprint the robot's outline in its own frame (any simple polygon)
+                \param headings number of heading bins (>= 1)
+                \param tolerance how far (metres) an obstacle may reach into a cell marked free (see
+                rasterizeScene); the stamps are grown by it */
+            HeadingTable(OccupancyGrid grid, std::vector<Eigen::Vector2d> footprint, unsigned int headings,
+                         double tolerance = 0.);
+
+            int width() const
+            {
+                return grid_.width;
+            }
+            int height() const
+            {
+                return grid_.height;
+            }
+            int headings() const
+            {
+                return headings_;
+            }
+            /** \brief Radians per heading bin. */
+            double headingStep() const
+            {
+                return step_;
+            }
+            const OccupancyGrid &grid() const
+            {
+                return grid_;
+            }
+            /** \brief Heading bin of a yaw (any real). */
+            int headingBin(double yaw) const;
+            /** \brief Table entry; false outside the grid. \e k is taken modulo headings(). */
+            bool valid(int i, int j, int k) const
+            {
+                if (!grid_.inside(i, j))
+                    return false;
+                k %= headings_;
+                if (k < 0)
+                    k += headings_;
+                const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+                return (bits_[word] >> (i & 63)) & 1u;
+            }
+            /** \brief The entry holding pose (x, y, yaw); false outside the grid or for a non-finite value. The hot
+                path of the grid checker: a few multiplications and one bit (no division, no library call). */
+            bool validPose(double x, double y, double yaw) const
+            {
+                const double fx = (x - grid_.origin.x()) * inverseResolution_;
+                const double fy = (y - grid_.origin.y()) * inverseResolution_;
+                if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height && std::abs(yaw) < 1e6))
+                    return false;
+                const int i = static_cast<int>(fx), j = static_cast<int>(fy);  // >= 0: truncation is floor
+                // most queries end here: blocks of 8 x 8 cells valid (or invalid) at every heading, a few kB
+                const std::size_t b = static_cast<std::size_t>(j >> BLOCK_SHIFT) * blocksPerRow_ +
+                                      static_cast<std::size_t>(i >> BLOCK_SHIFT);
+                if ((blockAllValid_[b >> 6] >> (b & 63)) & 1u)
+                    return true;
+                if ((blockAllInvalid_[b >> 6] >> (b & 63)) & 1u)
+                    return false;
+                // then cells valid (or invalid) at every heading: two bits a cell
+                const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ * 64 + static_cast<std::size_t>(i);
+                if ((cellAllValid_[c >> 6] >> (c & 63)) & 1u)
+                    return true;
+                if ((cellAllInvalid_[c >> 6] >> (c & 63)) & 1u)
+                    return false;
+                const double fb = yaw * inverseStep_ + 0.5;
+                int k = static_cast<int>(fb);
+                k -= (fb < k) ? 1 : 0;  // floor
+                if (k < 0)
+                    k += headings_;
+                if (k >= headings_)
+                    k -= headings_;
+                if (k < 0 || k >= headings_)
+                    k = headingBin(yaw);  // more than a turn away from [-pi, pi)
+                const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+                return (bits_[word] >> (i & 63)) & 1u;
+            }
+            /** \brief Cells that, when occupied, make heading \e k invalid, relative to the pose's cell. */
+            const std::vector<GridSpan> &stamp(int k) const
+            {
+                return stamps_[static_cast<std::size_t>(k)];
+            }
+            /** \brief Radius of the smallest circle about the robot's origin holding the footprint. */
+            double circumradius() const
+            {
+                return circumradius_;
+            }
+            /** \brief Number of valid entries. */
+            std::size_t validCount() const;
+            /** \brief Bytes held (bits, occupancy). */
+            std::size_t bytes() const;
+
+            /** \brief Mark cells occupied or free and recompute the entries they can change; returns the box of
+                table cells whose entries were recomputed (all headings). Cells outside the grid are ignored. */
+            CellBox setOccupied(const std::vector<std::pair<int, int>> &cells, bool occupied);
+            /** \brief Take a new occupancy of the same grid (size, resolution, origin) and recompute only around
+                the cells that changed; returns the recomputed box (empty when nothing changed). */
+            CellBox update(const OccupancyGrid &grid);
+
+        private:
+            void makeStamps(const std::vector<Eigen::Vector2d> &footprint, double tolerance);
+            void computeRegion(const CellBox &box);
+            /** \brief Recompute the block summaries of the blocks meeting \e box. */
+            void summarise(const CellBox &box);
+            static constexpr int BLOCK_SHIFT = 3;  ///< summary blocks of 8 x 8 cells
+            CellBox affected(const CellBox &changed) const;
+            OccupancyGrid grid_;
+            int headings_{16};
+            double step_{0.};
+            double inverseStep_{0.};
+            double inverseResolution_{0.};
+            double circumradius_{0.};
+            std::size_t wordsPerRow_{0};
+            std::vector<std::uint64_t> bits_;
+            std::size_t blocksPerRow_{0};
+            std::vector<std::uint64_t> blockAllValid_;    ///< per 8 x 8 block: every entry valid
+            std::vector<std::uint64_t> blockAllInvalid_;  ///< per 8 x 8 block: every entry invalid
+            std::vector<std::uint64_t> cellAllValid_;    ///< per cell (rows of wordsPerRow_ words): every heading valid
+            std::vector<std::uint64_t> cellAllInvalid_;  ///< per cell: every heading invalid
+            std::vector<std::vector<GridSpan>> stamps_;
+            int reach_[4]{0, 0, 0, 0};  ///< min dx, max dx, min dy, max dy over all stamps
+        };
+    }  // namespace validity
+}  // namespace michi
+
+#endif

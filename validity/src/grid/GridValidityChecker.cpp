@@ -1,0 +1,272 @@
+#include <michi/validity/grid/GridValidityChecker.h>
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace ob = ompl::base;
+
+namespace michi
+{
+    namespace validity
+    {
+        namespace
+        {
+            /** Smallest width of the footprint over all directions (its convex hull's, edge directions). */
+            double minimumWidth(const std::vector<Eigen::Vector2d> &footprint)
+            {
+                double best = std::numeric_limits<double>::infinity();
+                for (std::size_t e = 0; e < footprint.size(); ++e)
+                {
+                    const Eigen::Vector2d a = footprint[e], b = footprint[(e + 1) % footprint.size()];
+                    const Eigen::Vector2d d = b - a;
+                    if (d.norm() <= 0.)
+                        continue;
+                    const Eigen::Vector2d n(-d.y() / d.norm(), d.x() / d.norm());
+                    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+                    for (const auto &p : footprint)
+                    {
+                        lo = std::min(lo, n.dot(p - a));
+                        hi = std::max(hi, n.dot(p - a));
+                    }
+                    best = std::min(best, hi - lo);
+                }
+                return best;
+            }
+
+            /** Felzenszwalb & Huttenlocher's 1-D squared distance transform of f (n values) into d. */
+            void squaredDistance1d(const std::vector<double> &f, std::vector<double> &d, std::vector<int> &v,
+                                   std::vector<double> &z)
+            {
+                const int n = static_cast<int>(f.size());
+                const double inf = std::numeric_limits<double>::infinity();
+                int k = -1;
+                for (int q = 0; q < n; ++q)
+                {
+                    if (f[q] == inf)
+                        continue;
+                    while (k >= 0)
+                    {
+                        const double s =
+                            ((f[q] + q * double(q)) - (f[v[k]] + v[k] * double(v[k]))) / (2. * q - 2. * v[k]);
+                        if (s <= z[k])
+                            --k;
+                        else
+                            break;
+                    }
+                    ++k;
+                    v[k] = q;
+                    z[k] = k == 0 ? -inf
+                                  : ((f[q] + q * double(q)) - (f[v[k - 1]] + v[k - 1] * double(v[k - 1]))) /
+                                        (2. * q - 2. * v[k - 1]);
+                    z[k + 1] = inf;
+                }
+                if (k < 0)
+                {
+                    std::fill(d.begin(), d.end(), inf);
+                    return;
+                }
+                z[0] = -inf;
+                int j = 0;
+                for (int q = 0; q < n; ++q)
+                {
+                    while (z[j + 1] < q)
+                        ++j;
+                    d[q] = (q - v[j]) * double(q - v[j]) + f[v[j]];
+                }
+            }
+        }  // namespace
+
+        double automaticGridResolution(const GridCheckerSettings &settings,
+                                       const std::vector<Eigen::Vector2d> &footprint,
+                                       const std::array<double, 4> &bounds)
+        {
+            if (settings.resolution > 0.)
+                return settings.resolution;
+            const double extent = std::max(bounds[1] - bounds[0], bounds[3] - bounds[2]);
+            const double base = settings.mapResolution > 0. ? settings.mapResolution : extent / 200.;
+            const double width = minimumWidth(footprint);
+            double divisions = std::max(1., std::ceil(base / (0.25 * width) - 1e-9));
+            // at most 6 million table cells: with 16 headings 7 bytes a cell (bits, occupancy, distance), 42 MB
+            const double cells = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) / (base * base);
+            while (divisions > 1. && cells * divisions * divisions > 6e6)
+                divisions -= 1.;
+            return base / divisions;
+        }
+
+        GridValidityChecker::GridValidityChecker(const ob::SpaceInformationPtr &si,
+                                                 std::vector<Eigen::Vector2d> footprint, ScenePtr scene,
+                                                 const std::array<double, 4> &bounds,
+                                                 const GridCheckerSettings &settings)
+            : ob::StateValidityChecker(si), footprint_(std::move(footprint)), scene_(std::move(scene))
+        {
+            specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;
+            se2_ = dynamic_cast<const ob::SE2StateSpace *>(si->getStateSpace().get()) != nullptr;
+            if (!se2_ && si->getStateSpace()->getDimension() != 3)
+                throw std::invalid_argument("GridValidityChecker: needs an SE(2) state space (x, y, yaw)");
+            if (!scene_)
+                throw std::invalid_argument("GridValidityChecker: no scene");
+            if (settings.headings < 1 || settings.headings > 4096)
+                throw std::invalid_argument("GridValidityChecker: headings must be in 1..4096");
+            for (double b : bounds)
+                if (!std::isfinite(b))
+                    throw std::invalid_argument("GridValidityChecker: bounds must be finite");
+            const auto start = std::chrono::steady_clock::now();
+            const double res = automaticGridResolution(settings, footprint_, bounds);
+            if (!(res > 0.))
+                throw std::invalid_argument("GridValidityChecker: resolution must be positive");
+            double radius = 0.;
+            for (const auto &p : footprint_)
+                radius = std::max(radius, p.norm());
+            const double pad = radius + 2. * res;
+            const Eigen::Vector2d o = settings.origin;
+            const double i0 = std::floor((bounds[0] - pad - o.x()) / res),
+                         i1 = std::ceil((bounds[1] + pad - o.x()) / res);
+            const double j0 = std::floor((bounds[2] - pad - o.y()) / res),
+                         j1 = std::ceil((bounds[3] + pad - o.y()) / res);
+            if ((i1 - i0) * (j1 - j0) > 2e8)
+                throw std::invalid_argument("GridValidityChecker: a grid of " + std::to_string(i1 - i0) + " x " +
+                                            std::to_string(j1 - j0) +
+                                            " cells is too large; set collision.grid.resolution");
+            tolerance_ = 1e-6 * res;
+            const Eigen::Vector2d origin(o.x() + i0 * res, o.y() + j0 * res);
+            OccupancyGrid grid =
+                rasterizeScene(*scene_, res, origin, static_cast<int>(i1 - i0), static_cast<int>(j1 - j0), tolerance_);
+            table_ = std::make_unique<HeadingTable>(std::move(grid), footprint_, settings.headings, tolerance_);
+            // points of the outline at most one cell apart, for clearance()
+            for (std::size_t e = 0; e < footprint_.size(); ++e)
+            {
+                const Eigen::Vector2d a = footprint_[e], b = footprint_[(e + 1) % footprint_.size()];
+                const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / res)));
+                for (int s = 0; s < n; ++s)
+                    outline_.push_back(a + (b - a) * (double(s) / n));
+            }
+            distanceTransform();
+            buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+
+        void GridValidityChecker::distanceTransform()
+        {
+            const OccupancyGrid &g = table_->grid();
+            const int w = g.width, h = g.height;
+            const double inf = std::numeric_limits<double>::infinity();
+            std::vector<double> column(static_cast<std::size_t>(w) * h);
+            {
+                std::vector<double> f(h), d(h), z(h + 1);
+                std::vector<int> v(h);
+                for (int i = 0; i < w; ++i)
+                {
+                    for (int j = 0; j < h; ++j)
+                        f[j] = g.cells[static_cast<std::size_t>(j) * w + i] ? 0. : inf;
+                    squaredDistance1d(f, d, v, z);
+                    for (int j = 0; j < h; ++j)
+                        column[static_cast<std::size_t>(j) * w + i] = d[j];
+                }
+            }
+            distance_.assign(static_cast<std::size_t>(w) * h, std::numeric_limits<float>::infinity());
+            std::vector<double> f(w), d(w), z(w + 1);
+            std::vector<int> v(w);
+            for (int j = 0; j < h; ++j)
+            {
+                std::copy(column.begin() + static_cast<std::ptrdiff_t>(j) * w,
+                          column.begin() + static_cast<std::ptrdiff_t>(j + 1) * w, f.begin());
+                squaredDistance1d(f, d, v, z);
+                for (int i = 0; i < w; ++i)
+                    distance_[static_cast<std::size_t>(j) * w + i] = static_cast<float>(std::sqrt(d[i]) * g.resolution);
+            }
+        }
+
+        double GridValidityChecker::cellDistance(int i, int j) const
+        {
+            const OccupancyGrid &g = table_->grid();
+            if (!g.inside(i, j))
+                return std::numeric_limits<double>::infinity();
+            return distance_[static_cast<std::size_t>(j) * g.width + i];
+        }
+
+        bool GridValidityChecker::isValid(const ob::State *state) const
+        {
+            if (se2_)
+            {
+                const auto *s = state->as<ob::SE2StateSpace::StateType>();
+                return isValidPose(s->getX(), s->getY(), s->getYaw());
+            }
+            std::vector<double> v;
+            si_->getStateSpace()->copyToReals(v, state);
+            return isValidPose(v[0], v[1], v[2]);
+        }
+
+        bool GridValidityChecker::isValid(const ob::State *state, double &dist) const
+        {
+            dist = clearance(state);
+            return isValid(state);
+        }
+
+        double GridValidityChecker::clearance(const ob::State *state) const
+        {
+            if (se2_)
+            {
+                const auto *s = state->as<ob::SE2StateSpace::StateType>();
+                return clearancePose(s->getX(), s->getY(), s->getYaw());
+            }
+            std::vector<double> v;
+            si_->getStateSpace()->copyToReals(v, state);
+            return clearancePose(v[0], v[1], v[2]);
+        }
+
+        double GridValidityChecker::clearancePose(double x, double y, double yaw) const
+        {
+            if (!table_->validPose(x, y, yaw))
+                return 0.;
+            // the table says the footprint is free, so the nearest obstacle lies outside it: its distance is
+            // that of the outline. A point q of the outline is at least (distance between cell centres)
+            // - sqrt(2) r from the occupied cells (q to its cell centre, the occupied cell's centre to its
+            // corner), and every outline point is within r / 2 of a sampled one.
+            const OccupancyGrid &g = table_->grid();
+            const Eigen::Rotation2Dd rot(yaw);
+            double best = std::numeric_limits<double>::infinity();
+            for (const auto &p : outline_)
+            {
+                const Eigen::Vector2d q = rot * p + Eigen::Vector2d(x, y);
+                best = std::min(best, cellDistance(g.column(q.x()), g.row(q.y())));
+            }
+            if (!std::isfinite(best))
+                return best;
+            return std::max(0., best - (std::sqrt(2.) + 0.5) * g.resolution - tolerance_);
+        }
+
+        std::size_t GridValidityChecker::bytes() const
+        {
+            return table_->bytes() + distance_.size() * sizeof(float);
+        }
+
+        std::string GridValidityChecker::describe() const
+        {
+            std::ostringstream s;
+            const auto &g = table_->grid();
+            s << "grid checker: " << g.width << " x " << g.height << " cells of " << g.resolution << " m, "
+              << table_->headings() << " headings, " << std::setprecision(3) << bytes() / (1024. * 1024.)
+              << " MiB, built in " << buildSeconds_ << " s";
+            return s.str();
+        }
+
+        CellBox GridValidityChecker::refresh()
+        {
+            const auto start = std::chrono::steady_clock::now();
+            const OccupancyGrid &g = table_->grid();
+            const OccupancyGrid now = rasterizeScene(*scene_, g.resolution, g.origin, g.width, g.height, tolerance_);
+            const CellBox box = table_->update(now);
+            if (!box.empty())
+                distanceTransform();
+            buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            return box;
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,357 @@
+#include <michi/validity/grid/HeadingTable.h>
+#include <michi/validity/scene/Shape.h>
+
+#include <boost/math/constants/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace michi
+{
+    namespace validity
+    {
+        namespace
+        {
+            const double TWO_PI = boost::math::constants::two_pi<double>();
+
+            double cross(const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+            }
+
+            /** Convex hull (Andrew's monotone chain), counter-clockwise, no repeated last point. */
+            std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p)
+            {
+                std::sort(p.begin(), p.end(),
+                          [](const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+                          {
+                              return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+                          });
+                std::vector<Eigen::Vector2d> h(2 * p.size());
+                std::size_t k = 0;
+                for (std::size_t i = 0; i < p.size(); ++i)
+                {
+                    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0.)
+                        --k;
+                    h[k++] = p[i];
+                }
+                for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i)
+                {
+                    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0.)
+                        --k;
+                    h[k++] = p[i - 1];
+                }
+                h.resize(k > 1 ? k - 1 : k);
+                return h;
+            }
+
+            /** x range of a convex polygon on the line y = c; false when the line misses it. */
+            bool rowInterval(const std::vector<Eigen::Vector2d> &hull, double c, double &xa, double &xb)
+            {
+                xa = std::numeric_limits<double>::infinity();
+                xb = -xa;
+                for (std::size_t e = 0; e < hull.size(); ++e)
+                {
+                    const Eigen::Vector2d &a = hull[e], &b = hull[(e + 1) % hull.size()];
+                    if ((a.y() - c) * (b.y() - c) > 0.)
+                        continue;
+                    if (a.y() == b.y())
+                    {
+                        xa = std::min({xa, a.x(), b.x()});
+                        xb = std::max({xb, a.x(), b.x()});
+                        continue;
+                    }
+                    const double x = a.x() + (b.x() - a.x()) * (c - a.y()) / (b.y() - a.y());
+                    xa = std::min(xa, x);
+                    xb = std::max(xb, x);
+                }
+                return xa <= xb;
+            }
+        }  // namespace
+
+        HeadingTable::HeadingTable(OccupancyGrid grid, std::vector<Eigen::Vector2d> footprint, unsigned int headings,
+                                   double tolerance)
+            : grid_(std::move(grid)), headings_(static_cast<int>(headings))
+        {
+            if (headings < 1 || headings > 4096)
+                throw std::invalid_argument("HeadingTable: headings must be in 1..4096, got " +
+                                            std::to_string(headings));
+            if (grid_.width < 1 || grid_.height < 1 || !(grid_.resolution > 0.) ||
+                grid_.cells.size() != static_cast<std::size_t>(grid_.width) * grid_.height)
+                throw std::invalid_argument("HeadingTable: empty or inconsistent occupancy grid");
+            if (footprint.size() < 3)
+                throw std::invalid_argument("HeadingTable: the footprint needs at least 3 points");
+            step_ = TWO_PI / headings_;
+            inverseStep_ = 1. / step_;
+            inverseResolution_ = 1. / grid_.resolution;
+            for (const auto &p : footprint)
+                circumradius_ = std::max(circumradius_, p.norm());
+            makeStamps(footprint, tolerance);
+            wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
+            bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
+            blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
+            const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
+            blockAllValid_.assign(blocks / 64 + 1, 0);
+            blockAllInvalid_.assign(blocks / 64 + 1, 0);
+            cellAllValid_.assign(wordsPerRow_ * grid_.height, 0);
+            cellAllInvalid_.assign(wordsPerRow_ * grid_.height, 0);
+            computeRegion(CellBox{0, grid_.width - 1, 0, grid_.height - 1});
+        }
+
+        void HeadingTable::summarise(const CellBox &box)
+        {
+            if (box.empty())
+                return;
+            const int s = BLOCK_SHIFT, size = 1 << BLOCK_SHIFT;
+            for (int j = box.j0; j <= box.j1; ++j)
+                for (int i = box.i0; i <= box.i1; ++i)
+                {
+                    bool allValid = true, allInvalid = true;
+                    for (int k = 0; k < headings_ && (allValid || allInvalid); ++k)
+                    {
+                        const bool v = valid(i, j, k);
+                        allValid = allValid && v;
+                        allInvalid = allInvalid && !v;
+                    }
+                    const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ * 64 + static_cast<std::size_t>(i);
+                    const std::uint64_t bit = std::uint64_t{1} << (c & 63);
+                    cellAllValid_[c >> 6] = allValid ? (cellAllValid_[c >> 6] | bit) : (cellAllValid_[c >> 6] & ~bit);
+                    cellAllInvalid_[c >> 6] =
+                        allInvalid ? (cellAllInvalid_[c >> 6] | bit) : (cellAllInvalid_[c >> 6] & ~bit);
+                }
+            for (int bj = box.j0 >> s; bj <= box.j1 >> s; ++bj)
+                for (int bi = box.i0 >> s; bi <= box.i1 >> s; ++bi)
+                {
+                    bool allValid = true, allInvalid = true;
+                    for (int k = 0; k < headings_ && (allValid || allInvalid); ++k)
+                        for (int j = bj * size; j < (bj + 1) * size && (allValid || allInvalid); ++j)
+                            for (int i = bi * size; i < (bi + 1) * size; ++i)
+                            {
+                                // cells outside the grid count as invalid (validPose never reaches them)
+                                const bool v = valid(i, j, k);
+                                allValid = allValid && v && grid_.inside(i, j);
+                                allInvalid = allInvalid && !v;
+                            }
+                    const std::size_t b = static_cast<std::size_t>(bj) * blocksPerRow_ + static_cast<std::size_t>(bi);
+                    const std::uint64_t bit = std::uint64_t{1} << (b & 63);
+                    blockAllValid_[b >> 6] =
+                        allValid ? (blockAllValid_[b >> 6] | bit) : (blockAllValid_[b >> 6] & ~bit);
+                    blockAllInvalid_[b >> 6] =
+                        allInvalid ? (blockAllInvalid_[b >> 6] | bit) : (blockAllInvalid_[b >> 6] & ~bit);
+                }
+        }
+
+        int HeadingTable::headingBin(double yaw) const
+        {
+            const double b = std::floor(yaw / step_ + 0.5);
+            if (!std::isfinite(b))
+                return 0;
+            long long k = static_cast<long long>(std::fmod(b, static_cast<double>(headings_)));
+            if (k < 0)
+                k += headings_;
+            return static_cast<int>(k);
+        }
+
+        void HeadingTable::makeStamps(const std::vector<Eigen::Vector2d> &footprint, double tolerance)
+        {
+            const double r = grid_.resolution;
+            // convex pieces of the footprint: triangles (any simple polygon)
+            std::vector<std::array<Eigen::Vector2d, 3>> triangles;
+            for (const auto &t : triangulatePolygon(footprint))
+                triangles.push_back({footprint[t[0]], footprint[t[1]], footprint[t[2]]});
+            // samples of the bin so that a footprint point moves at most 0.05 cells between one and the next
+            const int samples = std::max(1, static_cast<int>(std::ceil(step_ * circumradius_ / (0.1 * r))));
+            const double sweep = circumradius_ * (step_ / samples) / 2.;  // >= 2 R sin(step / (4 samples))
+            const double grow = r + sweep + tolerance + 1e-9 * (1. + circumradius_);
+            reach_[0] = reach_[2] = std::numeric_limits<int>::max();
+            reach_[1] = reach_[3] = std::numeric_limits<int>::min();
+            stamps_.resize(headings_);
+            for (int k = 0; k < headings_; ++k)
+            {
+                std::map<int, std::vector<std::pair<int, int>>> rows;
+                for (int s = 0; s < samples; ++s)
+                {
+                    const double yaw = k * step_ - step_ / 2. + (s + 0.5) * step_ / samples;
+                    const Eigen::Rotation2Dd rot(yaw);
+                    for (const auto &t : triangles)
+                    {
+                        std::vector<Eigen::Vector2d> points;
+                        for (const auto &v : t)
+                        {
+                            const Eigen::Vector2d w = rot * v;
+                            for (double sx : {-grow, grow})
+                                for (double sy : {-grow, grow})
+                                    points.emplace_back(w.x() + sx, w.y() + sy);
+                        }
+                        const auto hull = convexHull(points);
+                        double ymin = hull[0].y(), ymax = ymin;
+                        for (const auto &h : hull)
+                        {
+                            ymin = std::min(ymin, h.y());
+                            ymax = std::max(ymax, h.y());
+                        }
+                        for (int dy = static_cast<int>(std::ceil(ymin / r - 1e-9));
+                             dy <= static_cast<int>(std::floor(ymax / r + 1e-9)); ++dy)
+                        {
+                            double xa = 0., xb = 0.;
+                            // the line through the row's cell centres, clamped into the hull's y range
+                            const double c = std::min(ymax, std::max(ymin, dy * r));
+                            if (!rowInterval(hull, c, xa, xb))
+                                continue;
+                            const int x0 = static_cast<int>(std::ceil(xa / r - 1e-9));
+                            const int x1 = static_cast<int>(std::floor(xb / r + 1e-9));
+                            if (x0 <= x1)
+                                rows[dy].emplace_back(x0, x1);
+                        }
+                    }
+                }
+                auto &stamp = stamps_[k];
+                for (auto &row : rows)
+                {
+                    auto &iv = row.second;
+                    std::sort(iv.begin(), iv.end());
+                    for (const auto &v : iv)
+                        if (!stamp.empty() && stamp.back().dy == row.first && v.first <= stamp.back().x1 + 1)
+                            stamp.back().x1 = std::max(stamp.back().x1, v.second);
+                        else
+                            stamp.push_back(GridSpan{row.first, v.first, v.second});
+                }
+                for (const auto &span : stamp)
+                {
+                    reach_[0] = std::min(reach_[0], span.x0);
+                    reach_[1] = std::max(reach_[1], span.x1);
+                    reach_[2] = std::min(reach_[2], span.dy);
+                    reach_[3] = std::max(reach_[3], span.dy);
+                }
+            }
+        }
+
+        void HeadingTable::computeRegion(const CellBox &box)
+        {
+            if (box.empty())
+                return;
+            const int w = grid_.width, h = grid_.height;
+            const int n = box.i1 - box.i0 + 1;
+            std::vector<std::uint8_t> blocked(static_cast<std::size_t>(n));
+            // running counts of occupied cells of the rows the box's stamps read (only while computing)
+            const int r0 = std::max(0, box.j0 + reach_[2]), r1 = std::min(h - 1, box.j1 + reach_[3]);
+            std::vector<std::int32_t> prefix(static_cast<std::size_t>(std::max(0, r1 - r0 + 1)) * (w + 1), 0);
+            for (int j = r0; j <= r1; ++j)
+            {
+                std::int32_t *p = prefix.data() + static_cast<std::size_t>(j - r0) * (w + 1);
+                const std::uint8_t *c = grid_.cells.data() + static_cast<std::size_t>(j) * w;
+                for (int i = 0; i < w; ++i)
+                    p[i + 1] = p[i] + (c[i] ? 1 : 0);
+            }
+            for (int k = 0; k < headings_; ++k)
+                for (int j = box.j0; j <= box.j1; ++j)
+                {
+                    std::fill(blocked.begin(), blocked.end(), 0);
+                    for (const auto &span : stamps_[k])
+                    {
+                        const int jj = j + span.dy;
+                        if (jj < 0 || jj >= h)
+                            continue;
+                        const std::int32_t *p = prefix.data() + static_cast<std::size_t>(jj - r0) * (w + 1);
+                        if (p[w] == 0)
+                            continue;  // an empty row blocks nothing
+                        for (int t = 0; t < n; ++t)
+                        {
+                            const int i = box.i0 + t;
+                            const int a = std::min(w, std::max(0, i + span.x0));
+                            const int b = std::min(w, std::max(0, i + span.x1 + 1));
+                            blocked[t] |= static_cast<std::uint8_t>(p[b] > p[a]);
+                        }
+                    }
+                    std::uint64_t *row = bits_.data() + (static_cast<std::size_t>(k) * h + j) * wordsPerRow_;
+                    for (int t = 0; t < n; ++t)
+                    {
+                        const int i = box.i0 + t;
+                        const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+                        if (blocked[t])
+                            row[i >> 6] &= ~bit;
+                        else
+                            row[i >> 6] |= bit;
+                    }
+                }
+            summarise(box);
+        }
+
+        CellBox HeadingTable::affected(const CellBox &changed) const
+        {
+            // entry (i, j) reads cell (i + dx, j + dy): a changed cell c affects entries c - (dx, dy)
+            CellBox box;
+            if (changed.empty())
+                return box;
+            box.i0 = std::max(0, changed.i0 - reach_[1]);
+            box.i1 = std::min(grid_.width - 1, changed.i1 - reach_[0]);
+            box.j0 = std::max(0, changed.j0 - reach_[3]);
+            box.j1 = std::min(grid_.height - 1, changed.j1 - reach_[2]);
+            return box;
+        }
+
+        CellBox HeadingTable::setOccupied(const std::vector<std::pair<int, int>> &cells, bool occupied)
+        {
+            CellBox changed{std::numeric_limits<int>::max(), std::numeric_limits<int>::min(),
+                            std::numeric_limits<int>::max(), std::numeric_limits<int>::min()};
+            for (const auto &c : cells)
+            {
+                if (!grid_.inside(c.first, c.second))
+                    continue;
+                auto &cell = grid_.cells[static_cast<std::size_t>(c.second) * grid_.width + c.first];
+                if ((cell != 0) == occupied)
+                    continue;
+                cell = occupied ? 1 : 0;
+                changed.i0 = std::min(changed.i0, c.first);
+                changed.i1 = std::max(changed.i1, c.first);
+                changed.j0 = std::min(changed.j0, c.second);
+                changed.j1 = std::max(changed.j1, c.second);
+            }
+            if (changed.empty())
+                return CellBox{};
+            const CellBox box = affected(changed);
+            computeRegion(box);
+            return box;
+        }
+
+        CellBox HeadingTable::update(const OccupancyGrid &grid)
+        {
+            if (grid.width != grid_.width || grid.height != grid_.height || grid.resolution != grid_.resolution ||
+                grid.origin != grid_.origin || grid.cells.size() != grid_.cells.size())
+                throw std::invalid_argument("HeadingTable::update: the grid's size, resolution or origin differs");
+            std::vector<std::pair<int, int>> on, off;
+            for (int j = 0; j < grid.height; ++j)
+                for (int i = 0; i < grid.width; ++i)
+                {
+                    const std::size_t c = static_cast<std::size_t>(j) * grid.width + i;
+                    if ((grid.cells[c] != 0) != (grid_.cells[c] != 0))
+                        (grid.cells[c] ? on : off).emplace_back(i, j);
+                }
+            CellBox a = setOccupied(on, true), b = setOccupied(off, false);
+            if (a.empty())
+                return b;
+            if (b.empty())
+                return a;
+            return CellBox{std::min(a.i0, b.i0), std::max(a.i1, b.i1), std::min(a.j0, b.j0), std::max(a.j1, b.j1)};
+        }
+
+        std::size_t HeadingTable::validCount() const
+        {
+            std::size_t n = 0;
+            for (auto w : bits_)
+                n += static_cast<std::size_t>(__builtin_popcountll(w));
+            return n;
+        }
+
+        std::size_t HeadingTable::bytes() const
+        {
+            return (bits_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cellAllValid_.size() +
+                    cellAllInvalid_.size()) *
+                       sizeof(std::uint64_t) +
+                   grid_.cells.size();
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,73 @@
+#include <michi/validity/grid/OccupancyGrid.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace bg = boost::geometry;
+
+namespace michi
+{
+    namespace validity
+    {
+        int OccupancyGrid::column(double x) const
+        {
+            const double c = std::floor((x - origin.x()) / resolution);
+            return static_cast<int>(std::max(-1e9, std::min(1e9, c)));
+        }
+
+        int OccupancyGrid::row(double y) const
+        {
+            const double c = std::floor((y - origin.y()) / resolution);
+            return static_cast<int>(std::max(-1e9, std::min(1e9, c)));
+        }
+
+        std::size_t OccupancyGrid::occupiedCount() const
+        {
+            return static_cast<std::size_t>(std::count(cells.begin(), cells.end(), std::uint8_t{1}));
+        }
+
+        OccupancyGrid rasterizeScene(const Scene &scene, double resolution, const Eigen::Vector2d &origin, int width,
+                                     int height, double tolerance)
+        {
+            OccupancyGrid grid;
+            grid.width = width;
+            grid.height = height;
+            grid.resolution = resolution;
+            grid.origin = origin;
+            grid.cells.assign(static_cast<std::size_t>(width) * height, 0);
+            const double r = resolution;
+            for (const auto &obstacle : scene.obstacles())
+            {
+                const MultiPolygon2 shadow = obstacle.shape->footprint(obstacle.pose);
+                for (const auto &polygon : shadow)
+                {
+                    const Box2 bounds = bg::return_envelope<Box2>(polygon);
+                    const int i0 = std::max(0, grid.column(bounds.min_corner().x()) - 1);
+                    const int i1 = std::min(width - 1, grid.column(bounds.max_corner().x()) + 1);
+                    const int j0 = std::max(0, grid.row(bounds.min_corner().y()) - 1);
+                    const int j1 = std::min(height - 1, grid.row(bounds.max_corner().y()) + 1);
+                    // an axis-aligned rectangle (a map's run of cells) needs no polygon test
+                    const bool rectangle = polygon.inners().empty() && polygon.outer().size() == 5 &&
+                                           std::abs(bg::area(polygon)) >=
+                                               (1. - 1e-12) * (bounds.max_corner().x() - bounds.min_corner().x()) *
+                                                   (bounds.max_corner().y() - bounds.min_corner().y());
+                    for (int j = j0; j <= j1; ++j)
+                        for (int i = i0; i <= i1; ++i)
+                        {
+                            std::uint8_t &cell = grid.cells[static_cast<std::size_t>(j) * width + i];
+                            if (cell)
+                                continue;
+                            const double x0 = origin.x() + i * r + tolerance, x1 = origin.x() + (i + 1) * r - tolerance;
+                            const double y0 = origin.y() + j * r + tolerance, y1 = origin.y() + (j + 1) * r - tolerance;
+                            if (x1 < bounds.min_corner().x() || x0 > bounds.max_corner().x() ||
+                                y1 < bounds.min_corner().y() || y0 > bounds.max_corner().y())
+                                continue;
+                            if (rectangle || bg::intersects(Box2(Point2(x0, y0), Point2(x1, y1)), polygon))
+                                cell = 1;
+                        }
+                }
+            }
+            return grid;
+        }
+    }  // namespace validity
+}  // namespace michi
