@@ -1,0 +1,163 @@
+// The sphere checker never accepts what FCL on the real geometry rejects; certified motions are free.
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/validity/spheres/SphereMotionValidator.h>
+#include <michi/validity/spheres/SphereValidityChecker.h>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+using namespace michi;
+using namespace michi::validity;
+
+namespace
+{
+    struct SphereSetup
+    {
+        tools::Problem problem;
+        tools::PlanningContext ctx;
+        SphereValidityCheckerPtr spheres;
+        std::shared_ptr<SphereMotionValidator> motions;
+
+        explicit SphereSetup(const std::string &name)
+            : problem(tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
+            , ctx(tools::makePlanningContext(problem))
+        {
+            auto group = std::dynamic_pointer_cast<const RobotGroupBodies>(ctx.bodies);
+            auto si = ctx.setup->getSpaceInformation();
+            SphereModelSettings settings;
+            spheres = std::make_shared<SphereValidityChecker>(
+                si, group, SphereModel::enclose(*group->model(), settings), ctx.scene, ctx.checker);
+            motions = std::make_shared<SphereMotionValidator>(si, spheres);
+        }
+
+        std::vector<std::vector<double>> samples(int n, unsigned seed) const
+        {
+            ompl::RNG rng(seed);
+            auto space = ctx.setup->getStateSpace();
+            std::vector<std::vector<double>> out;
+            const auto &bounds = space->as<ompl::base::RealVectorStateSpace>()->getBounds();
+            for (int i = 0; i < n; ++i)
+            {
+                std::vector<double> q;
+                for (std::size_t d = 0; d < bounds.low.size(); ++d)
+                    q.push_back(rng.uniformReal(bounds.low[d], bounds.high[d]));
+                out.push_back(q);
+            }
+            return out;
+        }
+    };
+
+    class SphereChecker : public ::testing::TestWithParam<std::string>
+    {
+    };
+}  // namespace
+
+TEST_P(SphereChecker, NeverAcceptsWhatFclRejects)
+{
+    SphereSetup s(GetParam());
+    int accepted = 0, falseInvalid = 0, fclValid = 0;
+    for (const auto &q : s.samples(3000, 5))
+    {
+        const bool exact = s.ctx.checker->isValidConfiguration(q.data());
+        const bool sphere = s.spheres->isValidConfiguration(q.data());
+        fclValid += exact;
+        accepted += sphere;
+        falseInvalid += exact && !sphere;
+        if (sphere && !exact)
+            ADD_FAILURE() << "sphere checker accepts a state FCL rejects: "
+                          << s.ctx.checker->describeCollision(q.data());
+        // the clearance is a lower bound of FCL's
+        if (sphere)
+            EXPECT_LE(s.spheres->clearanceConfiguration(q.data()),
+                      s.ctx.checker->clearanceConfiguration(q.data()) + 1e-6);
+    }
+    EXPECT_GT(accepted, 0);
+    RecordProperty("false_invalid", falseInvalid);
+    std::cout << GetParam() << ": FCL valid " << fclValid << ", spheres valid " << accepted << ", false invalid "
+              << falseInvalid << std::endl;
+}
+
+TEST_P(SphereChecker, CertifiedMotionsAreFreeForFcl)
+{
+    SphereSetup s(GetParam());
+    auto si = s.ctx.setup->getSpaceInformation();
+    auto *a = si->allocState(), *b = si->allocState(), *m = si->allocState();
+    const auto qs = s.samples(400, 9);
+    int accepted = 0, rejected = 0;
+    for (std::size_t i = 0; i + 1 < qs.size(); ++i)
+    {
+        if (!s.spheres->isValidConfiguration(qs[i].data()))
+            continue;
+        si->getStateSpace()->copyFromReals(a, qs[i]);
+        si->getStateSpace()->copyFromReals(b, qs[i + 1]);
+        // short and long motions
+        si->getStateSpace()->interpolate(a, b, i % 2 == 0 ? 0.15 : 1., b);
+        std::pair<ompl::base::State *, double> last(m, 0.);
+        const bool ok = s.motions->checkMotion(a, b, last);
+        EXPECT_EQ(ok, s.motions->checkMotion(a, b));
+        ok ? ++accepted : ++rejected;
+        // every accepted part (all of it, or up to the last valid state) is free for FCL at a fine step
+        const double upTo = ok ? 1. : last.second;
+        std::vector<double> v;
+        for (int k = 0; k <= 400; ++k)
+        {
+            si->getStateSpace()->interpolate(a, b, upTo * k / 400., m);
+            si->getStateSpace()->copyToReals(v, m);
+            ASSERT_TRUE(s.ctx.checker->isValidConfiguration(v.data()))
+                << "certified motion " << i << " collides at " << upTo * k / 400.;
+        }
+    }
+    EXPECT_GT(accepted, 0);
+    EXPECT_GT(rejected, 0);
+    si->freeState(a);
+    si->freeState(b);
+    si->freeState(m);
+}
+
+TEST_P(SphereChecker, SameAnswersFromSeveralThreads)
+{
+    SphereSetup s(GetParam());
+    const auto qs = s.samples(500, 3);
+    std::vector<char> expected;
+    for (const auto &q : qs)
+        expected.push_back(s.spheres->isValidConfiguration(q.data()));
+    std::vector<int> mismatches(2, 0);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 2; ++t)
+        threads.emplace_back(
+            [&, t]
+            {
+                for (int round = 0; round < 3; ++round)
+                    for (std::size_t i = 0; i < qs.size(); ++i)
+                        mismatches[t] += s.spheres->isValidConfiguration(qs[i].data()) != expected[i];
+            });
+    for (auto &th : threads)
+        th.join();
+    EXPECT_EQ(mismatches[0] + mismatches[1], 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Problems, SphereChecker,
+                         ::testing::Values("panda_table_pick", "xarm6_ring", "dynamic_reach_box", "arch_3dof"));
+
+TEST(SphereCheckerScene, FollowsMovingObstacles)
+{
+    SphereSetup s("dynamic_reach_box");
+    // a state the cube passes through at some time: the checker follows Scene::setTime
+    const auto qs = s.samples(2000, 21);
+    int changed = 0;
+    for (const auto &q : qs)
+    {
+        s.ctx.scene->setTime(0.);
+        const bool at0 = s.spheres->isValidConfiguration(q.data());
+        EXPECT_FALSE(at0 && !s.ctx.checker->isValidConfiguration(q.data()));
+        s.ctx.scene->setTime(4.5);
+        const bool at45 = s.spheres->isValidConfiguration(q.data());
+        EXPECT_FALSE(at45 && !s.ctx.checker->isValidConfiguration(q.data()));
+        changed += at0 != at45;
+    }
+    EXPECT_GT(changed, 0);
+}

@@ -1,0 +1,130 @@
+#ifndef MICHI_VALIDITY_SPHERES_SPHERE_VALIDITY_CHECKER_
+#define MICHI_VALIDITY_SPHERES_SPHERE_VALIDITY_CHECKER_
+
+#include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/robot/CollisionBodies.h>
+#include <michi/validity/scene/Scene.h>
+#include <michi/validity/spheres/SphereModel.h>
+
+#include <ompl/base/StateValidityChecker.h>
+
+#include <Eigen/Core>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace michi
+{
+    namespace validity
+    {
+        class SphereObstacles;
+
+        /** \brief Collision checking of an arm with the spheres of a SphereModel (which enclose its links) against a
+            scene, in structure-of-arrays form: forward kinematics of the links, then every sphere centre of a
+            link at once (Eigen arrays of floats, radii padded for rounding), then per obstacle the spheres of
+            every link whose bounding sphere reaches the obstacle's (boxes, spheres, cylinders, capsules and
+            extruded polygons in closed form, meshes through a bounding-sphere tree of their triangles), then the
+            self-collision pairs (non-adjacent, not allowed) sphere against sphere; the first hit ends the check.
+            Because the spheres enclose the links, a state it accepts is free for the real geometry (it may
+            reject states whose real geometry is free: false_invalid). clearance() is a lower bound of the real
+            distance to the scene (a conservative clearance). Safe from several threads: the scene is read
+            through an immutable snapshot, renewed when Scene::changeCount() moves (moving obstacles). */
+        class SphereValidityChecker : public ompl::base::StateValidityChecker
+        {
+        public:
+            /** \param exactSelf when given (an FCL checker of the same bodies), a self-collision pair whose
+                spheres overlap is decided by FCL's distance between the two links' real geometry: links that sit
+                close by construction (a wrist) would otherwise be judged in collision in most states. */
+            SphereValidityChecker(const ompl::base::SpaceInformationPtr &si,
+                                  std::shared_ptr<const RobotGroupBodies> bodies, SphereModelPtr spheres,
+                                  ScenePtr scene, FclValidityCheckerPtr exactSelf = nullptr);
+            ~SphereValidityChecker() override;
+
+            bool isValid(const ompl::base::State *state) const override;
+            bool isValid(const ompl::base::State *state, double &dist) const override;
+            double clearance(const ompl::base::State *state) const override;
+
+            /** \brief Validity of group values (bodies()->dimension() values). */
+            bool isValidConfiguration(const double *values) const;
+            /** \brief The same with every sphere grown by \e inflation[s] metres (sphereCount() values) and,
+                for self pairs FCL decides, every body's geometry by \e bodyInflation[b] (bodyCount() values):
+                true means nothing touches while each sphere / body moves by up to its inflation. */
+            bool isFreeInflated(const double *values, const float *inflation, const float *bodyInflation) const;
+            /** \brief "panda_hand touches obstacle 'can'" or "link1 touches link4" (spheres); empty when valid. */
+            std::string describeCollision(const double *values) const;
+            /** \brief Lower bound of the distance between the robot and the scene (<= 0 when the spheres touch). */
+            double clearanceConfiguration(const double *values) const;
+
+            std::size_t sphereCount() const
+            {
+                return radius_.size();
+            }
+            /** \brief How far sphere \e s's centre can move per unit of group value \e variable (metres per
+                radian or per metre), for any configuration: spheres x dimension. */
+            const Eigen::MatrixXf &displacementCoefficients() const
+            {
+                return coefficients_;
+            }
+            /** \brief Bodies (links with spheres), and how far any point of a body's geometry can move per unit
+                of each group value: bodyCount() x dimension. */
+            std::size_t bodyCount() const
+            {
+                return bodyLink_.size();
+            }
+            const Eigen::MatrixXf &bodyDisplacementCoefficients() const
+            {
+                return bodyCoefficients_;
+            }
+            const std::shared_ptr<const RobotGroupBodies> &bodies() const
+            {
+                return bodies_;
+            }
+            const SphereModelPtr &spheres() const
+            {
+                return spheres_;
+            }
+            const ScenePtr &scene() const
+            {
+                return scene_;
+            }
+
+        private:
+            struct Scratch;
+            void toReals(const ompl::base::State *state, std::vector<double> &values) const;
+            /** Place every sphere for \e values into \e s (world centres). */
+            void place(const double *values, Scratch &s) const;
+            bool collides(Scratch &s, const double *values, const float *inflation, const float *bodyInflation,
+                          std::string *why) const;
+            const SphereObstacles &obstacles() const;
+
+            std::shared_ptr<const RobotGroupBodies> bodies_;
+            SphereModelPtr spheres_;
+            ScenePtr scene_;
+            // per robot body (link with spheres): its spheres are [begin_[b], begin_[b + 1])
+            std::vector<int> bodyLink_;
+            std::vector<int> begin_;
+            std::vector<Eigen::Vector3f> bodyCentre_;  ///< bounding sphere of the body's spheres, link frame
+            std::vector<float> bodyRadius_;
+            std::vector<float> cx_, cy_, cz_, radius_;  ///< sphere centres in the link frame, padded radii
+            std::vector<std::pair<int, int>> selfPairs_;
+            std::vector<int> selfPairIndex_;
+            std::vector<int> robotBody_;     ///< index of each body in bodies_->bodies()
+            std::vector<char> static_;       ///< body not moved by the group (decided by FCL when exact_ is given)
+            bool staticSelfBlocked_{false};  ///< index of each pair in bodies_->selfCheckPairs()
+            FclValidityCheckerPtr exact_;
+            Eigen::MatrixXf bodyCoefficients_;
+            Eigen::MatrixXf coefficients_;
+            std::vector<double> fullTemplate_;  ///< the whole robot's configuration (other joints fixed)
+            // scene snapshots: every one made is kept (a query may still read an older one)
+            mutable std::mutex snapshotMutex_;
+            mutable std::vector<std::unique_ptr<SphereObstacles>> snapshots_;
+            mutable std::atomic<const SphereObstacles *> current_{nullptr};
+        };
+
+        using SphereValidityCheckerPtr = std::shared_ptr<SphereValidityChecker>;
+    }  // namespace validity
+}  // namespace michi
+
+#endif

@@ -1,0 +1,456 @@
+#include <michi/validity/spheres/SphereModel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <limits>
+#include <queue>
+
+namespace michi
+{
+    namespace validity
+    {
+        namespace
+        {
+            /** A small relative and absolute margin added to every radius so rounding never leaves a corner out. */
+            double padded(double r)
+            {
+                return r * (1. + 1e-9) + 1e-9;
+            }
+
+            /** The sphere about the corners \e points[idx...]: the centre of their bounding box, moved a few steps
+                towards the farthest corner (Badoiu-Clarkson), radius to the farthest corner. */
+            LinkSphere coverPoints(const std::vector<Eigen::Vector3d> &points)
+            {
+                Eigen::Vector3d lo = points.front(), hi = points.front();
+                for (const auto &p : points)
+                {
+                    lo = lo.cwiseMin(p);
+                    hi = hi.cwiseMax(p);
+                }
+                auto farthest = [&](const Eigen::Vector3d &c, double &r)
+                {
+                    std::size_t best = 0;
+                    r = -1.;
+                    for (std::size_t i = 0; i < points.size(); ++i)
+                    {
+                        const double d = (points[i] - c).squaredNorm();
+                        if (d > r)
+                        {
+                            r = d;
+                            best = i;
+                        }
+                    }
+                    r = std::sqrt(r);
+                    return best;
+                };
+                LinkSphere bestSphere;
+                Eigen::Vector3d c = 0.5 * (lo + hi);
+                const int iterations = points.size() > 20000 ? 20 : 100;
+                double r = 0.;
+                farthest(c, r);
+                bestSphere.centre = c;
+                bestSphere.radius = r;
+                for (int i = 1; i <= iterations; ++i)
+                {
+                    const std::size_t f = farthest(c, r);
+                    if (r < bestSphere.radius)
+                    {
+                        bestSphere.centre = c;
+                        bestSphere.radius = r;
+                    }
+                    c += (points[f] - c) / static_cast<double>(i + 1);
+                }
+                farthest(c, r);
+                if (r < bestSphere.radius)
+                {
+                    bestSphere.centre = c;
+                    bestSphere.radius = r;
+                }
+                bestSphere.radius = padded(bestSphere.radius);
+                return bestSphere;
+            }
+
+            /** Split triangles (three corners each, flattened) until no edge is longer than \e maxEdge. */
+            std::vector<Eigen::Vector3d> splitLong(const std::vector<Eigen::Vector3d> &tris, double maxEdge)
+            {
+                std::vector<Eigen::Vector3d> out;
+                std::vector<std::array<Eigen::Vector3d, 3>> stack;
+                for (std::size_t t = 0; t + 2 < tris.size(); t += 3)
+                    stack.push_back({tris[t], tris[t + 1], tris[t + 2]});
+                while (!stack.empty())
+                {
+                    const auto tri = stack.back();
+                    stack.pop_back();
+                    int longest = 0;
+                    double length = 0.;
+                    for (int e = 0; e < 3; ++e)
+                    {
+                        const double l = (tri[(e + 1) % 3] - tri[e]).norm();
+                        if (l > length)
+                        {
+                            length = l;
+                            longest = e;
+                        }
+                    }
+                    if (length <= maxEdge || out.size() > 3000000)
+                    {
+                        out.insert(out.end(), tri.begin(), tri.end());
+                        continue;
+                    }
+                    const Eigen::Vector3d &a = tri[longest], &b = tri[(longest + 1) % 3], &c = tri[(longest + 2) % 3];
+                    const Eigen::Vector3d m = 0.5 * (a + b);
+                    stack.push_back({a, m, c});
+                    stack.push_back({m, b, c});
+                }
+                return out;
+            }
+
+            /** Cover triangles with at most \e budget spheres: split the part with the largest sphere along the
+                longest extent of its triangles' centroids, at the median. */
+            std::vector<LinkSphere> coverTriangles(const std::vector<Eigen::Vector3d> &tris, int budget)
+            {
+                struct Part
+                {
+                    std::vector<int> triangles;
+                    LinkSphere sphere;
+                    bool operator<(const Part &o) const
+                    {
+                        return sphere.radius < o.sphere.radius;
+                    }
+                };
+                const int n = static_cast<int>(tris.size() / 3);
+                std::vector<Eigen::Vector3d> centroid(n);
+                for (int t = 0; t < n; ++t)
+                    centroid[t] = (tris[3 * t] + tris[3 * t + 1] + tris[3 * t + 2]) / 3.;
+                auto makePart = [&](std::vector<int> ids)
+                {
+                    Part p;
+                    std::vector<Eigen::Vector3d> corners;
+                    corners.reserve(3 * ids.size());
+                    for (int t : ids)
+                        for (int k = 0; k < 3; ++k)
+                            corners.push_back(tris[3 * t + k]);
+                    std::sort(corners.begin(), corners.end(),
+                              [](const Eigen::Vector3d &a, const Eigen::Vector3d &b)
+                              {
+                                  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+                              });
+                    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+                    p.sphere = coverPoints(corners);
+                    p.triangles = std::move(ids);
+                    return p;
+                };
+                std::vector<int> all(n);
+                std::iota(all.begin(), all.end(), 0);
+                std::priority_queue<Part> open;
+                std::vector<LinkSphere> done;
+                open.push(makePart(std::move(all)));
+                while (!open.empty() && static_cast<int>(open.size() + done.size()) < budget)
+                {
+                    Part p = open.top();
+                    open.pop();
+                    if (p.triangles.size() < 2)
+                    {
+                        done.push_back(p.sphere);
+                        continue;
+                    }
+                    // the axis whose median cut gives the smaller larger child: a tube is cut across its length
+                    // (axis-centred spheres hug it), never along (half-rings need spheres as large as rings)
+                    Part bestLeft, bestRight;
+                    double bestRadius = std::numeric_limits<double>::infinity();
+                    for (int axis = 0; axis < 3; ++axis)
+                    {
+                        std::vector<int> ids = p.triangles;
+                        auto mid = ids.begin() + static_cast<long>(ids.size() / 2);
+                        std::nth_element(ids.begin(), mid, ids.end(),
+                                         [&](int a, int b)
+                                         {
+                                             return centroid[a][axis] < centroid[b][axis];
+                                         });
+                        Part left = makePart(std::vector<int>(ids.begin(), mid));
+                        Part right = makePart(std::vector<int>(mid, ids.end()));
+                        const double r = std::max(left.sphere.radius, right.sphere.radius);
+                        if (r < bestRadius)
+                        {
+                            bestRadius = r;
+                            bestLeft = std::move(left);
+                            bestRight = std::move(right);
+                        }
+                    }
+                    open.push(std::move(bestLeft));
+                    open.push(std::move(bestRight));
+                }
+                while (!open.empty())
+                {
+                    done.push_back(open.top().sphere);
+                    open.pop();
+                }
+                return done;
+            }
+
+            /** Spheres holding a whole box (extents \e size, placed at \e pose): the box cut into a grid of
+                equal cells (at most \e budget), each cell's circumscribed sphere. */
+            std::vector<LinkSphere> coverBox(const Eigen::Vector3d &size, const Eigen::Isometry3d &pose, int budget)
+            {
+                Eigen::Vector3i cells(1, 1, 1);
+                for (;;)
+                {
+                    // split the axis whose cells are longest while the budget allows it
+                    Eigen::Vector3d cell = size.cwiseQuotient(cells.cast<double>());
+                    int axis = 0;
+                    cell.maxCoeff(&axis);
+                    Eigen::Vector3i next = cells;
+                    ++next[axis];
+                    if (next.prod() > budget)
+                        break;
+                    cells = next;
+                }
+                const Eigen::Vector3d cell = size.cwiseQuotient(cells.cast<double>());
+                std::vector<LinkSphere> out;
+                for (int i = 0; i < cells.x(); ++i)
+                    for (int j = 0; j < cells.y(); ++j)
+                        for (int k = 0; k < cells.z(); ++k)
+                        {
+                            const Eigen::Vector3d c =
+                                -0.5 * size + cell.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
+                            out.push_back({pose * c, padded(0.5 * cell.norm())});
+                        }
+                return out;
+            }
+
+            /** Spheres holding a whole cylinder: slices along the axis, each slice's circumscribed sphere; a flat
+                cylinder is covered as the box around it. */
+            std::vector<LinkSphere> coverCylinder(double radius, double length, const Eigen::Isometry3d &pose,
+                                                  int budget)
+            {
+                if (length < radius)
+                    return coverBox(Eigen::Vector3d(2. * radius, 2. * radius, length), pose, budget);
+                const int n = std::max(1, budget);
+                const double slice = length / n;
+                std::vector<LinkSphere> out;
+                for (int i = 0; i < n; ++i)
+                {
+                    const double z = -0.5 * length + (i + 0.5) * slice;
+                    out.push_back({pose * Eigen::Vector3d(0., 0., z), padded(std::hypot(radius, 0.5 * slice))});
+                }
+                return out;
+            }
+
+            double linkSize(const std::vector<Eigen::Vector3d> &tris)
+            {
+                if (tris.empty())
+                    return 0.;
+                Eigen::Vector3d lo = tris.front(), hi = tris.front();
+                for (const auto &p : tris)
+                {
+                    lo = lo.cwiseMin(p);
+                    hi = hi.cwiseMax(p);
+                }
+                return (hi - lo).norm();
+            }
+
+            /** Cover one link: primitives by their own rule, meshes (and what else has triangles) by clusters. */
+            std::vector<LinkSphere> coverLink(const RobotLink &link, const SphereModelSettings &settings)
+            {
+                std::vector<LinkSphere> out;
+                const int shapes = static_cast<int>(link.collisions.size());
+                if (shapes == 0)
+                    return out;
+                const int share = std::max(1, settings.spheresPerLink / shapes);
+                RobotLink meshPart;
+                for (const auto &c : link.collisions)
+                {
+                    const auto &s = c.shape->size();
+                    switch (c.shape->type())
+                    {
+                        case Shape::Type::SPHERE:
+                            out.push_back({c.origin.translation(), padded(s.x())});
+                            break;
+                        case Shape::Type::BOX:
+                            for (const auto &sp : coverBox(s, c.origin, share))
+                                out.push_back(sp);
+                            break;
+                        case Shape::Type::CYLINDER:
+                            for (const auto &sp : coverCylinder(s.x(), s.z(), c.origin, share))
+                                out.push_back(sp);
+                            break;
+                        case Shape::Type::CAPSULE:
+                            for (const auto &sp : coverCylinder(s.x(), s.z(), c.origin, std::max(1, share - 2)))
+                                out.push_back(sp);
+                            out.push_back({c.origin * Eigen::Vector3d(0., 0., 0.5 * s.z()), padded(s.x())});
+                            out.push_back({c.origin * Eigen::Vector3d(0., 0., -0.5 * s.z()), padded(s.x())});
+                            break;
+                        default:
+                            meshPart.collisions.push_back(c);
+                    }
+                }
+                if (!meshPart.collisions.empty())
+                {
+                    auto tris = SphereModel::surfaceTriangles(meshPart, settings.circleSides);
+                    const int meshBudget =
+                        std::max(1, settings.spheresPerLink * static_cast<int>(meshPart.collisions.size()) / shapes);
+                    tris = splitLong(tris, std::max(1e-4, settings.maxTriangleFraction * linkSize(tris)));
+                    for (const auto &sp : coverTriangles(tris, meshBudget))
+                        out.push_back(sp);
+                }
+                return out;
+            }
+        }  // namespace
+
+        std::vector<Eigen::Vector3d> SphereModel::surfaceTriangles(const RobotLink &link, int circleSides)
+        {
+            std::vector<Eigen::Vector3d> tris;
+            auto add = [&](const Eigen::Isometry3d &pose, const Eigen::Vector3d &a, const Eigen::Vector3d &b,
+                           const Eigen::Vector3d &c)
+            {
+                tris.push_back(pose * a);
+                tris.push_back(pose * b);
+                tris.push_back(pose * c);
+            };
+            auto prism =
+                [&](const Eigen::Isometry3d &pose, const std::vector<Eigen::Vector2d> &outline, double z0, double z1)
+            {
+                const std::size_t n = outline.size();
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    const auto &p = outline[i], &q = outline[(i + 1) % n];
+                    const Eigen::Vector3d a(p.x(), p.y(), z0), b(q.x(), q.y(), z0), c(q.x(), q.y(), z1),
+                        d(p.x(), p.y(), z1);
+                    add(pose, a, b, c);
+                    add(pose, a, c, d);
+                }
+                for (const auto &t : triangulatePolygon(outline))
+                    for (double z : {z0, z1})
+                        add(pose, Eigen::Vector3d(outline[t[0]].x(), outline[t[0]].y(), z),
+                            Eigen::Vector3d(outline[t[1]].x(), outline[t[1]].y(), z),
+                            Eigen::Vector3d(outline[t[2]].x(), outline[t[2]].y(), z));
+            };
+            auto circle = [&](double r)
+            {
+                std::vector<Eigen::Vector2d> outline;
+                const double grow = 1. / std::cos(M_PI / circleSides);
+                for (int i = 0; i < circleSides; ++i)
+                {
+                    const double a = 2. * M_PI * i / circleSides;
+                    outline.emplace_back(r * grow * std::cos(a), r * grow * std::sin(a));
+                }
+                return outline;
+            };
+            for (const auto &c : link.collisions)
+            {
+                const auto &s = c.shape->size();
+                switch (c.shape->type())
+                {
+                    case Shape::Type::BOX:
+                    {
+                        const Eigen::Vector2d h(0.5 * s.x(), 0.5 * s.y());
+                        prism(c.origin, {{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}},
+                              -0.5 * s.z(), 0.5 * s.z());
+                        break;
+                    }
+                    case Shape::Type::CYLINDER:
+                        prism(c.origin, circle(s.x()), -0.5 * s.z(), 0.5 * s.z());
+                        break;
+                    case Shape::Type::CAPSULE:
+                        prism(c.origin, circle(s.x()), -0.5 * s.z() - s.x(), 0.5 * s.z() + s.x());
+                        break;
+                    case Shape::Type::PRISM:
+                        prism(c.origin, c.shape->outline(), s.x(), s.y());
+                        break;
+                    case Shape::Type::MESH:
+                        for (const auto &t : c.shape->triangles())
+                            add(c.origin, c.shape->vertices()[t[0]], c.shape->vertices()[t[1]],
+                                c.shape->vertices()[t[2]]);
+                        break;
+                    case Shape::Type::SPHERE:
+                        break;
+                }
+            }
+            return tris;
+        }
+
+        std::shared_ptr<const SphereModel> SphereModel::enclose(const RobotModel &model,
+                                                                const SphereModelSettings &settings)
+        {
+            if (settings.spheresPerLink < 1)
+                throw std::invalid_argument("spheres per link must be at least 1, got " +
+                                            std::to_string(settings.spheresPerLink));
+            std::shared_ptr<SphereModel> m(new SphereModel);
+            for (const auto &link : model.links())
+                m->spheres_.push_back(coverLink(link, settings));
+            return m;
+        }
+
+        std::shared_ptr<const SphereModel> SphereModel::fromSpherizedUrdf(const RobotModel &model,
+                                                                          const std::string &spherizedUrdf,
+                                                                          const SphereModelSettings &settings)
+        {
+            const auto spherized = RobotModel::fromUrdfFile(spherizedUrdf);
+            std::shared_ptr<SphereModel> m(new SphereModel);
+            for (const auto &link : model.links())
+            {
+                int other = -1;
+                try
+                {
+                    other = spherized->linkIndex(link.name);
+                }
+                catch (const std::out_of_range &)
+                {
+                }
+                std::vector<LinkSphere> seeds;
+                if (other >= 0)
+                    for (const auto &c : spherized->links()[other].collisions)
+                    {
+                        if (c.shape->type() != Shape::Type::SPHERE)
+                            throw UrdfError(spherizedUrdf + ": link '" + link.name +
+                                            "': collision geometry other than a sphere (" + c.shape->describe() +
+                                            ") in a spherized URDF");
+                        seeds.push_back({c.origin.translation(), c.shape->size().x()});
+                    }
+                if (seeds.empty())
+                {
+                    m->spheres_.push_back(coverLink(link, settings));
+                    continue;
+                }
+                // grow the seeds to hold the real geometry: each triangle goes to the seed that grows least
+                auto tris = surfaceTriangles(link, settings.circleSides);
+                for (const auto &c : link.collisions)
+                    if (c.shape->type() == Shape::Type::SPHERE)
+                        seeds.push_back({c.origin.translation(), c.shape->size().x()});
+                for (std::size_t t = 0; t + 2 < tris.size(); t += 3)
+                {
+                    std::size_t best = 0;
+                    double bestGrowth = std::numeric_limits<double>::infinity(), bestNeed = 0.;
+                    for (std::size_t s = 0; s < seeds.size(); ++s)
+                    {
+                        double need = 0.;
+                        for (int k = 0; k < 3; ++k)
+                            need = std::max(need, (tris[t + k] - seeds[s].centre).norm());
+                        const double growth = need - seeds[s].radius;
+                        if (growth < bestGrowth)
+                        {
+                            bestGrowth = growth;
+                            best = s;
+                            bestNeed = need;
+                        }
+                    }
+                    if (bestGrowth > 0.)
+                        seeds[best].radius = bestNeed;
+                }
+                for (auto &s : seeds)
+                    s.radius = padded(s.radius);
+                m->spheres_.push_back(seeds);
+            }
+            return m;
+        }
+
+        std::size_t SphereModel::sphereCount() const
+        {
+            std::size_t n = 0;
+            for (const auto &s : spheres_)
+                n += s.size();
+            return n;
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,123 @@
+#include <michi/validity/spheres/SphereMotionValidator.h>
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <cmath>
+
+namespace michi
+{
+    namespace validity
+    {
+        SphereMotionValidator::SphereMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                                                     SphereValidityCheckerPtr checker, double minFraction)
+            : ompl::base::MotionValidator(si), checker_(std::move(checker)), minFraction_(minFraction)
+        {
+            const auto &bodies = *checker_->bodies();
+            for (int v : bodies.variables())
+                continuous_.push_back(bodies.model()->variableJoint(v).type == RobotJoint::Type::CONTINUOUS);
+        }
+
+        bool SphereMotionValidator::check(const ompl::base::State *s1, const ompl::base::State *s2,
+                                          double &certified) const
+        {
+            certified = 0.;
+            const auto &space = si_->getStateSpace();
+            thread_local std::vector<double> a, b, mid;
+            thread_local Eigen::VectorXf delta, grow, growBody;
+            space->copyToReals(a, s1);
+            space->copyToReals(b, s2);
+            const std::size_t dim = a.size();
+            delta.resize(static_cast<long>(dim));
+            for (std::size_t i = 0; i < dim; ++i)
+            {
+                double d = std::abs(b[i] - a[i]);
+                if (continuous_[i])
+                {
+                    d = std::fmod(d, 2. * M_PI);
+                    d = std::min(d, 2. * M_PI - d);
+                }
+                delta[static_cast<long>(i)] = static_cast<float>(d);
+            }
+            const Eigen::MatrixXf &coefficients = checker_->displacementCoefficients();
+            // the sphere displacement over the whole motion; a piece of fraction f moves f of it
+            const Eigen::VectorXf whole = coefficients * delta;
+            const Eigen::VectorXf wholeBody = checker_->bodyDisplacementCoefficients() * delta;
+            ompl::base::State *m = si_->allocState();
+            // pieces in order, left first, so the certified prefix is known when one fails
+            struct Piece
+            {
+                double t0, t1;
+            };
+            thread_local std::vector<Piece> stack;
+            stack.clear();
+            stack.push_back({0., 1.});
+            bool ok = true;
+            while (!stack.empty())
+            {
+                const Piece p = stack.back();
+                stack.pop_back();
+                const double tm = 0.5 * (p.t0 + p.t1);
+                space->interpolate(s1, s2, tm, m);
+                space->copyToReals(mid, m);
+                grow = whole * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
+                growBody = wholeBody * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
+                ++checks_;
+                if (checker_->isFreeInflated(mid.data(), grow.data(), growBody.data()))
+                {
+                    certified = p.t1;
+                    continue;
+                }
+                if (p.t1 - p.t0 < minFraction_ || !checker_->isValidConfiguration(mid.data()))
+                {
+                    ok = false;
+                    break;
+                }
+                stack.push_back({tm, p.t1});
+                stack.push_back({p.t0, tm});
+            }
+            si_->freeState(m);
+            return ok;
+        }
+
+        bool SphereMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
+        {
+            if (!si_->isValid(s2))
+            {
+                ++invalid_;
+                return false;
+            }
+            double certified = 0.;
+            const bool ok = check(s1, s2, certified);
+            if (ok)
+                ++valid_;
+            else
+                ++invalid_;
+            return ok;
+        }
+
+        bool SphereMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2,
+                                                std::pair<ompl::base::State *, double> &lastValid) const
+        {
+            double certified = 0.;
+            bool ok = si_->isValid(s2);
+            if (ok)
+                ok = check(s1, s2, certified);
+            else
+            {
+                check(s1, s2, certified);
+                certified = std::min(certified, 1. - minFraction_);
+            }
+            if (ok)
+            {
+                ++valid_;
+                return true;
+            }
+            // the certified prefix ends at a state whose piece was shown free
+            if (lastValid.first != nullptr)
+                si_->getStateSpace()->interpolate(s1, s2, certified, lastValid.first);
+            lastValid.second = certified;
+            ++invalid_;
+            return false;
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,356 @@
+#include "SphereObstacles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace michi
+{
+    namespace validity
+    {
+        namespace
+        {
+            using ArrayC = Eigen::Map<const Eigen::ArrayXf>;
+            /** At most 256 values on the stack: no allocation per query. */
+            using Arr = Eigen::Array<float, Eigen::Dynamic, 1, 0, 256, 1>;
+
+            /** Closest point of triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5). */
+            Eigen::Vector3f closestOnTriangle(const Eigen::Vector3f &p, const Eigen::Vector3f &a,
+                                              const Eigen::Vector3f &b, const Eigen::Vector3f &c)
+            {
+                const Eigen::Vector3f ab = b - a, ac = c - a, ap = p - a;
+                const float d1 = ab.dot(ap), d2 = ac.dot(ap);
+                if (d1 <= 0.f && d2 <= 0.f)
+                    return a;
+                const Eigen::Vector3f bp = p - b;
+                const float d3 = ab.dot(bp), d4 = ac.dot(bp);
+                if (d3 >= 0.f && d4 <= d3)
+                    return b;
+                const float vc = d1 * d4 - d3 * d2;
+                if (vc <= 0.f && d1 >= 0.f && d3 <= 0.f)
+                    return a + d1 / (d1 - d3) * ab;
+                const Eigen::Vector3f cp = p - c;
+                const float d5 = ab.dot(cp), d6 = ac.dot(cp);
+                if (d6 >= 0.f && d5 <= d6)
+                    return c;
+                const float vb = d5 * d2 - d1 * d6;
+                if (vb <= 0.f && d2 >= 0.f && d6 <= 0.f)
+                    return a + d2 / (d2 - d6) * ac;
+                const float va = d3 * d6 - d5 * d4;
+                if (va <= 0.f && (d4 - d3) >= 0.f && (d5 - d6) >= 0.f)
+                    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+                const float denom = 1.f / (va + vb + vc);
+                return a + ab * (vb * denom) + ac * (vc * denom);
+            }
+
+            /** Distance from p to a simple polygon in its plane: 0 inside, else to the nearest edge. */
+            float polygonDistance(const std::vector<Eigen::Vector2f> &poly, const Eigen::Vector2f &p)
+            {
+                bool inside = false;
+                float best = std::numeric_limits<float>::infinity();
+                const std::size_t n = poly.size();
+                for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+                {
+                    const Eigen::Vector2f &a = poly[j], &b = poly[i];
+                    if ((b.y() > p.y()) != (a.y() > p.y()) &&
+                        p.x() < (a.x() - b.x()) * (p.y() - b.y()) / (a.y() - b.y()) + b.x())
+                        inside = !inside;
+                    const Eigen::Vector2f ab = b - a;
+                    const float t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-30f), 0.f, 1.f);
+                    best = std::min(best, (a + t * ab - p).squaredNorm());
+                }
+                return inside ? 0.f : std::sqrt(best);
+            }
+        }  // namespace
+
+        SphereObstacles::SphereObstacles(const Scene &scene)
+        {
+            version_ = scene.changeCount();
+            for (const auto &o : scene.obstacles())
+            {
+                const auto &shape = *o.shape;
+                const Eigen::Isometry3d pose = o.pose;
+                Frame f;
+                f.rt = pose.linear().transpose().cast<float>();
+                f.t = pose.translation().cast<float>();
+                const Eigen::Vector3d &s = shape.size();
+                Eigen::Vector3f size = Eigen::Vector3f::Zero();
+                Eigen::Vector3d centre = pose.translation();
+                double bound = shape.boundingRadius();
+                int kind = BOX, index = -1;
+                switch (shape.type())
+                {
+                    case Shape::Type::BOX:
+                        kind = BOX;
+                        size = (0.5 * s).cast<float>();
+                        break;
+                    case Shape::Type::SPHERE:
+                        kind = SPHERE;
+                        size = Eigen::Vector3f(static_cast<float>(s.x()), 0.f, 0.f);
+                        break;
+                    case Shape::Type::CYLINDER:
+                        kind = CYLINDER;
+                        size = Eigen::Vector3f(static_cast<float>(s.x()), static_cast<float>(0.5 * s.z()), 0.f);
+                        break;
+                    case Shape::Type::CAPSULE:
+                        kind = CAPSULE;
+                        size = Eigen::Vector3f(static_cast<float>(s.x()), static_cast<float>(0.5 * s.z()), 0.f);
+                        break;
+                    case Shape::Type::PRISM:
+                    {
+                        kind = PRISM;
+                        Prism p;
+                        for (const auto &v : shape.outline())
+                            p.outline.push_back(v.cast<float>());
+                        p.zMin = static_cast<float>(s.x());
+                        p.zMax = static_cast<float>(s.y());
+                        index = static_cast<int>(prisms_.size());
+                        prisms_.push_back(std::move(p));
+                        break;
+                    }
+                    case Shape::Type::MESH:
+                    {
+                        kind = MESH;
+                        index = static_cast<int>(meshes_.size());
+                        addMesh(o);
+                        centre = meshes_.back().nodes.front().centre.cast<double>();
+                        bound = meshes_.back().nodes.front().radius;
+                        break;
+                    }
+                }
+                names_.push_back(o.name);
+                kind_.push_back(kind);
+                index_.push_back(index);
+                frames_.push_back(f);
+                size_.push_back(size);
+                bx_.push_back(static_cast<float>(centre.x()));
+                by_.push_back(static_cast<float>(centre.y()));
+                bz_.push_back(static_cast<float>(centre.z()));
+                br_.push_back(static_cast<float>(bound * (1. + 1e-6) + 1e-5));
+            }
+        }
+
+        void SphereObstacles::addMesh(const Obstacle &obstacle)
+        {
+            Mesh mesh;
+            const auto &shape = *obstacle.shape;
+            const int n = static_cast<int>(shape.triangles().size());
+            std::vector<Eigen::Vector3f> corners;
+            std::vector<Eigen::Vector3f> centroid(n);
+            for (int t = 0; t < n; ++t)
+            {
+                Eigen::Vector3f c = Eigen::Vector3f::Zero();
+                for (int k = 0; k < 3; ++k)
+                {
+                    const Eigen::Vector3f v = (obstacle.pose * shape.vertices()[shape.triangles()[t][k]]).cast<float>();
+                    corners.push_back(v);
+                    c += v / 3.f;
+                }
+                centroid[t] = c;
+            }
+            std::vector<int> order(n);
+            std::iota(order.begin(), order.end(), 0);
+            // nodes: bounding sphere of the triangles' corners, split at the median of the longest extent
+            struct Task
+            {
+                int node, first, count;
+            };
+            mesh.nodes.push_back({});
+            std::vector<Task> tasks{{0, 0, n}};
+            while (!tasks.empty())
+            {
+                const Task task = tasks.back();
+                tasks.pop_back();
+                Eigen::Vector3f lo = corners[3 * order[task.first]], hi = lo;
+                for (int i = task.first; i < task.first + task.count; ++i)
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        lo = lo.cwiseMin(corners[3 * order[i] + k]);
+                        hi = hi.cwiseMax(corners[3 * order[i] + k]);
+                    }
+                const Eigen::Vector3f c = 0.5f * (lo + hi);
+                float r = 0.f;
+                for (int i = task.first; i < task.first + task.count; ++i)
+                    for (int k = 0; k < 3; ++k)
+                        r = std::max(r, (corners[3 * order[i] + k] - c).norm());
+                MeshNode node{c, r * (1.f + 1e-5f) + 1e-6f, -1, -1, task.first, task.count};
+                if (task.count > 4)
+                {
+                    int axis = 0;
+                    (hi - lo).maxCoeff(&axis);
+                    const auto first = order.begin() + task.first;
+                    const auto mid = first + task.count / 2;
+                    std::nth_element(first, mid, first + task.count,
+                                     [&](int a, int b)
+                                     {
+                                         return centroid[a][axis] < centroid[b][axis];
+                                     });
+                    node.left = static_cast<int>(mesh.nodes.size());
+                    node.right = node.left + 1;
+                    mesh.nodes.push_back({});
+                    mesh.nodes.push_back({});
+                    tasks.push_back({node.left, task.first, task.count / 2});
+                    tasks.push_back({node.right, task.first + task.count / 2, task.count - task.count / 2});
+                }
+                mesh.nodes[task.node] = node;
+            }
+            mesh.corners.reserve(corners.size());
+            for (int t : order)
+                for (int k = 0; k < 3; ++k)
+                    mesh.corners.push_back(corners[3 * t + k]);
+            meshes_.push_back(std::move(mesh));
+        }
+
+        void SphereObstacles::candidates(const Eigen::Vector3f &c, float r, std::vector<int> &out) const
+        {
+            out.clear();
+            const std::size_t n = kind_.size();
+            for (std::size_t o = 0; o < n; ++o)
+            {
+                const float dx = bx_[o] - c.x(), dy = by_[o] - c.y(), dz = bz_[o] - c.z(), rr = br_[o] + r;
+                if (dx * dx + dy * dy + dz * dz < rr * rr)
+                    out.push_back(static_cast<int>(o));
+            }
+        }
+
+        float SphereObstacles::boundDistance(int o, const Eigen::Vector3f &c, float r) const
+        {
+            return (Eigen::Vector3f(bx_[o], by_[o], bz_[o]) - c).norm() - br_[o] - r;
+        }
+
+        void SphereObstacles::squaredDistances(int o, const SphereBatch &b, float *out) const
+        {
+            const int n = b.n;
+            const ArrayC x(b.x, n), y(b.y, n), z(b.z, n);
+            Eigen::Map<Eigen::ArrayXf> d2(out, n);
+            const Frame &f = frames_[o];
+            const Eigen::Vector3f &s = size_[o];
+            const Arr dx = x - f.t.x(), dy = y - f.t.y(), dz = z - f.t.z();
+            switch (kind_[o])
+            {
+                case SPHERE:
+                    d2 = (dx.square() + dy.square() + dz.square()).sqrt() - s.x();
+                    d2 = d2.max(0.f).square();
+                    break;
+                case BOX:
+                {
+                    const auto &m = f.rt;
+                    const Arr qx = ((m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz).abs() - s.x()).max(0.f);
+                    const Arr qy = ((m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz).abs() - s.y()).max(0.f);
+                    const Arr qz = ((m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz).abs() - s.z()).max(0.f);
+                    d2 = qx.square() + qy.square() + qz.square();
+                    break;
+                }
+                case CYLINDER:
+                case CAPSULE:
+                {
+                    const auto &m = f.rt;
+                    const Arr px = m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz;
+                    const Arr py = m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz;
+                    const Arr pz = m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz;
+                    const Arr radial = (px.square() + py.square()).sqrt();
+                    const Arr qz = (pz.abs() - s.y()).max(0.f);
+                    if (kind_[o] == CYLINDER)
+                        d2 = (radial - s.x()).max(0.f).square() + qz.square();
+                    else
+                        d2 = ((radial.square() + qz.square()).sqrt() - s.x()).max(0.f).square();
+                    break;
+                }
+                case PRISM:
+                {
+                    const Prism &p = prisms_[index_[o]];
+                    const auto &m = f.rt;
+                    for (int i = 0; i < n; ++i)
+                    {
+                        const Eigen::Vector3f local = m * Eigen::Vector3f(dx[i], dy[i], dz[i]);
+                        const float planar = polygonDistance(p.outline, local.head<2>());
+                        const float qz = std::max({p.zMin - local.z(), local.z() - p.zMax, 0.f});
+                        d2[i] = planar * planar + qz * qz;
+                    }
+                    break;
+                }
+                case MESH:
+                {
+                    const Mesh &mesh = meshes_[index_[o]];
+                    for (int i = 0; i < n; ++i)
+                    {
+                        const float d = meshDistance(mesh, Eigen::Vector3f(x[i], y[i], z[i]),
+                                                     std::numeric_limits<float>::infinity());
+                        d2[i] = d * d;
+                    }
+                    break;
+                }
+            }
+        }
+
+        float SphereObstacles::meshDistance(const Mesh &mesh, const Eigen::Vector3f &p, float limit) const
+        {
+            // best-first would be tighter; depth-first with pruning by the best so far is enough here
+            float best = limit;
+            int stack[64];
+            int top = 0;
+            stack[top++] = 0;
+            while (top > 0)
+            {
+                const MeshNode &node = mesh.nodes[stack[--top]];
+                if ((node.centre - p).norm() - node.radius >= best)
+                    continue;
+                if (node.left < 0)
+                {
+                    for (int t = node.first; t < node.first + node.count; ++t)
+                    {
+                        const Eigen::Vector3f q =
+                            closestOnTriangle(p, mesh.corners[3 * t], mesh.corners[3 * t + 1], mesh.corners[3 * t + 2]);
+                        best = std::min(best, (q - p).norm());
+                    }
+                    continue;
+                }
+                if (top + 2 > 64)
+                    return 0.f;  // cannot happen for a balanced tree; answer "touching" rather than miss
+                const float dl = (mesh.nodes[node.left].centre - p).squaredNorm();
+                const float dr = (mesh.nodes[node.right].centre - p).squaredNorm();
+                // the nearer child is visited first
+                stack[top++] = dl < dr ? node.right : node.left;
+                stack[top++] = dl < dr ? node.left : node.right;
+            }
+            return best;
+        }
+
+        bool SphereObstacles::hits(int o, const SphereBatch &b) const
+        {
+            if (kind_[o] == MESH)
+            {
+                const Mesh &mesh = meshes_[index_[o]];
+                for (int i = 0; i < b.n; ++i)
+                    if (meshDistance(mesh, Eigen::Vector3f(b.x[i], b.y[i], b.z[i]), b.r[i]) < b.r[i])
+                        return true;
+                return false;
+            }
+            float d2[256];
+            for (int first = 0; first < b.n; first += 256)
+            {
+                const int n = std::min(256, b.n - first);
+                const SphereBatch part{b.x + first, b.y + first, b.z + first, b.r + first, n};
+                squaredDistances(o, part, d2);
+                const ArrayC r(part.r, n);
+                if ((Eigen::Map<const Eigen::ArrayXf>(d2, n) < r.square()).any())
+                    return true;
+            }
+            return false;
+        }
+
+        float SphereObstacles::distance(int o, const SphereBatch &b) const
+        {
+            float d2[256];
+            float best = std::numeric_limits<float>::infinity();
+            for (int first = 0; first < b.n; first += 256)
+            {
+                const int n = std::min(256, b.n - first);
+                const SphereBatch part{b.x + first, b.y + first, b.z + first, b.r + first, n};
+                squaredDistances(o, part, d2);
+                best = std::min(best, (Eigen::Map<const Eigen::ArrayXf>(d2, n).sqrt() - ArrayC(part.r, n)).minCoeff());
+            }
+            return best;
+        }
+    }  // namespace validity
+}  // namespace michi

@@ -1,0 +1,387 @@
+#include <michi/validity/spheres/SphereValidityChecker.h>
+
+#include "SphereObstacles.h"
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace michi
+{
+    namespace validity
+    {
+        /** Per-thread working arrays of a query. */
+        struct SphereValidityChecker::Scratch
+        {
+            std::vector<double> q;
+            std::vector<Eigen::Isometry3d> links;
+            std::vector<float> x, y, z, r;
+            std::vector<Eigen::Vector3f> bodyCentre;
+            std::vector<float> bodyRadius;
+            std::vector<int> candidates;
+            std::vector<double> values;
+            std::vector<char> wantBodies, wantPairs;
+            std::vector<double> obstacleDistances, selfDistances;
+        };
+
+        namespace
+        {
+            /** Rounding of float sphere centres (coordinates of a few metres) is far below this margin (metres),
+                which every sphere radius is grown by. */
+            constexpr float FLOAT_MARGIN = 1e-5f;
+        }  // namespace
+
+        SphereValidityChecker::SphereValidityChecker(const ompl::base::SpaceInformationPtr &si,
+                                                     std::shared_ptr<const RobotGroupBodies> bodies,
+                                                     SphereModelPtr spheres, ScenePtr scene,
+                                                     FclValidityCheckerPtr exactSelf)
+            : ompl::base::StateValidityChecker(si)
+            , bodies_(std::move(bodies))
+            , spheres_(std::move(spheres))
+            , scene_(std::move(scene))
+            , exact_(std::move(exactSelf))
+        {
+            specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
+            if (si->getStateSpace()->getDimension() != bodies_->dimension())
+                throw std::invalid_argument(
+                    "state space has dimension " + std::to_string(si->getStateSpace()->getDimension()) +
+                    ", the robot's configuration has " + std::to_string(bodies_->dimension()) + " values");
+            const auto &model = *bodies_->model();
+            if (spheres_->linkCount() != model.links().size())
+                throw std::invalid_argument("sphere model has " + std::to_string(spheres_->linkCount()) +
+                                            " links, robot '" + model.name() + "' has " +
+                                            std::to_string(model.links().size()));
+            std::vector<int> bodyOfRobotBody(bodies_->bodies().size(), -1);
+            begin_.push_back(0);
+            for (std::size_t b = 0; b < bodies_->bodies().size(); ++b)
+            {
+                const int link = bodies_->bodyLink(b);
+                const auto &sp = spheres_->linkSpheres(link);
+                if (sp.empty())
+                    continue;
+                bodyOfRobotBody[b] = static_cast<int>(bodyLink_.size());
+                robotBody_.push_back(static_cast<int>(b));
+                bodyLink_.push_back(link);
+                Eigen::Vector3d lo = sp.front().centre, hi = lo;
+                for (const auto &s : sp)
+                {
+                    cx_.push_back(static_cast<float>(s.centre.x()));
+                    cy_.push_back(static_cast<float>(s.centre.y()));
+                    cz_.push_back(static_cast<float>(s.centre.z()));
+                    radius_.push_back(static_cast<float>(s.radius) + FLOAT_MARGIN);
+                    lo = lo.cwiseMin(s.centre);
+                    hi = hi.cwiseMax(s.centre);
+                }
+                const Eigen::Vector3d c = 0.5 * (lo + hi);
+                double r = 0.;
+                for (const auto &s : sp)
+                    r = std::max(r, (s.centre - c).norm() + s.radius);
+                bodyCentre_.push_back(c.cast<float>());
+                bodyRadius_.push_back(static_cast<float>(r) + 2.f * FLOAT_MARGIN);
+                begin_.push_back(static_cast<int>(radius_.size()));
+            }
+            for (std::size_t k = 0; k < bodies_->selfCheckPairs().size(); ++k)
+            {
+                const auto &p = bodies_->selfCheckPairs()[k];
+                if (bodyOfRobotBody[p.first] >= 0 && bodyOfRobotBody[p.second] >= 0)
+                {
+                    selfPairs_.emplace_back(bodyOfRobotBody[p.first], bodyOfRobotBody[p.second]);
+                    selfPairIndex_.push_back(static_cast<int>(k));
+                }
+            }
+
+            // how far a sphere centre moves per unit of each group value: a rotation by dq moves a point at
+            // distance rho from the joint's origin by at most rho * dq, and rho is bounded by the distances along
+            // the chain (any configuration); a prismatic joint moves it by dq
+            const auto &vars = bodies_->variables();
+            coefficients_ = Eigen::MatrixXf::Zero(static_cast<long>(radius_.size()), static_cast<long>(vars.size()));
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+                for (int s = begin_[b]; s < begin_[b + 1]; ++s)
+                {
+                    double distance = Eigen::Vector3d(cx_[s], cy_[s], cz_[s]).norm() + FLOAT_MARGIN;
+                    for (int j = model.links()[bodyLink_[b]].parentJoint; j >= 0;
+                         j = model.links()[model.joints()[j].parentLink].parentJoint)
+                    {
+                        const RobotJoint &joint = model.joints()[j];
+                        const bool prismatic = joint.type == RobotJoint::Type::PRISMATIC;
+                        if (joint.variable >= 0)
+                        {
+                            const auto it = std::find(vars.begin(), vars.end(), joint.variable);
+                            if (it != vars.end())
+                                coefficients_(s, it - vars.begin()) =
+                                    static_cast<float>((prismatic ? 1. : distance) * (1. + 1e-6));
+                        }
+                        distance += joint.origin.translation().norm() +
+                                    (prismatic ? std::max(std::abs(joint.lower), std::abs(joint.upper)) : 0.);
+                    }
+                }
+            // a point of a link's geometry lies in one of its spheres, so it moves at most as the sphere's centre
+            // plus the sphere's radius times the rotation
+            bodyCoefficients_ = Eigen::MatrixXf::Zero(static_cast<long>(bodyLink_.size()), coefficients_.cols());
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+                for (int s = begin_[b]; s < begin_[b + 1]; ++s)
+                    for (long j = 0; j < coefficients_.cols(); ++j)
+                    {
+                        const bool prismatic = model.variableJoint(vars[j]).type == RobotJoint::Type::PRISMATIC;
+                        const float c = coefficients_(s, j) > 0.f && !prismatic ? coefficients_(s, j) + radius_[s]
+                                                                                : coefficients_(s, j);
+                        bodyCoefficients_(b, j) = std::max(bodyCoefficients_(b, j), c);
+                    }
+            fullTemplate_ = bodies_->fullConfiguration(std::vector<double>(vars.size(), 0.).data());
+            if (exact_ && exact_->bodies() != bodies_)
+                throw std::invalid_argument("the exact self-collision checker must check the same bodies");
+            // bodies the group does not move (a base on the floor): with FCL at hand, their contacts are decided
+            // once on the real geometry (once per scene change for obstacles), not by spheres in every state
+            static_.assign(bodyLink_.size(), 0);
+            if (exact_)
+                for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+                    static_[b] = bodyCoefficients_.row(static_cast<long>(b)).isZero() ? 1 : 0;
+            if (exact_)
+            {
+                std::vector<char> wantBodies(bodies_->bodies().size(), 0),
+                    wantPairs(bodies_->selfCheckPairs().size(), 0);
+                bool any = false;
+                for (std::size_t k = 0; k < selfPairs_.size(); ++k)
+                    if (static_[selfPairs_[k].first] && static_[selfPairs_[k].second])
+                        any = wantPairs[selfPairIndex_[k]] = 1;
+                std::vector<double> obstacle, self;
+                if (any)
+                {
+                    const std::vector<double> values(bodies_->dimension(), 0.);  // any: these bodies do not move
+                    exact_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
+                }
+                for (std::size_t k = 0; k < self.size(); ++k)
+                    staticSelfBlocked_ = staticSelfBlocked_ || self[k] <= 0.;
+            }
+            // the first snapshot of the scene
+            obstacles();
+        }
+
+        SphereValidityChecker::~SphereValidityChecker() = default;
+
+        const SphereObstacles &SphereValidityChecker::obstacles() const
+        {
+            const std::uint64_t version = scene_->changeCount();
+            const SphereObstacles *current = current_.load(std::memory_order_acquire);
+            if (current != nullptr && current->version() == version)
+                return *current;
+            std::lock_guard<std::mutex> lock(snapshotMutex_);
+            current = current_.load(std::memory_order_acquire);
+            if (current != nullptr && current->version() == scene_->changeCount())
+                return *current;
+            snapshots_.push_back(std::make_unique<SphereObstacles>(*scene_));
+            if (exact_)
+            {
+                std::vector<char> wantBodies(bodies_->bodies().size(), 0),
+                    wantPairs(bodies_->selfCheckPairs().size(), 0);
+                bool any = false;
+                for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+                    if (static_[b])
+                        any = wantBodies[robotBody_[b]] = 1;
+                std::vector<double> obstacle, self;
+                if (any)
+                {
+                    std::vector<double> values(bodies_->dimension(), 0.);
+                    exact_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
+                }
+                for (double d : obstacle)
+                    snapshots_.back()->staticBlocked = snapshots_.back()->staticBlocked || d <= 0.;
+            }
+            current_.store(snapshots_.back().get(), std::memory_order_release);
+            return *snapshots_.back();
+        }
+
+        void SphereValidityChecker::toReals(const ompl::base::State *state, std::vector<double> &values) const
+        {
+            si_->getStateSpace()->copyToReals(values, state);
+        }
+
+        void SphereValidityChecker::place(const double *values, Scratch &s) const
+        {
+            s.q.assign(fullTemplate_.begin(), fullTemplate_.end());
+            const auto &vars = bodies_->variables();
+            for (std::size_t i = 0; i < vars.size(); ++i)
+                s.q[vars[i]] = values[i];
+            bodies_->model()->forwardKinematics(s.q.data(), s.links);
+            const std::size_t n = radius_.size();
+            s.x.resize(n);
+            s.y.resize(n);
+            s.z.resize(n);
+            s.r.resize(n);
+            s.bodyCentre.resize(bodyLink_.size());
+            s.bodyRadius.resize(bodyLink_.size());
+            using Map = Eigen::Map<Eigen::ArrayXf>;
+            using MapC = Eigen::Map<const Eigen::ArrayXf>;
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+            {
+                const Eigen::Isometry3d &pose = s.links[bodyLink_[b]];
+                const Eigen::Matrix3f m = pose.linear().cast<float>();
+                const Eigen::Vector3f t = pose.translation().cast<float>();
+                const int first = begin_[b], count = begin_[b + 1] - begin_[b];
+                const MapC cx(cx_.data() + first, count), cy(cy_.data() + first, count), cz(cz_.data() + first, count);
+                Map(s.x.data() + first, count) = m(0, 0) * cx + m(0, 1) * cy + m(0, 2) * cz + t.x();
+                Map(s.y.data() + first, count) = m(1, 0) * cx + m(1, 1) * cy + m(1, 2) * cz + t.y();
+                Map(s.z.data() + first, count) = m(2, 0) * cx + m(2, 1) * cy + m(2, 2) * cz + t.z();
+                s.bodyCentre[b] = m * bodyCentre_[b] + t;
+            }
+        }
+
+        bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
+                                             const float *bodyInflation, std::string *why) const
+        {
+            const std::size_t nb = bodyLink_.size();
+            const float *r = radius_.data();
+            if (inflation != nullptr)
+            {
+                for (std::size_t i = 0; i < radius_.size(); ++i)
+                    s.r[i] = radius_[i] + inflation[i];
+                r = s.r.data();
+                for (std::size_t b = 0; b < nb; ++b)
+                {
+                    float grow = 0.f;
+                    for (int i = begin_[b]; i < begin_[b + 1]; ++i)
+                        grow = std::max(grow, inflation[i]);
+                    s.bodyRadius[b] = bodyRadius_[b] + grow;
+                }
+            }
+            else
+                std::copy(bodyRadius_.begin(), bodyRadius_.end(), s.bodyRadius.begin());
+
+            const SphereObstacles &obs = obstacles();
+            if (obs.staticBlocked || staticSelfBlocked_)
+            {
+                if (why != nullptr)
+                    *why = "a link the group does not move touches something (FCL)";
+                return true;
+            }
+            for (std::size_t b = 0; b < nb; ++b)
+            {
+                if (static_[b])
+                    continue;
+                obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates);
+                if (s.candidates.empty())
+                    continue;
+                const int first = begin_[b];
+                const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, r + first,
+                                        begin_[b + 1] - first};
+                for (int o : s.candidates)
+                    if (obs.hits(o, batch))
+                    {
+                        if (why != nullptr)
+                            *why = bodies_->model()->links()[bodyLink_[b]].name + " touches obstacle '" + obs.name(o) +
+                                   "'";
+                        return true;
+                    }
+            }
+            using MapC = Eigen::Map<const Eigen::ArrayXf>;
+            for (std::size_t k = 0; k < selfPairs_.size(); ++k)
+            {
+                const auto &p = selfPairs_[k];
+                if (static_[p.first] && static_[p.second])
+                    continue;
+                const float reach = s.bodyRadius[p.first] + s.bodyRadius[p.second];
+                if ((s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() >= reach * reach)
+                    continue;
+                const int fb = begin_[p.second], nbs = begin_[p.second + 1] - fb;
+                const MapC bx(s.x.data() + fb, nbs), by(s.y.data() + fb, nbs), bz(s.z.data() + fb, nbs),
+                    br(r + fb, nbs);
+                bool hit = false;
+                for (int i = begin_[p.first]; i < begin_[p.first + 1] && !hit; ++i)
+                    hit = ((bx - s.x[i]).square() + (by - s.y[i]).square() + (bz - s.z[i]).square() <
+                           (br + r[i]).square())
+                              .any();
+                if (!hit)
+                    continue;
+                if (exact_)
+                {
+                    // links that sit close by construction (a wrist) overlap as spheres in most states: the real
+                    // geometry decides, at the distance the motion needs
+                    s.wantPairs.assign(exact_->bodies()->selfCheckPairs().size(), 0);
+                    s.wantPairs[selfPairIndex_[k]] = 1;
+                    s.wantBodies.assign(exact_->bodies()->bodies().size(), 0);
+                    exact_->bodyDistances(values, s.wantBodies, s.wantPairs, s.obstacleDistances, s.selfDistances);
+                    const double need =
+                        bodyInflation != nullptr ? bodyInflation[p.first] + bodyInflation[p.second] : 0.;
+                    if (s.selfDistances[selfPairIndex_[k]] > need)
+                        continue;
+                }
+                if (why != nullptr)
+                    *why = bodies_->model()->links()[bodyLink_[p.first]].name + " touches " +
+                           bodies_->model()->links()[bodyLink_[p.second]].name;
+                return true;
+            }
+            return false;
+        }
+
+        bool SphereValidityChecker::isValidConfiguration(const double *values) const
+        {
+            return isFreeInflated(values, nullptr, nullptr);
+        }
+
+        bool SphereValidityChecker::isFreeInflated(const double *values, const float *inflation,
+                                                   const float *bodyInflation) const
+        {
+            thread_local Scratch s;
+            place(values, s);
+            return !collides(s, values, inflation, bodyInflation, nullptr);
+        }
+
+        std::string SphereValidityChecker::describeCollision(const double *values) const
+        {
+            Scratch s;
+            place(values, s);
+            std::string why;
+            collides(s, values, nullptr, nullptr, &why);
+            return why;
+        }
+
+        double SphereValidityChecker::clearanceConfiguration(const double *values) const
+        {
+            thread_local Scratch s;
+            place(values, s);
+            const SphereObstacles &obs = obstacles();
+            float best = std::numeric_limits<float>::infinity();
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+            {
+                const int first = begin_[b];
+                const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first,
+                                        radius_.data() + first, begin_[b + 1] - first};
+                for (std::size_t o = 0; o < obs.size(); ++o)
+                {
+                    if (obs.boundDistance(static_cast<int>(o), s.bodyCentre[b], bodyRadius_[b]) >= best)
+                        continue;
+                    best = std::min(best, obs.distance(static_cast<int>(o), batch));
+                }
+            }
+            return static_cast<double>(best);
+        }
+
+        bool SphereValidityChecker::isValid(const ompl::base::State *state) const
+        {
+            if (!si_->satisfiesBounds(state))
+                return false;
+            thread_local std::vector<double> values;
+            toReals(state, values);
+            return isValidConfiguration(values.data());
+        }
+
+        bool SphereValidityChecker::isValid(const ompl::base::State *state, double &dist) const
+        {
+            if (!isValid(state))
+            {
+                dist = 0.;
+                return false;
+            }
+            dist = clearance(state);
+            return true;
+        }
+
+        double SphereValidityChecker::clearance(const ompl::base::State *state) const
+        {
+            thread_local std::vector<double> values;
+            toReals(state, values);
+            return clearanceConfiguration(values.data());
+        }
+    }  // namespace validity
+}  // namespace michi
