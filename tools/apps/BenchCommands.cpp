@@ -102,8 +102,7 @@ namespace michi
                     options.heldOut = !args.query;  // --query: that query in every run, not the held-out ones
                     options.progress = &std::cerr;
                     const BenchResult result = runBenchmark(problem, options);
-                    std::ifstream summary(result.summary);
-                    std::cout << summary.rdbuf();
+                    std::cout << result.summaryText;
                     std::cout << "\nwrote " << result.log << "\n      " << result.database << "\n      "
                               << result.summary << "\n      " << result.picture << " (and .png)" << std::endl;
                     return 0;

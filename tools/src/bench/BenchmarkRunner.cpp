@@ -313,14 +313,14 @@ namespace michi
             }
             const fs::path summary = staging.path("summary.md");
             {
-                std::ofstream out(summary.string());
+                std::ostringstream out;
                 out << summaryMarkdown(problem, result.planners, timeLimit, runs, compare);
                 if (datasetRun)
                     out << "\nDataset " << dataset.name << ": run i of every planner planned query i ("
                         << dataset.entries.size() << " queries, " << dataset.entries.front().label << " to "
                         << dataset.entries.back().label << "); the log's run property `query` names it.\n";
-                if (!out)
-                    throw std::runtime_error(summary.string() + ": cannot write");
+                result.summaryText = out.str();
+                writeAtomically(result.summaryText, summary.string());
             }
             for (const auto &planner : planners)
                 if (firstPaths.count(planner->getName()))

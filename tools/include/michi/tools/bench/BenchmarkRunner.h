@@ -50,6 +50,7 @@ namespace michi
             std::string log;
             std::string database;
             std::string summary;
+            std::string summaryText;  ///< what summary.md holds (printed by `michi bench` without reading it back)
             std::string picture;
             std::vector<PlannerSummary> planners;
             std::vector<PlotPath> paths;  ///< one solution per planner that solved
