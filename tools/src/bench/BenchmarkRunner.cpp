@@ -1,4 +1,5 @@
 #include <michi/tools/bench/BenchmarkRunner.h>
+#include <michi/tools/bench/PathCertificate.h>
 #include <michi/tools/problem/Dataset.h>
 #include <michi/tools/problem/ExperienceQueries.h>
 #include <michi/tools/FileOutput.h>
@@ -79,8 +80,9 @@ namespace michi
                        : "FCL validity checker, " + problem.motionValidator + " motion validator")
                << ". Median time over all runs (failures count at the time they gave up); length"
                   " and clearance over solved runs.\n\n";
-            md << "| planner | runs | success | median time (s) | median length | median clearance |\n";
-            md << "|---|---:|---:|---:|---:|---:|\n";
+            md << "| planner | runs | success | certified paths | median time (s) | median length | median clearance "
+                  "|\n";
+            md << "|---|---:|---:|---:|---:|---:|---:|\n";
             auto num = [](double v, int precision)
             {
                 if (std::isnan(v))
@@ -91,7 +93,7 @@ namespace michi
             };
             for (const auto &p : planners)
                 md << "| " << p.name << " | " << p.runs << " | " << num(100. * p.solved / std::max(1u, p.runs), 3)
-                   << " % | " << num(p.medianTime, 4) << " | " << num(p.medianLength, 4) << " | "
+                   << " % | " << p.certified << "/" << p.solved << " | " << num(p.medianTime, 4) << " | " << num(p.medianLength, 4) << " | "
                    << num(p.medianClearance, 3) << " |\n";
             return md.str();
         }
@@ -236,7 +238,26 @@ namespace michi
                     ++done;
                     if (datasetRun)
                         run["query INTEGER"] = std::to_string(runQuery[planner.get()]);
-                    const bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
+                    bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
+                    if (solved)
+                    {
+                        // every returned path is re-checked with FCL on the real geometry at a fine step; one
+                        // that fails is not a solution (a fast checker's mistake is never reported as solved)
+                        const auto pdef = planner->getProblemDefinition();
+                        const auto solution = pdef ? pdef->getSolutionPath() : nullptr;
+                        const auto *geometric = solution ? solution->as<og::PathGeometric>() : nullptr;
+                        const PathCertificate certificate =
+                            geometric ? certifyPath(*geometric, *ctx.checker) : PathCertificate{};
+                        if (!certificate.certified)
+                        {
+                            solved = false;
+                            run["solved BOOLEAN"] = "0";
+                            if (progress)
+                                *progress << "michi bench: " << planner->getName() << ": path NOT certified by FCL ("
+                                          << certificate.reason << "): counted as a failure" << std::endl;
+                        }
+                    }
+                    run["certified_paths INTEGER"] = solved ? "1" : "0";
                     if (progress)
                         *progress << "michi bench: [" << done << "/" << totalRuns << "] " << planner->getName() << ": "
                                   << (solved ? "solved" : "not solved") << " in " << std::setprecision(3)
@@ -302,6 +323,7 @@ namespace michi
                     if (property(run, "solved BOOLEAN") == 1.)
                     {
                         ++s.solved;
+                        s.certified += property(run, "certified_paths INTEGER") == 1. ? 1 : 0;
                         lengths.push_back(property(run, "solution length REAL"));
                         clearances.push_back(property(run, "solution clearance REAL"));
                     }

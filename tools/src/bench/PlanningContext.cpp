@@ -10,11 +10,13 @@
 #include <michi/validity/jmap/JMapMotionValidator.h>
 #include <michi/validity/fcl/WorkspaceMotionValidator.h>
 #include <michi/validity/grid/GridMotionValidator.h>
+#include <michi/validity/spheres/SphereMotionValidator.h>
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 
 #include <algorithm>
+#include <mutex>
 #include <sstream>
 
 namespace ob = ompl::base;
@@ -79,7 +81,7 @@ namespace michi
 
         const std::vector<std::string> &checkerNames()
         {
-            static const std::vector<std::string> names{"fcl", "jmap", "grid"};
+            static const std::vector<std::string> names{"fcl", "jmap", "grid", "spheres"};
             return names;
         }
 
@@ -115,7 +117,31 @@ namespace michi
                     si->setMotionValidator(std::make_shared<validity::GridMotionValidator>(si, ctx.grid));
                     return;
                 }
-                // "spheres" (validity/.../spheres/) goes here
+                if (checker == "spheres")
+                {
+                    auto group = std::dynamic_pointer_cast<const validity::RobotGroupBodies>(ctx.bodies);
+                    if (!group)
+                        throw ProblemError(problem.file, "collision.checker",
+                                           "the sphere checker is for arms (a robot.urdf), not SE2 robots");
+                    // the model depends on the robot only: made once per robot (a few ms per link)
+                    static std::mutex mutex;
+                    static std::map<const validity::RobotModel *, std::weak_ptr<const validity::SphereModel>> models;
+                    validity::SphereModelPtr model;
+                    {
+                        std::lock_guard<std::mutex> lock(mutex);
+                        model = models[group->model().get()].lock();
+                        if (!model)
+                        {
+                            model = validity::SphereModel::enclose(*group->model());
+                            models[group->model().get()] = model;
+                        }
+                    }
+                    ctx.spheres =
+                        std::make_shared<validity::SphereValidityChecker>(si, group, model, ctx.scene, ctx.checker);
+                    ctx.setup->setStateValidityChecker(ctx.spheres);
+                    si->setMotionValidator(std::make_shared<validity::SphereMotionValidator>(si, ctx.spheres));
+                    return;
+                }
                 throw std::invalid_argument("makePlanningContext: unknown checker '" + checker + "'");
             }
         }  // namespace

@@ -181,8 +181,9 @@ namespace michi
                     else if (k == "checker")
                     {
                         problem.checker = r.text(kv.second, key);
-                        if (problem.checker != "fcl" && problem.checker != "jmap" && problem.checker != "grid")
-                            r.fail(key, "expected fcl, jmap or grid, got '" + problem.checker + "'");
+                        if (problem.checker != "fcl" && problem.checker != "jmap" && problem.checker != "grid" &&
+                            problem.checker != "spheres")
+                            r.fail(key, "expected fcl, jmap, grid or spheres, got '" + problem.checker + "'");
                         if (problem.checker == "grid" && problem.kind != Problem::Kind::SE2)
                             r.fail(key, "the grid checker is for SE2 robots (robot.type se2)");
                     }

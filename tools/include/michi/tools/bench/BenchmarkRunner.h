@@ -40,6 +40,9 @@ namespace michi
             std::string name;  ///< as OMPL's Benchmark names it (geometric_RRTConnect)
             unsigned int runs{0};
             unsigned int solved{0};
+            /** \brief Solved runs whose path FCL re-checked on the real geometry (run property certified_paths);
+                a path that fails is counted as not solved, so this equals \e solved. */
+            unsigned int certified{0};
             double medianTime{0.};       ///< over all runs, seconds
             double medianLength{0.};     ///< over solved runs, NaN if none
             double medianClearance{0.};  ///< over solved runs, NaN if none

@@ -5,6 +5,7 @@
 #include <michi/validity/fcl/FclValidityChecker.h>
 #include <michi/validity/jmap/JMapValidityChecker.h>
 #include <michi/validity/grid/GridValidityChecker.h>
+#include <michi/validity/spheres/SphereValidityChecker.h>
 
 #include <ompl/geometric/SimpleSetup.h>
 
@@ -28,6 +29,9 @@ namespace michi
             /** \brief The grid checker when the checker is "grid" (then it is the space's state validity
                 checker and validity::GridMotionValidator its motion validator), else null. */
             std::shared_ptr<validity::GridValidityChecker> grid;
+            /** \brief The sphere checker when the checker is "spheres" (validity::SphereMotionValidator certifies
+                its motions), else null. */
+            std::shared_ptr<validity::SphereValidityChecker> spheres;
             std::string checkerName;  ///< the checker installed in the space ("fcl", "jmap", "grid")
             /** \brief The FCL-based motion validator of the problem's collision.motion_validator, whatever checker
                 is installed: the reference a fast checker is compared with (bench --checker fcl,X,

@@ -1,0 +1,56 @@
+#include <michi/tools/bench/PathCertificate.h>
+
+#include <ompl/base/SpaceInformation.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace michi
+{
+    namespace tools
+    {
+        PathCertificate certifyPath(const ompl::geometric::PathGeometric &path, const validity::FclValidityChecker &fcl,
+                                    double fraction)
+        {
+            PathCertificate result;
+            const auto &si = path.getSpaceInformation();
+            const auto &space = si->getStateSpace();
+            const double step = std::max(1e-9, fraction * space->getLongestValidSegmentLength());
+            std::vector<double> values;
+            ompl::base::State *s = si->allocState();
+            auto check = [&](const ompl::base::State *state, std::size_t segment, double t)
+            {
+                ++result.statesChecked;
+                if (!si->satisfiesBounds(state))
+                {
+                    result.reason =
+                        "segment " + std::to_string(segment) + " at " + std::to_string(t) + ": out of bounds";
+                    return false;
+                }
+                space->copyToReals(values, state);
+                const std::string hit = fcl.describeCollision(values.data());
+                if (!hit.empty())
+                    result.reason = "segment " + std::to_string(segment) + " at " + std::to_string(t) + ": " + hit;
+                return hit.empty();
+            };
+            bool ok = path.getStateCount() > 0 && check(path.getState(0), 0, 0.);
+            for (std::size_t i = 0; ok && i + 1 < path.getStateCount(); ++i)
+            {
+                const auto *a = path.getState(i), *b = path.getState(i + 1);
+                const std::size_t n =
+                    std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(space->distance(a, b) / step)));
+                for (std::size_t k = 1; ok && k <= n; ++k)
+                {
+                    const double t = static_cast<double>(k) / static_cast<double>(n);
+                    space->interpolate(a, b, t, s);
+                    ok = check(s, i, t);
+                }
+            }
+            if (path.getStateCount() == 0)
+                result.reason = "empty path";
+            si->freeState(s);
+            result.certified = ok;
+            return result;
+        }
+    }  // namespace tools
+}  // namespace michi
