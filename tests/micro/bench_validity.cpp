@@ -8,6 +8,7 @@
 #include <michi/validity/fcl/ConservativeMotionValidator.h>
 #include <michi/validity/jmap/JMapMotionValidator.h>
 #include <michi/validity/fcl/WorkspaceMotionValidator.h>
+#include <michi/validity/spheres/SphereMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/util/RandomNumbers.h>
@@ -55,6 +56,32 @@ namespace
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
     }
 
+    /** The sphere checker (SphereModel::enclose of the problem's robot, default budget) of a fixture. */
+    std::shared_ptr<michi::validity::SphereValidityChecker> sphereChecker(Fixture &f)
+    {
+        static std::map<Fixture *, std::shared_ptr<michi::validity::SphereValidityChecker>> cache;
+        auto &c = cache[&f];
+        if (!c)
+        {
+            auto group = std::dynamic_pointer_cast<const michi::validity::RobotGroupBodies>(f.ctx.bodies);
+            c = std::make_shared<michi::validity::SphereValidityChecker>(
+                f.ctx.setup->getSpaceInformation(), group, michi::validity::SphereModel::enclose(*group->model()),
+                f.ctx.scene);
+        }
+        return c;
+    }
+
+    /** The same states as isValid, checked with the sphere checker. */
+    void isValidSpheres(benchmark::State &bm, const std::string &name)
+    {
+        auto &f = fixture(name);
+        auto checker = sphereChecker(f);
+        std::size_t i = 0, valid = 0;
+        for (auto _ : bm)
+            valid += checker->isValid(f.states[i++ % f.states.size()]);
+        bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
+    }
+
     void clearance(benchmark::State &bm, const std::string &name)
     {
         auto &f = fixture(name);
@@ -63,7 +90,8 @@ namespace
             benchmark::DoNotOptimize(f.ctx.checker->clearance(f.states[i++ % f.states.size()]));
     }
 
-    /** kind 0: OMPL's discrete, 1: conservative (FCL), 2: workspace, 3: J-map (conservative as its fallback);
+    /** kind 0: OMPL's discrete, 1: conservative (FCL), 2: workspace, 3: J-map (conservative as its fallback),
+        4: certified sphere motions (SphereMotionValidator);
         \e fraction: how far towards the next sample the motions go (planners mostly make short ones). */
     void motion(benchmark::State &bm, const std::string &name, int kind, double fraction = 0.1)
     {
@@ -81,6 +109,8 @@ namespace
             validator = std::make_shared<michi::validity::JMapMotionValidator>(
                 si, jmap, std::make_shared<michi::validity::ConservativeMotionValidator>(si, f.ctx.checker));
         }
+        else if (kind == 4)
+            validator = std::make_shared<michi::validity::SphereMotionValidator>(si, sphereChecker(f));
         else
             validator = std::make_shared<ompl::base::DiscreteMotionValidator>(si);
         // motions between valid samples, by default short ones (a tenth of the way) as planners mostly make
@@ -124,5 +154,11 @@ BENCHMARK_CAPTURE(motion, conservative_xarm6_ring, std::string("xarm6_ring"), 1)
 BENCHMARK_CAPTURE(isValid, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(clearance, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(motion, discrete_panda_table_pick, std::string("panda_table_pick"), 0);
+BENCHMARK_CAPTURE(motion, workspace_panda_table_pick, std::string("panda_table_pick"), 2);
+// the sphere checker against the FCL ones above (same states, same motions)
+BENCHMARK_CAPTURE(isValidSpheres, xarm6_ring, std::string("xarm6_ring"));
+BENCHMARK_CAPTURE(isValidSpheres, panda_table_pick, std::string("panda_table_pick"));
+BENCHMARK_CAPTURE(motion, spheres_xarm6_ring, std::string("xarm6_ring"), 4);
+BENCHMARK_CAPTURE(motion, spheres_panda_table_pick, std::string("panda_table_pick"), 4);
 
 BENCHMARK_MAIN();
