@@ -81,7 +81,9 @@ case "$what" in
             run_asan
             if fits fuzz 4; then run_fuzz; fi
         fi
-        if fits tsan 20; then run_tsan; fi
+        # TSan is not yet part of the default run: its build and threaded tests have not been seen to pass end to
+        # end on this machine (docs/reliability.md); MICHI_RUN_TSAN=1 (or `scripts/sanitizers.sh tsan`) runs it
+        if [[ ${MICHI_RUN_TSAN:-0} == 1 ]] && fits tsan 20; then run_tsan; fi
         ;;
     *) echo "usage: scripts/sanitizers.sh [asan|asan-all|tsan|fuzz|all]" >&2; exit 2 ;;
 esac
