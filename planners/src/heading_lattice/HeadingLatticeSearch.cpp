@@ -1,0 +1,392 @@
+// HeadingLattice, second half: the A* search over the implicit lattice, its 2-D Dijkstra heuristic kept per goal,
+// and the lazily checked, cached edges (the planner's state, setup and paths are in HeadingLattice.cpp).
+#include <michi/planners/heading_lattice/HeadingLattice.h>
+#include "HeadingLatticeCommon.h"
+
+#include <michi/state_spaces/Angles.h>
+#include <michi/state_spaces/TurnMoveTurnStateSpace.h>
+#include <michi/validity/fcl/FclValidityChecker.h>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/util/Time.h>
+
+#include <boost/math/constants/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <array>
+#include <map>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace planners
+    {
+        void HeadingLattice::resetHeuristic()
+        {
+            if (hReady_ || !hOpen_.empty())
+            {
+                std::fill(hDist_.begin(), hDist_.end(), std::numeric_limits<float>::infinity());
+                std::fill(hState_.begin(), hState_.end(), 0);
+            }
+            hOpen_.clear();
+            hReady_ = false;
+        }
+
+        double HeadingLattice::groupDistance(std::uint32_t g, const ob::PlannerTerminationCondition &ptc, bool &stopped)
+        {
+            // a resumable Dijkstra over the groups (8-connected, steps of c and c sqrt 2) from the groups joined to
+            // a goal, through groups with at least one free node (checked here, cached for the search)
+            const unsigned int K = headings_;
+            auto isFree = [&](std::uint32_t group)
+            {
+                std::uint8_t &f = groupFree_[group];
+                if (f == 0)
+                {
+                    f = 2;
+                    for (unsigned int k = 0; k < K; ++k)
+                        if (nodeValid(group * K + k))
+                        {
+                            f = 1;
+                            break;
+                        }
+                }
+                return f == 1;
+            };
+            auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
+            {
+                return a.first > b.first || (a.first == b.first && a.second > b.second);
+            };
+            const double c = cellSize_, diagonal = cellSize_ * std::sqrt(2.);
+            unsigned int count = 0;
+            while (hState_[g] != 2 && !hOpen_.empty())
+            {
+                if ((++count & 255u) == 0 && ptc())
+                {
+                    stopped = true;
+                    return 0.;
+                }
+                std::pop_heap(hOpen_.begin(), hOpen_.end(), greater);
+                const auto top = hOpen_.back();
+                hOpen_.pop_back();
+                const std::uint32_t u = top.second;
+                if (hState_[u] == 2 || top.first > hDist_[u])
+                    continue;
+                hState_[u] = 2;
+                ++work_.heuristicGroups;
+                const long i = u / rows_, j = u % rows_;
+                for (int di = -1; di <= 1; ++di)
+                    for (int dj = -1; dj <= 1; ++dj)
+                    {
+                        if (di == 0 && dj == 0)
+                            continue;
+                        const long ni = i + di, nj = j + dj;
+                        if (ni < 0 || nj < 0 || ni >= static_cast<long>(columns_) || nj >= static_cast<long>(rows_))
+                            continue;
+                        const auto w = static_cast<std::uint32_t>(ni * rows_ + nj);
+                        if (hState_[w] == 2)
+                            continue;
+                        const float d = static_cast<float>(hDist_[u] + (di != 0 && dj != 0 ? diagonal : c));
+                        if (d < hDist_[w] && isFree(w))
+                        {
+                            hDist_[w] = d;
+                            hState_[w] = 1;
+                            hOpen_.emplace_back(d, w);
+                            std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
+                        }
+                    }
+            }
+            return hState_[g] == 2 ? hDist_[g] : INF;
+        }
+
+        double HeadingLattice::heuristic(Vertex v, const ob::PlannerTerminationCondition &ptc, bool &stopped)
+        {
+            if (!isLattice(v))
+                return 0.;
+            double x, y;
+            nodePosition(v, x, y);
+            double euclid = INF;
+            // drives and the join to a goal cost at least the straight-line distance (turns: see build())
+            for (std::size_t i = 0; i + 2 < hGoals_.size(); i += 3)
+                euclid = std::min(euclid, std::hypot(x - hGoals_[i], y - hGoals_[i + 1]));
+            const double grid = groupDistance(v / headings_, ptc, stopped);
+            if (grid == INF)
+                return INF;
+            return std::max({0., euclidWeight_ * euclid, grid / OCTILE_EXCESS - cellSize_});
+        }
+
+        void HeadingLattice::rebuildGoalLinks()
+        {
+            goalLinks_.clear();
+            for (std::uint32_t qi = 0; qi < queries_.size(); ++qi)
+                if (!queries_[qi].start)
+                    for (std::uint32_t ci = 0; ci < queries_[qi].nodes.size(); ++ci)
+                        goalLinks_.push_back({queries_[qi].nodes[ci], {qi, ci}});
+            std::sort(goalLinks_.begin(), goalLinks_.end());
+        }
+
+        void HeadingLattice::prepareHeuristic()
+        {
+            std::vector<double> goals;
+            for (const auto &q : queries_)
+                if (!q.start)
+                {
+                    const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
+                    goals.insert(goals.end(), {s->getX(), s->getY(), q.radius});
+                }
+            if (hReady_ && goals == hGoals_)
+                return;  // kept: the same goals on the same map
+            resetHeuristic();
+            hGoals_ = goals;
+            auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
+            {
+                return a.first > b.first || (a.first == b.first && a.second > b.second);
+            };
+            for (const auto &q : queries_)
+                if (!q.start)
+                    for (Vertex v : q.nodes)
+                    {
+                        const std::uint32_t g = v / headings_;
+                        if (hState_[g] == 0)
+                        {
+                            hDist_[g] = 0.f;
+                            hState_[g] = 1;
+                            hOpen_.emplace_back(0.f, g);
+                            std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
+                        }
+                    }
+            hReady_ = true;
+        }
+
+        std::uint8_t *HeadingLattice::edgeSlot(Vertex a, Vertex b, int &shift)
+        {
+            shift = 0;
+            if (isLattice(a) && isLattice(b))
+            {
+                const unsigned int K = headings_;
+                if (a / K == b / K)
+                {
+                    shift = 2;
+                    if (b % K == (a % K + 1) % K)
+                        return &edgeState_[a];
+                    if (a % K == (b % K + 1) % K)
+                        return &edgeState_[b];
+                    return nullptr;
+                }
+                if (driveNext(a) == static_cast<std::int64_t>(b))
+                    return &edgeState_[a];
+                if (driveNext(b) == static_cast<std::int64_t>(a))
+                    return &edgeState_[b];
+                return nullptr;
+            }
+            if (!isLattice(a) && !isLattice(b))
+            {
+                for (auto &d : direct_)
+                    if (d.from == a && d.to == b)
+                        return &d.status;
+                return nullptr;
+            }
+            QueryVertex &q = query(isLattice(a) ? b : a);
+            const Vertex node = isLattice(a) ? a : b;
+            for (std::size_t i = 0; i < q.nodes.size(); ++i)
+                if (q.nodes[i] == node)
+                    return &q.status[i];
+            return nullptr;
+        }
+
+        HeadingLattice::Node HeadingLattice::nodeOf(Vertex v) const
+        {
+            Node n;
+            nodePosition(v, n.x, n.y);
+            n.heading = v % headings_;
+            n.group = v / headings_;
+            return n;
+        }
+
+        bool HeadingLattice::checkEdgeMotion(Vertex a, Vertex b)
+        {
+            ob::State *sa = si_->allocState(), *sb = si_->allocState();
+            setNodeState(a, sa);
+            setNodeState(b, sb);
+            bool ok;
+            if (isLattice(a) && isLattice(b) && a / headings_ == b / headings_)
+            {
+                // a turn in place between the headings, at both nodes' positions
+                ++work_.edgeChecks;
+                ob::State *c = si_->allocState(), *d = si_->allocState();
+                const auto *pa = sa->as<ob::SE2StateSpace::StateType>();
+                const auto *pb = sb->as<ob::SE2StateSpace::StateType>();
+                setState(c, pa->getX(), pa->getY(), pb->getYaw());
+                setState(d, pb->getX(), pb->getY(), pa->getYaw());
+                ok = si_->checkMotion(sa, c) && si_->checkMotion(d, sb);
+                si_->freeState(c);
+                si_->freeState(d);
+            }
+            else
+            {
+                ++(isLattice(a) && isLattice(b) ? work_.edgeChecks : work_.queryChecks);
+                ok = si_->checkMotion(sa, sb);
+            }
+            si_->freeState(sa);
+            si_->freeState(sb);
+            return ok;
+        }
+
+        std::vector<HeadingLattice::Vertex> HeadingLattice::search(const ob::PlannerTerminationCondition &ptc,
+                                                                   bool &stopped)
+        {
+            stopped = false;
+            ++work_.searches;
+            const std::size_t n = static_cast<std::size_t>(nodeCount_) + queries_.size();
+            if (g_.size() < n)
+            {
+                g_.resize(n);
+                parent_.resize(n);
+                stamp_.resize(n, 0);
+            }
+            if (++searchStamp_ == 0)
+            {
+                std::fill(stamp_.begin(), stamp_.end(), 0);
+                searchStamp_ = 1;
+            }
+            open_.clear();
+            auto less = [](const OpenEntry &a, const OpenEntry &b)
+            {
+                return heapLess(a.f, a.g, b.f, b.g);
+            };
+            auto relax = [&](Vertex u, Vertex w, double cost)
+            {
+                const float ng = static_cast<float>(g_[u] + cost);
+                if (stamp_[w] == searchStamp_ && !(ng < g_[w]))
+                    return;
+                const double h = heuristic(w, ptc, stopped);
+                if (stopped || h == INF)
+                    return;
+                stamp_[w] = searchStamp_;
+                g_[w] = ng;
+                parent_[w] = u;
+                open_.push_back(OpenEntry{static_cast<float>(ng + h), ng, w});
+                std::push_heap(open_.begin(), open_.end(), less);
+            };
+            for (std::size_t qi = 0; qi < queries_.size(); ++qi)
+                if (queries_[qi].start)
+                {
+                    const auto v = static_cast<Vertex>(nodeCount_ + qi);
+                    stamp_[v] = searchStamp_;
+                    g_[v] = 0.f;
+                    parent_[v] = v;
+                    open_.push_back(OpenEntry{0.f, 0.f, v});
+                    std::push_heap(open_.begin(), open_.end(), less);
+                }
+            const unsigned int K = headings_;
+            unsigned int count = 0;
+            while (!open_.empty())
+            {
+                if ((++count & 255u) == 0 && ptc())
+                {
+                    stopped = true;
+                    return {};
+                }
+                std::pop_heap(open_.begin(), open_.end(), less);
+                const OpenEntry e = open_.back();
+                open_.pop_back();
+                if (e.g > g_[e.v])
+                    continue;  // a better way to it was found after this entry
+                const Vertex u = e.v;
+                ++work_.expansions;
+                if (!isLattice(u))
+                {
+                    const QueryVertex &q = query(u);
+                    if (!q.start)
+                    {
+                        std::vector<Vertex> path;
+                        for (Vertex v = u;; v = parent_[v])
+                        {
+                            path.push_back(v);
+                            if (parent_[v] == v)
+                                break;
+                        }
+                        std::reverse(path.begin(), path.end());
+                        return path;
+                    }
+                    for (std::size_t i = 0; i < q.nodes.size() && !stopped; ++i)
+                        if (q.status[i] != INVALID && nodeValid(q.nodes[i]))
+                            relax(u, q.nodes[i], q.costs[i]);
+                    for (const auto &d : direct_)
+                        if (d.from == u && d.status != INVALID && !stopped)
+                            relax(u, d.to, d.cost);
+                }
+                else
+                {
+                    const std::uint32_t group = u / K;
+                    const unsigned int k = u % K;
+                    const double length = geometry_[k].length;
+                    const std::int64_t next = driveNext(u);
+                    if (next >= 0 && (edgeState_[u] & 3) != INVALID && nodeValid(static_cast<Vertex>(next)))
+                        relax(u, static_cast<Vertex>(next), length);
+                    if (reversible_ && !stopped)
+                    {
+                        const std::int64_t prev = drivePrev(u);
+                        if (prev >= 0 && (edgeState_[prev] & 3) != INVALID && nodeValid(static_cast<Vertex>(prev)))
+                            relax(u, static_cast<Vertex>(prev), length);
+                    }
+                    const Vertex up = group * K + (k + 1) % K, down = group * K + (k + K - 1) % K;
+                    if (!stopped && (edgeState_[u] >> 2) != INVALID && nodeValid(up))
+                        relax(u, up, turnCost_);
+                    if (!stopped && (edgeState_[down] >> 2) != INVALID && nodeValid(down))
+                        relax(u, down, turnCost_);
+                    auto it = std::lower_bound(goalLinks_.begin(), goalLinks_.end(),
+                                               std::make_pair(u, std::make_pair(0u, 0u)));
+                    for (; it != goalLinks_.end() && it->first == u && !stopped; ++it)
+                    {
+                        const QueryVertex &q = queries_[it->second.first];
+                        if (q.status[it->second.second] != INVALID)
+                            relax(u, static_cast<Vertex>(nodeCount_ + it->second.first), q.costs[it->second.second]);
+                    }
+                }
+                if (stopped)
+                    return {};
+            }
+            return {};
+        }
+
+        void HeadingLattice::removeEdgePair(Vertex a, Vertex b)
+        {
+            int shift;
+            if (std::uint8_t *slot = edgeSlot(a, b, shift))
+                *slot = static_cast<std::uint8_t>((*slot & ~(3 << shift)) | (INVALID << shift));
+        }
+
+        bool HeadingLattice::checkEdges(const std::vector<Vertex> &path, const ob::PlannerTerminationCondition &ptc,
+                                        bool &stopped)
+        {
+            stopped = false;
+            for (std::size_t p = 0; p + 1 < path.size(); ++p)
+            {
+                int shift;
+                std::uint8_t *slot = edgeSlot(path[p], path[p + 1], shift);
+                const int before = slot == nullptr ? VALID : (*slot >> shift) & 3;
+                if (before == VALID || before == INVALID)
+                    continue;
+                if (before == STALE)
+                    ++work_.edgeRechecks;
+                if (ptc())
+                {
+                    stopped = true;
+                    return false;
+                }
+                const std::uint8_t status = checkEdgeMotion(path[p], path[p + 1]) ? VALID : INVALID;
+                slot = edgeSlot(path[p], path[p + 1], shift);
+                *slot = static_cast<std::uint8_t>((*slot & ~(3 << shift)) | (status << shift));
+                if (status != VALID)
+                    return false;
+            }
+            return true;
+        }
+    }  // namespace planners
+}  // namespace michi
