@@ -40,8 +40,7 @@ TEST(InterferencePrediction, FirstInterferenceIsTheArcToTheFirstBlockedMotion)
     auto scene = std::make_shared<validity::Scene>();
     planners::PredictedObstacles predicted(scene, 2, 1.);
     predicted.add("box", validity::Shape::sphere(0.05), Eigen::Isometry3d::Identity());
-    auto space = state_spaces::makeJointStateSpace(
-        {{"joint1", -M_PI, M_PI, false}, {"joint2", -M_PI, M_PI, false}});
+    auto space = state_spaces::makeJointStateSpace({{"joint1", -M_PI, M_PI, false}, {"joint2", -M_PI, M_PI, false}});
     auto si = std::make_shared<ompl::base::SpaceInformation>(space);
     auto checker = std::make_shared<validity::FclValidityChecker>(si, bodies, scene);
     si->setStateValidityChecker(checker);
@@ -56,8 +55,8 @@ TEST(InterferencePrediction, FirstInterferenceIsTheArcToTheFirstBlockedMotion)
     predicted.observe("box", Eigen::Isometry3d(Eigen::Translation3d(on + Eigen::Vector3d(0., 2., 0.))),
                       Eigen::Vector3d(0., -2., 0.));
     const double arc = planners::firstInterference(si, path, 10.);
-    EXPECT_GT(arc, 0.4);           // the first segment is free
-    EXPECT_LT(arc, M_PI / 4);      // blocked before link 1 reaches the copy at 45 degrees
+    EXPECT_GT(arc, 0.4);       // the first segment is free
+    EXPECT_LT(arc, M_PI / 4);  // blocked before link 1 reaches the copy at 45 degrees
     // a lookahead that ends before the copy sees nothing
     EXPECT_TRUE(std::isinf(planners::firstInterference(si, path, 0.35)));
 }

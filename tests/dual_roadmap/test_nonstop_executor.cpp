@@ -1,5 +1,5 @@
-// Tests of michi::planners::NonStopExecutor (paper 002, Fig. 1): every transition of the execution state machine, driven
-// by a simulated clock the test controls and a planner the test releases. The world is the plane: the robot is a
+// Tests of michi::planners::NonStopExecutor (paper 002, Fig. 1): every transition of the execution state machine,
+// driven by a simulated clock the test controls and a planner the test releases. The world is the plane: the robot is a
 // point moving from (0, 0) to (10, 0); obstacles are boxes the test puts down and removes; the planner's path makes
 // a detour through y = 2. Nothing here depends on timing (the planner thread is waited for, never raced against).
 // Also built with -fsanitize=thread (CMake option MICHI_TSAN, see docs/dual-roadmap.md).

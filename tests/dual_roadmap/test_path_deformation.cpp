@@ -44,7 +44,8 @@ namespace
     {
         test::CheckerSetup setup;
         std::function<double(const planners::Configuration &, const planners::Configuration &)> distance;
-        std::function<void(const planners::Configuration &, const planners::Configuration &, double, planners::Configuration &)>
+        std::function<void(const planners::Configuration &, const planners::Configuration &, double,
+                           planners::Configuration &)>
             interpolate;
 
         Se2Case()
@@ -60,8 +61,8 @@ namespace
                 si->getStateSpace()->copyFromReals(sb.get(), b);
                 return si->distance(sa.get(), sb.get());
             };
-            interpolate =
-                [si](const planners::Configuration &a, const planners::Configuration &b, double t, planners::Configuration &out)
+            interpolate = [si](const planners::Configuration &a, const planners::Configuration &b, double t,
+                               planners::Configuration &out)
             {
                 ob::ScopedState<> sa(si), sb(si), so(si);
                 si->getStateSpace()->copyFromReals(sa.get(), a);

@@ -21,7 +21,8 @@ namespace michi_fuzz
         directory and removed at exit. */
     inline const std::string &problemsCopy()
     {
-        static const std::string dir = [] {
+        static const std::string dir = []
+        {
             namespace fs = std::filesystem;
             std::string pattern = (fs::temp_directory_path() / "michi-fuzz-XXXXXX").string();
             if (mkdtemp(pattern.data()) == nullptr)

@@ -9,13 +9,19 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {
-    static const std::string problemFile = [] {
+    static const std::string problemFile = []
+    {
         const std::string file = michi_fuzz::problemsCopy() + "/fuzz_experience_problem.yaml";
         std::ofstream(file) << "experience:\n  queries: experience/fuzz_queries.yaml\n  training_time: 5\n";
         return file;
     }();
-    static const michi::tools::Problem problem = michi::tools::loadProblem(michi_fuzz::problemsCopy() + "/xarm6_ring.yaml");
+    static const michi::tools::Problem problem =
+        michi::tools::loadProblem(michi_fuzz::problemsCopy() + "/xarm6_ring.yaml");
     michi_fuzz::writeInput("experience/fuzz_queries.yaml", data, size);
-    michi_fuzz::expectCleanResult([&] { michi::tools::readExperienceQueries(problemFile, problem); });
+    michi_fuzz::expectCleanResult(
+        [&]
+        {
+            michi::tools::readExperienceQueries(problemFile, problem);
+        });
     return 0;
 }

@@ -6,6 +6,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {
     const std::string path = michi_fuzz::writeInput("moveit/table_pick/fuzz_request.yaml", data, size);
-    michi_fuzz::expectCleanResult([&] { michi::tools::readMoveItRequest(path); });
+    michi_fuzz::expectCleanResult(
+        [&]
+        {
+            michi::tools::readMoveItRequest(path);
+        });
     return 0;
 }

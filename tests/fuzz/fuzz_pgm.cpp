@@ -7,6 +7,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
 {
     const std::string path = michi_fuzz::writeInput("maps/fuzz.pgm", data, size);
     michi_fuzz::expectCleanResult(
-        [&] { michi::validity::occupancyObstacles(path, 0.05, Eigen::Vector2d(-1., 2.), 1., 0.5); });
+        [&]
+        {
+            michi::validity::occupancyObstacles(path, 0.05, Eigen::Vector2d(-1., 2.), 1., 0.5);
+        });
     return 0;
 }

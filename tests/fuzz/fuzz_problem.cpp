@@ -7,6 +7,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {
     const std::string path = michi_fuzz::writeInput("fuzz_problem.yaml", data, size);
-    michi_fuzz::expectCleanResult([&] { michi::tools::loadProblem(path); });
+    michi_fuzz::expectCleanResult(
+        [&]
+        {
+            michi::tools::loadProblem(path);
+        });
     return 0;
 }

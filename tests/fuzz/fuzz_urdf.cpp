@@ -17,7 +17,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     const std::string xml(reinterpret_cast<const char *>(data), size);
     const std::string baseDir = michi_fuzz::problemsCopy() + "/robots";
     michi::validity::RobotModelPtr model;
-    michi_fuzz::expectCleanResult([&] { model = michi::validity::RobotModel::fromUrdfString(xml, "fuzz.urdf", baseDir); });
+    michi_fuzz::expectCleanResult(
+        [&]
+        {
+            model = michi::validity::RobotModel::fromUrdfString(xml, "fuzz.urdf", baseDir);
+        });
     if (!model)
         return 0;
     const urdf::ModelInterfaceSharedPtr parsed = urdf::parseURDF(xml);

@@ -70,8 +70,7 @@ namespace
             EXPECT_TRUE(run.exitCode == 1 || run.exitCode == 2) << "exit " << run.exitCode << "\n" << run.output;
             const std::string last = lastLine(run.output);
             EXPECT_NE(last.find(fragment), std::string::npos) << last;
-            EXPECT_FALSE(std::regex_search(last, std::regex("std::bad_alloc|basic_filebuf|boost::filesystem")))
-                << last;
+            EXPECT_FALSE(std::regex_search(last, std::regex("std::bad_alloc|basic_filebuf|boost::filesystem"))) << last;
             EXPECT_FALSE(fs::exists(out)) << out << " written";
             // no staging folder left beside the output (nor in the test's folder, when --out lies under a file)
             fs::path beside = out.parent_path();
@@ -157,9 +156,10 @@ TEST_F(BadCommands, TenThousandObstacleMapLoads)
         for (int x = 0; x < 141; ++x)
             pgm += static_cast<char>((x + y) % 2 == 0 ? 0 : 255);
     spit(dir_ / "checker.pgm", pgm);
-    spit(dir_ / "checker.yaml", "robot:\n  type: se2\n  footprint: [[-0.01, -0.01], [0.01, -0.01], [0.01, 0.01], "
-                                "[-0.01, 0.01]]\n  bounds: {x: [0, 20], y: [0, 20]}\nscene:\n  map: {pgm: checker.pgm, "
-                                "resolution: 0.05, origin: [10, 10]}\nstart: [1, 1, 0]\ngoal: [2, 2, 0]\n");
+    spit(dir_ / "checker.yaml",
+         "robot:\n  type: se2\n  footprint: [[-0.01, -0.01], [0.01, -0.01], [0.01, 0.01], "
+         "[-0.01, 0.01]]\n  bounds: {x: [0, 20], y: [0, 20]}\nscene:\n  map: {pgm: checker.pgm, "
+         "resolution: 0.05, origin: [10, 10]}\nstart: [1, 1, 0]\ngoal: [2, 2, 0]\n");
     const CommandRun run = runMichi("plan " + (dir_ / "checker.yaml").string() + PLAN + (dir_ / "o").string());
     EXPECT_EQ(run.exitCode, 0) << run.output;
 }

@@ -85,7 +85,8 @@ TEST(BadInputs, UrdfCollisionOriginThatIsNotFiniteIsRejectedNotDropped)
 
 TEST(BadInputs, UrdfJointCyclesAreRejected)
 {
-    const std::string selfLoop = R"(<joint name="loop" type="fixed"><parent link="link2"/><child link="link2"/></joint>)";
+    const std::string selfLoop =
+        R"(<joint name="loop" type="fixed"><parent link="link2"/><child link="link2"/></joint>)";
     const std::string message = errorOf(
         [&]
         {
@@ -125,8 +126,10 @@ TEST(BadInputs, TenThousandObstaclesLoadInOneBroadPhaseBuild)
     std::vector<validity::Obstacle> boxes;
     for (int i = 0; i < 10000; ++i)
     {
-        validity::Obstacle o{"box" + std::to_string(i), validity::Shape::box(Eigen::Vector3d(0.05, 0.05, 0.05)),
-                             Eigen::Isometry3d::Identity(), {}};
+        validity::Obstacle o{"box" + std::to_string(i),
+                             validity::Shape::box(Eigen::Vector3d(0.05, 0.05, 0.05)),
+                             Eigen::Isometry3d::Identity(),
+                             {}};
         o.pose.translation() = Eigen::Vector3d(0.1 * (i % 100), 0.1 * (i / 100), 0.);
         boxes.push_back(std::move(o));
     }
@@ -135,8 +138,7 @@ TEST(BadInputs, TenThousandObstaclesLoadInOneBroadPhaseBuild)
     scene.add(std::move(boxes));
     EXPECT_EQ(scene.size(), 10000u);
     EXPECT_EQ(scene.changeCount(), before + 1);
-    EXPECT_THROW(scene.add(validity::Obstacle{"box5", validity::Shape::sphere(0.1), Eigen::Isometry3d::Identity(),
-                                              {}}),
+    EXPECT_THROW(scene.add(validity::Obstacle{"box5", validity::Shape::sphere(0.1), Eigen::Isometry3d::Identity(), {}}),
                  std::invalid_argument);
 }
 
@@ -181,8 +183,8 @@ TEST(BadInputs, ProblemFileNumbersAreValidatedWhereTheyEnter)
     auto problemWith = [&](const std::string &name, const std::string &extra, const std::string &obstaclePosition)
     {
         return dir.write(name + ".yaml", "name: " + name + "\nrobot: {urdf: two.urdf}\nscene:\n  obstacles:\n" +
-                                             "    - {name: b, box: [0.1, 0.1, 0.1], pose: {xyz: " +
-                                             obstaclePosition + "}}\nstart: [0, 0]\ngoal: [1, 1]\n" + extra);
+                                             "    - {name: b, box: [0.1, 0.1, 0.1], pose: {xyz: " + obstaclePosition +
+                                             "}}\nstart: [0, 0]\ngoal: [1, 1]\n" + extra);
     };
     // a sane file loads
     EXPECT_NO_THROW(tools::loadProblem(problemWith("ok", "", "[0.8, 0.8, 0]")));
@@ -223,8 +225,8 @@ TEST(BadInputs, ConservativeMotionsEndWhenGeometryIsFarFromItsJoint)
     std::string urdf = far;
     urdf.replace(urdf.find("<origin xyz=\"0.2 0 0\"/>"), 22, "<origin xyz=\"1e6 0 0\"/>");
     const auto model = validity::RobotModel::fromUrdfString(urdf, "far.urdf", ".");
-    auto bodies = std::make_shared<validity::RobotGroupBodies>(model, std::vector<int>{0, 1},
-                                                               std::vector<double>{0., 0.});
+    auto bodies =
+        std::make_shared<validity::RobotGroupBodies>(model, std::vector<int>{0, 1}, std::vector<double>{0., 0.});
     auto scene = std::make_shared<validity::Scene>();
     scene->add(validity::Obstacle{"post", validity::Shape::sphere(0.5), Eigen::Isometry3d::Identity(), {}});
     // link 2's box passes (0.5, 1e6) when joint 2 is at pi/2, on the way from 0 to 2.5 rad

@@ -66,8 +66,8 @@ TEST(LinksInChecking, EveryLinkWithCollisionGeometryIsChecked)
         for (const auto &kv : expected)
         {
             ++links;
-            ASSERT_TRUE(bodies.count(kv.first)) << entry.path().filename() << ": link '" << kv.first
-                                                << "' has collision geometry but is not checked";
+            ASSERT_TRUE(bodies.count(kv.first))
+                << entry.path().filename() << ": link '" << kv.first << "' has collision geometry but is not checked";
             EXPECT_EQ(static_cast<int>(bodies[kv.first]->shapes.size()), kv.second) << kv.first;
         }
         // and checking sees each primitive: a small ball at a shape's centre makes the start invalid
@@ -87,8 +87,7 @@ TEST(LinksInChecking, EveryLinkWithCollisionGeometryIsChecked)
                 ball.pose.translation() = centre;
                 problem.scene->add(ball);
                 EXPECT_FALSE(ctx.checker->isValidConfiguration(start.data()))
-                    << entry.path().filename() << ": a ball at the centre of link '" << all[b].name
-                    << "' is not seen";
+                    << entry.path().filename() << ": a ball at the centre of link '" << all[b].name << "' is not seen";
                 problem.scene->remove("probe");
                 ++probed;
             }

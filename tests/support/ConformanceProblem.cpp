@@ -71,9 +71,8 @@ namespace michi
                 {
                     const Eigen::Vector2d c(0.25 * std::cos(angle), 0.25 * std::sin(angle));
                     const double h = 0.015;
-                    outlines.push_back(
-                        {c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h), c + Eigen::Vector2d(h, h),
-                         c + Eigen::Vector2d(-h, h)});
+                    outlines.push_back({c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h),
+                                        c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)});
                 }
             }
             for (const auto &outline : outlines)

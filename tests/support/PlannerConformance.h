@@ -8,8 +8,9 @@
 // name, and the case's parameters are accepted; solve -> clear -> solve gives exact solutions both times; with a
 // termination condition that is already true, solve() returns without a solution and after at most a handful of
 // validity checks (counted, not timed); on a problem whose goal is walled in, solve() returns within 0.1 s after its
-// termination condition becomes true (the one timed check: issue 13 asks for it; setup is timed apart); every solution is re-validated at 1/10 of the space's resolution by an
-// independent checker (Boost.Geometry, not FCL); getPlannerData() is not empty.
+// termination condition becomes true (the one timed check: issue 13 asks for it; setup is timed apart); every solution
+// is re-validated at 1/10 of the space's resolution by an independent checker (Boost.Geometry, not FCL);
+// getPlannerData() is not empty.
 #ifndef MICHI_TESTS_SUPPORT_PLANNER_CONFORMANCE_
 #define MICHI_TESTS_SUPPORT_PLANNER_CONFORMANCE_
 

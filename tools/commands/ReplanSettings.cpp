@@ -100,7 +100,8 @@ namespace michi
                 }
                 if (s.speedJitter >= 1.)
                     fail(file, "extras.replan.speed_jitter", "expected a fraction below 1");
-                if (s.predictionCopies < 1. || s.predictionCopies > 100. || s.predictionCopies != std::floor(s.predictionCopies))
+                if (s.predictionCopies < 1. || s.predictionCopies > 100. ||
+                    s.predictionCopies != std::floor(s.predictionCopies))
                     fail(file, "extras.replan.prediction_copies", "expected a whole number in 1..100");
                 // bounded work: an episode is episode_time / dt simulation steps, each of which checks the scene
                 if (s.dt < 1e-4 || s.dt > 1.)

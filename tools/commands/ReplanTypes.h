@@ -28,10 +28,10 @@ namespace michi
             using planners::Configuration;
             using planners::ConfigurationPath;
             using planners::DeformationSettings;
+            using planners::deformPath;
             using planners::NonStopExecutor;
             using planners::NonStopHooks;
             using planners::NonStopSettings;
-            using planners::deformPath;
             using planners::pointJacobian;
 
             /** extras.replan of the problem file (docs/dual-roadmap.md). */

@@ -25,7 +25,7 @@ namespace michi
                 throw InputFileError(path, "cannot read: " + ec.message());
             if (size > maxBytes)
                 throw InputFileError(path, "file of " + std::to_string(size) + " bytes is above the limit of " +
-                                                   std::to_string(maxBytes) + " bytes");
+                                               std::to_string(maxBytes) + " bytes");
             std::ifstream probe(path, std::ios::binary);
             if (!probe)
                 throw InputFileError(path, "cannot open the file (permissions?)");

@@ -10,7 +10,7 @@ namespace michi
     namespace planners
     {
         PredictedObstacles::PredictedObstacles(validity::ScenePtr scene, int copies, double horizon)
-          : scene_(std::move(scene)), copies_(copies), horizon_(horizon)
+            : scene_(std::move(scene)), copies_(copies), horizon_(horizon)
         {
             if (!scene_)
                 throw std::invalid_argument("PredictedObstacles: no scene");

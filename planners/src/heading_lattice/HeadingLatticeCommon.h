@@ -34,7 +34,7 @@ namespace michi
                 return fa > fb || (fa == fb && ga < gb);
             }
         }  // namespace
-    }  // namespace planners
+    }      // namespace planners
 }  // namespace michi
 
 #endif

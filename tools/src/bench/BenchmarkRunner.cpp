@@ -93,8 +93,8 @@ namespace michi
             };
             for (const auto &p : planners)
                 md << "| " << p.name << " | " << p.runs << " | " << num(100. * p.solved / std::max(1u, p.runs), 3)
-                   << " % | " << p.certified << "/" << p.solved << " | " << num(p.medianTime, 4) << " | " << num(p.medianLength, 4) << " | "
-                   << num(p.medianClearance, 3) << " |\n";
+                   << " % | " << p.certified << "/" << p.solved << " | " << num(p.medianTime, 4) << " | "
+                   << num(p.medianLength, 4) << " | " << num(p.medianClearance, 3) << " |\n";
             return md.str();
         }
 

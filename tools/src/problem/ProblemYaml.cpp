@@ -22,7 +22,8 @@ namespace michi
             namespace
             {
                 /** Throws on the first mapping that holds a key twice (yaml-cpp would keep only one of them). */
-                void rejectDuplicateKeys(const std::string &file, const YAML::Node &n, const std::string &key, int depth)
+                void rejectDuplicateKeys(const std::string &file, const YAML::Node &n, const std::string &key,
+                                         int depth)
                 {
                     if (depth > 200)  // deeper nesting is no michi file; stop before the stack does
                         throw ProblemError(file, key, "nested more than 200 levels deep");

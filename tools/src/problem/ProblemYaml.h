@@ -63,7 +63,8 @@ namespace michi
                 double coordinate(const YAML::Node &n, const std::string &key) const;
 
                 /** \e size coordinates (any number when 0). */
-                std::vector<double> coordinates(const YAML::Node &n, const std::string &key, std::size_t size = 0) const;
+                std::vector<double> coordinates(const YAML::Node &n, const std::string &key,
+                                                std::size_t size = 0) const;
 
                 const std::string &file() const
                 {

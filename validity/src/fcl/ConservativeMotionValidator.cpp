@@ -80,9 +80,10 @@ namespace michi
                 if (!(t + step > t) || ++steps > MAX_WALK_STEPS)
                 {
                     if (!warnedLongWalk_.exchange(true))
-                        OMPL_WARN("ConservativeMotionValidator: a motion needs more than %d clearance steps (a body "
-                                  "moves %g m per unit of motion); such motions are reported invalid",
-                                  MAX_WALK_STEPS, maxBound);
+                        OMPL_WARN(
+                            "ConservativeMotionValidator: a motion needs more than %d clearance steps (a body "
+                            "moves %g m per unit of motion); such motions are reported invalid",
+                            MAX_WALK_STEPS, maxBound);
                     valid = false;
                     break;
                 }

@@ -230,8 +230,8 @@ namespace michi
                 joint.name = ujoint->name;
                 joint.parentLink = linkIds.at(ujoint->parent_link_name);
                 joint.childLink = linkIds.at(ujoint->child_link_name);
-                joint.origin = toIsometry(ujoint->parent_to_joint_origin_transform,
-                                          source + ": joint '" + joint.name + "':");
+                joint.origin =
+                    toIsometry(ujoint->parent_to_joint_origin_transform, source + ": joint '" + joint.name + "':");
                 Eigen::Vector3d axis(ujoint->axis.x, ujoint->axis.y, ujoint->axis.z);
                 switch (ujoint->type)
                 {
@@ -270,9 +270,9 @@ namespace michi
                         joint.lower = ujoint->limits->lower;
                         joint.upper = ujoint->limits->upper;
                         if (!isGeometryValue(joint.lower) || !isGeometryValue(joint.upper))
-                            throw UrdfError(source + ": joint '" + joint.name + "': limit " +
-                                            geometryValueProblem(isGeometryValue(joint.lower) ? joint.upper
-                                                                                               : joint.lower));
+                            throw UrdfError(
+                                source + ": joint '" + joint.name + "': limit " +
+                                geometryValueProblem(isGeometryValue(joint.lower) ? joint.upper : joint.lower));
                         if (!(joint.lower <= joint.upper))
                             throw UrdfError(source + ": joint '" + joint.name + "': lower limit above upper");
                     }

@@ -101,8 +101,8 @@ namespace michi
                 for (std::size_t i = 0; i < pixels.size(); ++i)
                     pixels[i] = bytes == 1 ? raw[i] : (raw[2 * i] << 8) | raw[2 * i + 1];
                 if (in.peek() != std::char_traits<char>::eof())
-                    throw std::runtime_error(pgmPath + ": holds more data than its header's " +
-                                             std::to_string(width) + " x " + std::to_string(rows) + " cells");
+                    throw std::runtime_error(pgmPath + ": holds more data than its header's " + std::to_string(width) +
+                                             " x " + std::to_string(rows) + " cells");
             }
             else
             {
@@ -112,8 +112,8 @@ namespace michi
                                                  std::to_string(maxValue));
                 std::string extra;
                 if (in >> extra)
-                    throw std::runtime_error(pgmPath + ": holds more data than its header's " +
-                                             std::to_string(width) + " x " + std::to_string(rows) + " cells");
+                    throw std::runtime_error(pgmPath + ": holds more data than its header's " + std::to_string(width) +
+                                             " x " + std::to_string(rows) + " cells");
             }
             if (!isGeometryValue(width * resolution) || !isGeometryValue(rows * resolution) ||
                 !isGeometryValue(origin.x()) || !isGeometryValue(origin.y()) || !isGeometryValue(height))

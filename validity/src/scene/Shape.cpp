@@ -273,8 +273,8 @@ namespace michi
             for (std::size_t v = 0; v < vertices.size(); ++v)
                 for (int i = 0; i < 3; ++i)
                     if (!isGeometryValue(vertices[v][i]))
-                        throw std::invalid_argument("mesh " + source + ": vertex " + std::to_string(v) + " coordinate " +
-                                                    geometryValueProblem(vertices[v][i]));
+                        throw std::invalid_argument("mesh " + source + ": vertex " + std::to_string(v) +
+                                                    " coordinate " + geometryValueProblem(vertices[v][i]));
             std::shared_ptr<Shape> s(new Shape);
             s->type_ = Type::MESH;
             s->vertices_ = std::move(vertices);

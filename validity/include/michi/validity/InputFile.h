@@ -17,7 +17,7 @@ namespace michi
         {
         public:
             InputFileError(const std::string &path, const std::string &reason)
-              : std::runtime_error(path + ": " + reason), reason_(reason)
+                : std::runtime_error(path + ": " + reason), reason_(reason)
             {
             }
             const std::string &reason() const

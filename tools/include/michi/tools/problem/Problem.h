@@ -132,7 +132,7 @@ namespace michi
             /** \brief For checker "grid" (collision.grid); a map scene (scene.map, scene.movingai) sets its
                 mapResolution and origin so that table cells align with the map's. */
             validity::GridCheckerSettings grid;
-            ExperienceQueries experience;        ///< training and held-out queries (experience), may be empty
+            ExperienceQueries experience;  ///< training and held-out queries (experience), may be empty
 
             /** \brief Collision bodies of the planned robot (RobotGroupBodies or PlanarRigidBody). */
             validity::CollisionBodiesPtr bodies() const;
