@@ -19,14 +19,23 @@
 
 namespace
 {
+    michi::tools::Problem load(const std::string &name)
+    {
+        const auto colon = name.find(':');
+        auto problem =
+            michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name.substr(0, colon) + ".yaml");
+        if (colon != std::string::npos)
+            problem.checker = name.substr(colon + 1);
+        return problem;
+    }
+
     struct Fixture
     {
         michi::tools::Problem problem;
         michi::tools::PlanningContext ctx;
 
-        explicit Fixture(const std::string &name)
-            : problem(michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml"))
-            , ctx(michi::tools::makePlanningContext(problem))
+        // name: a bundled problem, or "problem:checker" to run it with that checker (e.g. planar_2link:jmap)
+        explicit Fixture(const std::string &name) : problem(load(name)), ctx(michi::tools::makePlanningContext(problem))
         {
             ctx.setup->setup();
         }
@@ -81,6 +90,10 @@ namespace
 
 BENCHMARK_CAPTURE(rrtConnect, planar_2link_RRTConnect, std::string("planar_2link"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(concentricCircle, planar_2link_ConcentricCircle, std::string("planar_2link"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rrtConnect, planar_2link_jmap_RRTConnect, std::string("planar_2link:jmap"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(concentricCircle, planar_2link_jmap_ConcentricCircle, std::string("planar_2link:jmap"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(rrtConnect, planar_3dof_hand_RRTConnect, std::string("planar_3dof_hand"))
     ->Unit(benchmark::kMillisecond);

@@ -148,7 +148,9 @@ namespace michi
 
         bool PolygonCircleMap::isFree(const Eigen::Vector2d &p) const
         {
-            return inRange(p) && !bg::covered_by(validity::Point2(p.x(), p.y()), obstacles_);
+            if (!inRange(p))
+                return false;
+            return inside_ ? !inside_(p) : !bg::covered_by(validity::Point2(p.x(), p.y()), obstacles_);
         }
 
         bool PolygonCircleMap::blocked(const Eigen::Vector2d &a, const Eigen::Vector2d &b, int skip1, int skip2) const
@@ -179,21 +181,52 @@ namespace michi
             validity::Box2 box(validity::Point2(p.x() - range, p.y() - range),
                                validity::Point2(p.x() + range, p.y() + range));
             std::vector<int> near;
+            Eigen::Vector2d lo = p, hi = p;
             for (auto it = index_->tree.qbegin(bgi::intersects(box)); it != index_->tree.qend(); ++it)
-                near.push_back(it->second);
-            std::sort(near.begin(), near.end());  // deterministic order of the sum
-            for (const int e : near)
             {
+                const int e = it->second;
                 const Edge2 &ed = edges_[e];
                 // potential_range: a far edge's term Kp / Dp^2 is small (docs/concentric-circle.md), and leaving it out
                 // keeps the cost per point bounded on large maps.
                 if (segmentDistance(p, ed.a, ed.b) > range)
                     continue;
+                near.push_back(e);
+                lo = lo.cwiseMin(ed.a).cwiseMin(ed.b);
+                hi = hi.cwiseMax(ed.a).cwiseMax(ed.b);
+            }
+            if (near.empty())
+                return true;
+            std::sort(near.begin(), near.end());  // deterministic order of the sum
+            // Every sight line from P to an end point of a near edge lies in the box of P and those end points, so
+            // the edges that can block one are those meeting that box: one R-tree query for all of them, then plain
+            // segment tests (an R-tree query per sight line cost more than the tests it saved).
+            std::vector<int> blockers;
+            const validity::Box2 sight(validity::Point2(lo.x(), lo.y()), validity::Point2(hi.x(), hi.y()));
+            for (auto it = index_->tree.qbegin(bgi::intersects(sight)); it != index_->tree.qend(); ++it)
+                blockers.push_back(it->second);
+            auto blockedAmong = [&](const Eigen::Vector2d &a, const Eigen::Vector2d &b, int skip1, int skip2)
+            {
+                const Eigen::Vector2d sLo = a.cwiseMin(b), sHi = a.cwiseMax(b);
+                for (const int e : blockers)
+                {
+                    const Edge2 &q = edges_[e];
+                    // boxes apart: no contact (most blockers are, and this is cheaper than the orientation tests)
+                    if (std::max(q.a.x(), q.b.x()) < sLo.x() || std::min(q.a.x(), q.b.x()) > sHi.x() ||
+                        std::max(q.a.y(), q.b.y()) < sLo.y() || std::min(q.a.y(), q.b.y()) > sHi.y())
+                        continue;
+                    if (e != skip1 && e != skip2 && segmentsTouch(a, b, q.a, q.b))
+                        return true;
+                }
+                return false;
+            };
+            for (const int e : near)
+            {
+                const Edge2 &ed = edges_[e];
                 // vertex a is shared by edges e and prev_[e]; vertex b by e and the edge after e
                 // Paper 000: only edges whose both end points are visible from P count, so the pockets of concave
                 // polygons do not pull the potential in. The edges meeting at the end point itself are skipped, since a
                 // sight line always touches them there.
-                if (blocked(p, ed.a, e, prev_[e]) || blocked(p, ed.b, e, next_[e]))
+                if (blockedAmong(p, ed.a, e, prev_[e]) || blockedAmong(p, ed.b, e, next_[e]))
                     continue;
                 edges.push_back(ed);
             }

@@ -84,9 +84,17 @@ namespace michi
 
         void ConcentricCircle::setup()
         {
-            // Nothing to configure ahead of solve(): every map depends on the query (start, goal, plane) and is built
-            // there.
             ob::Planner::setup();
+            // The J-map mode's map depends on the checker alone: its polygons are united and indexed here, once,
+            // as OMPL's planners set up their structures in setup(); the other modes' maps depend on the query
+            // (start, goal, plane) and are made in solve().
+            jmapMap_.reset();
+            jmapChecker_ = nullptr;
+            if (mode_ == "auto" || mode_ == "jmap")
+            {
+                jmapMap_ = makeJMapCircleMap(si_);
+                jmapChecker_ = si_->getStateValidityChecker().get();
+            }
         }
 
         void ConcentricCircle::freePaths()
@@ -159,7 +167,12 @@ namespace michi
         bool ConcentricCircle::solveJMap(const std::vector<double> &start, const std::vector<double> &goal,
                                          const ob::PlannerTerminationCondition &ptc)
         {
-            auto map = makeJMapCircleMap(si_);
+            if (jmapChecker_ != si_->getStateValidityChecker().get())
+            {
+                jmapMap_ = makeJMapCircleMap(si_);
+                jmapChecker_ = si_->getStateValidityChecker().get();
+            }
+            const auto map = jmapMap_;
             if (!map)
                 return false;
             Stage stage;
@@ -183,26 +196,26 @@ namespace michi
             stages_.push_back(stage);
             // every path must pass the space's motion validator: drop links it rejects and look again
             // The polygons' segment test and the space's validator can disagree (the validator interpolates, the
-            // polygons over-approximate). Each round removes one rejected link; 200 bounds the work when the two
-            // disagree a lot.
+            // polygons over-approximate). Each round drops every link a path uses that the validator rejects, then
+            // collects the paths again (one collection per round, not per link: collecting re-runs the searches);
+            // 200 rounds bound the work when the two disagree a lot.
             for (int round = 0; found && round < 200 && !ptc; ++round)
             {
-                bool rejected = false;
-                for (std::size_t i = 0; i < stage.search->paths().size() && !rejected; ++i)
+                std::vector<std::pair<int, int>> rejected;
+                for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
                 {
                     const auto &nodes = stage.search->paths()[i];
                     auto states = liftPath(stage, i, false);
-                    for (std::size_t j = 1; j < states.size() && !rejected; ++j)
+                    for (std::size_t j = 1; j < states.size(); ++j)
                         if (!si_->checkMotion(states[j - 1], states[j]))
-                        {
-                            stage.search->removeLink(nodes[j - 1], nodes[j]);
-                            rejected = true;
-                        }
+                            rejected.emplace_back(nodes[j - 1], nodes[j]);
                     for (auto *s : states)
                         si_->freeState(s);
                 }
-                if (!rejected)
+                if (rejected.empty())
                     break;
+                for (const auto &link : rejected)
+                    stage.search->removeLink(link.first, link.second);
                 found = stage.search->collectPaths();
             }
             if (!found || ptc)

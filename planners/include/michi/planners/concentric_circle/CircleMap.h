@@ -90,6 +90,12 @@ namespace michi
             {
                 return obstacles_;
             }
+            /** \brief A faster test of "inside or on a polygon" for isFree() (e.g. the J-map's slab index over
+                the same polygons); without one, Boost.Geometry's covered_by walks every polygon's edges. */
+            void setInsideTest(std::function<bool(const Eigen::Vector2d &)> inside)
+            {
+                inside_ = std::move(inside);
+            }
 
         private:
             /** true when segment [a, b] touches an edge other than \e skipA / \e skipB (edge indices, -1: none) */
@@ -101,6 +107,7 @@ namespace michi
             std::vector<int> prev_;  ///< per edge: the edge ending at its first vertex
             std::vector<int> next_;  ///< per edge: the edge starting at its second vertex
             std::unique_ptr<Index> index_;
+            std::function<bool(const Eigen::Vector2d &)> inside_;
         };
     }  // namespace planners
 }  // namespace michi

@@ -248,6 +248,10 @@ namespace michi
             double surfaceAngle_{0.};
 
             std::vector<Stage> stages_;
+            /** The J-map's polygons as a circle map, made in setup() (it depends on the checker only, not on the
+                query); \e jmapChecker_ is the checker it was made from, so a changed checker is noticed. */
+            std::shared_ptr<CircleMap> jmapMap_;
+            const void *jmapChecker_{nullptr};
             std::string usedMode_;
             std::vector<std::vector<ompl::base::State *>> fullPaths_;
             int bestPath_{-1};

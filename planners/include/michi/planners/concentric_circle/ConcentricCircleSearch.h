@@ -157,6 +157,10 @@ namespace michi
             double potential(const Eigen::Vector2d &p, const Eigen::Vector2d &goal, int s, int k) const;
             bool connected();
             void dijkstra(int source, std::vector<double> &dist, std::vector<int> &parent) const;
+            /** dijkstra() whose tree uses checked links only (failed links are removed) */
+            void checkedTree(int source, std::vector<double> &dist, std::vector<int> &parent);
+            /** A* from \e source to \e target; false when unreachable (then \e parent is partial) */
+            bool shortestPath(int source, int target, std::vector<double> &dist, std::vector<int> &parent) const;
 
             const CircleMap &map_;
             ConcentricCircleSettings settings_;
@@ -168,6 +172,7 @@ namespace michi
             std::set<std::pair<int, int>> tried_;
             std::set<std::pair<int, int>> unchecked_;  ///< proposed links not yet checked (a < b)
             int recursions_{0};
+            unsigned long version_{0};  ///< changes whenever a link is added or removed
             const ompl::base::PlannerTerminationCondition *ptc_{nullptr};  ///< of the running search
         };
     }  // namespace planners
