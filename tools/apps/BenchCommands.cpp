@@ -33,6 +33,10 @@ namespace michi
             namespace
             {
                 const char *CHECKER_HELP = "collision checker (default: the problem's collision.checker)";
+                const std::vector<std::string> OBJECTIVES{"length", "clearance"};
+                const char *OBJECTIVE_HELP =
+                    "optimisation objective of every planner: path length, or the path's minimum clearance (OMPL's "
+                    "MaximizeMinClearanceObjective) (default: the problem's benchmark.objective)";
 
                 /** a planner name as a file name part: geometric::RRTConnect -> geometric__RRTConnect */
                 std::string fileSafe(std::string s)
@@ -52,6 +56,7 @@ namespace michi
                     std::optional<double> time;
                     std::optional<std::size_t> query;
                     std::optional<std::string> checker;
+                    std::optional<std::string> objective;
                     std::string queries;
                     bool verbose{false};
                 };
@@ -88,6 +93,8 @@ namespace michi
                     Problem problem = loadProblem(args.problem);
                     if (args.checker && !compare)
                         problem.checker = *args.checker;
+                    if (args.objective)
+                        problem.benchmark.objective = *args.objective;
                     BenchOptions options;
                     if (compare)
                         for (const auto &name : splitComma(*args.checker))
@@ -117,6 +124,7 @@ namespace michi
                     std::optional<std::size_t> query;
                     std::optional<unsigned int> seed;
                     std::optional<std::string> checker;
+                    std::optional<std::string> objective;
                     bool verbose{false};
                 };
 
@@ -127,6 +135,8 @@ namespace michi
                     Problem problem = loadProblem(args.problem);
                     if (args.checker)
                         problem.checker = *args.checker;
+                    if (args.objective)
+                        problem.benchmark.objective = *args.objective;
                     ompl::RNG::setSeed(args.seed.value_or(problem.benchmark.seed));
                     const std::size_t query = args.query.value_or(0);
                     PlanningContext ctx = makePlanningContext(problem, query);
@@ -230,6 +240,7 @@ namespace michi
                      "plan query i of the problem in run i, one run per query: all, or A-B (indices, inclusive); "
                      "overrides --runs and the problem's benchmark.queries")
                     ->type_name("all|A-B");
+                addChoice(*c, "--objective", args->objective, OBJECTIVES, OBJECTIVE_HELP);
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
@@ -252,6 +263,7 @@ namespace michi
                     ->type_name("I");
                 addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
                 addChoice(*c, "--checker", args->checker, checkerNames(), CHECKER_HELP);
+                addChoice(*c, "--objective", args->objective, OBJECTIVES, OBJECTIVE_HELP);
                 addVerbose(*c, args->verbose);
                 return [args]
                 {

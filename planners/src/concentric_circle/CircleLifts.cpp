@@ -427,27 +427,7 @@ namespace michi
             if (rgb == nullptr || rgb->variables().size() != 2 || rgb->variables()[0] != checker->axes().axis1 ||
                 rgb->variables()[1] != checker->axes().axis2)
                 return nullptr;
-            checker->buildAll();
-            // every tile's polygons, united (tiles split regions at their borders)
-            std::set<const validity::JMap *> seen;
-            validity::MultiPolygon2 all;
-            // tile() is looked up by theta1: four samples per tile width find every tile, and seen skips repeats.
-            const int samples = static_cast<int>(checker->tileCount()) * 4;
-            for (int i = 0; i < samples; ++i)
-            {
-                const double theta1 = axes[0].lo + (i + 0.5) * (axes[0].hi - axes[0].lo) / samples;
-                const validity::JMap &tile = checker->tile(theta1);
-                if (!seen.insert(&tile).second)
-                    continue;
-                for (const auto &poly : tile.polygons())
-                {
-                    validity::MultiPolygon2 merged;
-                    // Unite rather than collect: a region split at a tile border would otherwise leave an edge inside
-                    // the obstacle, and the search's visibility and potential treat every edge as an obstacle boundary.
-                    bg::union_(all, poly, merged);
-                    all = std::move(merged);
-                }
-            }
+            const validity::MultiPolygon2 all = checker->unitedPolygons();
             auto map = std::make_shared<PolygonCircleMap>(all, Eigen::Vector2d(axes[0].lo, axes[1].lo),
                                                           Eigen::Vector2d(axes[0].hi, axes[1].hi));
             // Point tests through the tiles' slab indexes (tens of nanoseconds, the checker's own test): the united

@@ -1,7 +1,9 @@
 #include <michi/planners/concentric_circle/ConcentricCircle.h>
 
 #include <michi/planners/concentric_circle/CircleLifts.h>
+#include "PathClearance.h"
 
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/base/goals/GoalState.h>
@@ -52,6 +54,11 @@ namespace michi
                               "1:1:1000");
             declareParam<std::string>("objective", this, &ConcentricCircle::setObjective,
                                       &ConcentricCircle::getObjective, "length,clearance");
+            declareParam<std::string>("candidates", this, &ConcentricCircle::setCandidates,
+                                      &ConcentricCircle::getCandidates, "michi,paper");
+            // "select" names the same setting as "objective": which of the found paths is returned
+            declareParam<std::string>("select", this, &ConcentricCircle::setObjective, &ConcentricCircle::getObjective,
+                                      "length,clearance");
             declareParam<std::string>("mode", this, &ConcentricCircle::setMode, &ConcentricCircle::getMode,
                                       "auto,jmap,projection,hierarchy,surface");
             declareParam<int>("axis1", this, &ConcentricCircle::setAxis1, &ConcentricCircle::getAxis1, "0:1:100");
@@ -72,6 +79,13 @@ namespace michi
             if (v != "length" && v != "clearance")
                 throw ompl::Exception(getName(), "objective must be 'length' or 'clearance', got '" + v + "'");
             objective_ = v;
+        }
+
+        void ConcentricCircle::setCandidates(const std::string &v)
+        {
+            if (v != "michi" && v != "paper")
+                throw ompl::Exception(getName(), "candidates must be michi or paper, got '" + v + "'");
+            settings_.candidates = v;
         }
 
         void ConcentricCircle::setMode(const std::string &v)
@@ -142,16 +156,37 @@ namespace michi
             return states;
         }
 
+        bool ConcentricCircle::selectsClearance() const
+        {
+            // The problem's objective counts as well: a MaximizeMinClearanceObjective on the problem definition asks
+            // every planner, this one included, for clearance (michi bench --objective clearance). A path-length
+            // objective does not override the setting: OMPL's optimizing planners put one there by default.
+            const auto &objective = pdef_ ? pdef_->getOptimizationObjective() : nullptr;
+            return objective_ == "clearance" ||
+                   dynamic_cast<const ob::MaximizeMinClearanceObjective *>(objective.get()) != nullptr;
+        }
+
         double ConcentricCircle::pathCost(const std::vector<ob::State *> &states) const
         {
-            if (objective_ == "length")
+            // The problem's objective counts as well: a MaximizeMinClearanceObjective on the problem definition asks
+            // every planner, this one included, for clearance (michi bench --objective clearance). A path-length
+            // objective does not override the setting: OMPL's optimizing planners put one there by default.
+            if (!selectsClearance())
             {
                 double len = 0.;
                 for (std::size_t j = 1; j < states.size(); ++j)
                     len += si_->distance(states[j - 1], states[j]);
                 return len;
             }
-            // clearance: the smallest clearance along the path (interpolated at the validity resolution), negated
+            // Negated clearances: as for length, a smaller cost is better and one ascending sort ranks both objectives.
+            // The J-map mode measures clearance where its potential does, in the map plane (a slab walk per state);
+            // the checker's clearance() is a workspace distance from FCL, about a hundred times dearer, and over
+            // sixteen interpolated paths it cost more than the search.
+            if (usedMode_ == "jmap")
+                if (const auto *jmap =
+                        dynamic_cast<const validity::JMapValidityChecker *>(si_->getStateValidityChecker().get()))
+                    return -jmapPathClearance(*si_, *jmap, states, 1.);
+            // else the smallest clearance along the path (interpolated at the validity resolution)
             og::PathGeometric path(si_);
             for (auto *s : states)
                 path.append(s);
@@ -160,7 +195,6 @@ namespace michi
             const auto &checker = si_->getStateValidityChecker();
             for (auto *s : path.getStates())
                 worst = std::min(worst, checker->clearance(s));
-            // Negated so that, as for length, a smaller cost is better and one ascending sort ranks both objectives.
             return -worst;
         }
 
@@ -478,6 +512,10 @@ namespace michi
                 return ob::PlannerStatus::ABORT;
             if (!stages_.empty())
                 stages_.back().chosenPath = bestPath_;
+            // Safe paths (paper 000's aim): asked for clearance, the chosen path's points move away from the
+            // obstacles, each move kept only if its state and motions stay valid.
+            if (selectsClearance())
+                pushAwayFromObstacles(si_, fullPaths_[bestPath_], ptc);
             auto path = std::make_shared<og::PathGeometric>(si_);
             for (auto *s : fullPaths_[bestPath_])
                 path->append(s);

@@ -37,6 +37,14 @@ namespace michi
             : map_(map), settings_(settings)
         {
             // Fewer than 4 points per circle cannot go round an obstacle; a zero spacing would never leave the start.
+            if (settings_.candidates == "paper")
+            {
+                // Paper 000: every circle cut into the same number of points (72, every 5 degrees), one candidate
+                // per free arc, its minimum-potential point.
+                settings_.maxArcPoints = 0;
+                settings_.arcEnds = false;
+                settings_.pointSpacing = 0.;
+            }
             settings_.divisions = std::max(settings_.divisions, 4);
             settings_.ringSpacing = std::max(settings_.ringSpacing, 1e-6);
         }
@@ -289,6 +297,16 @@ namespace michi
             }
             for (const Edge2 &e : edges)
                 phi += repulsion(p, e, settings_.kObstacle);
+            return phi;
+        }
+
+        double ConcentricCircleSearch::potentialAt(const Eigen::Vector2d &p, const Eigen::Vector2d &goal) const
+        {
+            double phi = -settings_.kGoal / std::max((p - goal).norm(), 1e-9);
+            std::vector<Edge2> edges;
+            if (map_.obstacleEdges(p, settings_.potentialRange, edges))
+                for (const Edge2 &e : edges)
+                    phi += repulsion(p, e, settings_.kObstacle);
             return phi;
         }
 

@@ -145,6 +145,23 @@ namespace michi
                 throw std::invalid_argument("compareChecker: name a checker other than fcl");
             if (compareCheckers)
                 contextOptions.checker = compare;  // the context then holds both checkers and both motion validators
+            // planners[i].checker: planners on their own checker beside the others (compare mode runs every planner
+            // on both checkers, so there it is not needed). A context holds FCL and at most one other checker.
+            std::string ownChecker;
+            if (!compareCheckers)
+                for (std::size_t i = 0; i < specs.size(); ++i)
+                {
+                    const std::string &c = specs[i].checker;
+                    if (c.empty() || c == problem.checker || c == "fcl")
+                        continue;
+                    if (problem.checker != "fcl" || (!ownChecker.empty() && c != ownChecker))
+                        throw ProblemError(problem.file, "planners[" + std::to_string(i) + "].checker",
+                                           "a benchmark runs FCL and at most one other checker (here " +
+                                               (problem.checker != "fcl" ? problem.checker : ownChecker) + ")");
+                    ownChecker = c;
+                }
+            if (!ownChecker.empty())
+                contextOptions.checker = ownChecker;
             PlanningContext ctx = makePlanningContext(problem, contextOptions);  // checks start and goal
             auto si = ctx.setup->getSpaceInformation();
             if (datasetRun)
@@ -171,10 +188,23 @@ namespace michi
                     }
                 };
                 ob::PlannerPtr planner = make();
+                if (!compareCheckers)
+                {
+                    // the context's installed checker is the problem's, or ownChecker (then FCL is the default)
+                    const std::string installed = ownChecker.empty() ? problem.checker : ownChecker;
+                    const std::string wanted = spec.checker.empty() ? problem.checker : spec.checker;
+                    if (wanted != problem.checker)
+                        planner->setName(planner->getName() + "_" + wanted);
+                    if (installed != problem.checker || wanted != problem.checker)
+                        checking[planner.get()] =
+                            wanted == installed ? std::make_pair(fastChecker, fastMotions)
+                                                : std::make_pair(ob::StateValidityCheckerPtr(ctx.checker), fclMotions);
+                    benchmark.addPlanner(planner);
+                    planners.push_back(planner);
+                    continue;
+                }
                 benchmark.addPlanner(planner);
                 planners.push_back(planner);
-                if (!compareCheckers)
-                    continue;
                 checking[planner.get()] = {ctx.checker, fclMotions};
                 auto withFast = make();
                 withFast->setName(withFast->getName() + "_" + compare);
@@ -200,7 +230,7 @@ namespace michi
                 checkHeldOutQueries(problem, ctx);
                 benchmark.addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
             }
-            if (cycleHeldOut || compareCheckers || datasetRun)
+            if (cycleHeldOut || !checking.empty() || datasetRun)
                 benchmark.setPreRunEvent(
                     [&](const ob::PlannerPtr &planner)
                     {

@@ -13,6 +13,8 @@
 #include <michi/validity/spheres/SphereMotionValidator.h>
 
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/util/Console.h>
 
 #include <algorithm>
@@ -227,6 +229,12 @@ namespace michi
                             (*values)[2], ctx.grid->describe().c_str());
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);
+            // benchmark.objective: on the problem definition, where OMPL's optimizing planners (RRT*, BIT*, ...)
+            // and michi's ConcentricCircle read it; without one they keep their defaults (path length)
+            if (problem.benchmark.objective == "clearance")
+                ctx.setup->setOptimizationObjective(std::make_shared<ob::MaximizeMinClearanceObjective>(si));
+            else if (problem.benchmark.objective == "length")
+                ctx.setup->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
             return ctx;
         }
 

@@ -1,6 +1,10 @@
 #include "SvgPanels.h"
 
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/problem/ProblemJMap.h>
+
 #include <cmath>
+#include <exception>
 
 namespace michi
 {
@@ -37,6 +41,23 @@ namespace michi
                     }
                     return pieces;
                 }
+
+                /** The J-map polygons of a two-joint arm problem, built with the problem's collision.jmap settings;
+                    none when the map cannot be made (e.g. a robot the J-map does not model). */
+                MultiPolygon2 jmapPolygons(const Problem &problem)
+                {
+                    try
+                    {
+                        ContextOptions options;
+                        options.checker = "fcl";  // the problem's own checker is not needed: the map is built here
+                        const PlanningContext ctx = makePlanningContext(problem, options);
+                        return makeJMapChecker(problem, ctx, problem.jmap)->unitedPolygons();
+                    }
+                    catch (const std::exception &)
+                    {
+                        return {};
+                    }
+                }
             }  // namespace
 
             ConfigView buildConfigView(const Problem &problem, const RobotGeometry &robot,
@@ -69,6 +90,7 @@ namespace michi
                 }
                 c.limits.add(lower[0], lower[1]);
                 c.limits.add(upper[0], upper[1]);
+                c.jmap = jmapPolygons(problem);
                 if (query)
                 {
                     c.start = Vec2(normalised(query->start[0], lower[0], c.wraps[0]),
@@ -82,7 +104,12 @@ namespace michi
             void drawConfigPanel(SvgWriter &svg, const ConfigView &c, const ViewTransform &t,
                                  const std::vector<SampledPath> &paths)
             {
-                openPanel(svg, "cspace", "configuration space (joint limits)", t, c.xLabel, c.yLabel);
+                openPanel(svg, "cspace",
+                          c.jmap.empty() ? "configuration space (joint limits)"
+                                         : "configuration space: J-map polygons (collisions, conservative)",
+                          t, c.xLabel, c.yLabel);
+                if (!c.jmap.empty())
+                    drawShapes(svg, t, {c.jmap}, {{"class", "jmap"}, {"fill", "#3b6fb6"}, {"fill-opacity", "0.45"}});
                 for (const auto &path : paths)
                 {
                     svg.open("g", {{"class", "path"}, {"data-label", path.label}});

@@ -146,6 +146,9 @@ namespace michi
                 std::string xLabel, yLabel;
                 std::vector<bool> wraps;
                 std::optional<Vec2> start, goal;
+                /** the J-map's polygons (paper 000) of a two-joint arm: the configuration-space obstacles the
+                    planners went round; empty when the map cannot be made (then only the limits are drawn) */
+                MultiPolygon2 jmap;
             };
 
             ConfigView buildConfigView(const Problem &problem, const RobotGeometry &robot,

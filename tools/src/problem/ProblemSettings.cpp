@@ -87,6 +87,20 @@ namespace michi
                     else if (list[i].IsMap())
                     {
                         spec.name = r.text(r.require(list[i], "name", key), key + ".name");
+                        for (const auto &kv : list[i])
+                        {
+                            const std::string k = kv.first.as<std::string>();
+                            if (k != "name" && k != "params" && k != "checker")
+                                r.fail(key + "." + k, "unknown key (expected name, params, checker)");
+                        }
+                        if (const YAML::Node checker = list[i]["checker"])
+                        {
+                            spec.checker = r.text(checker, key + ".checker");
+                            if (spec.checker != "fcl" && spec.checker != "jmap" && spec.checker != "grid" &&
+                                spec.checker != "spheres")
+                                r.fail(key + ".checker",
+                                       "expected fcl, jmap, grid or spheres, got '" + spec.checker + "'");
+                        }
                         if (const YAML::Node params = list[i]["params"])
                         {
                             if (!params.IsMap())
@@ -97,7 +111,7 @@ namespace michi
                         }
                     }
                     else
-                        r.fail(key, "expected a planner name or {name, params}");
+                        r.fail(key, "expected a planner name or {name, params, checker}");
                     problem.planners.push_back(spec);
                 }
             }
@@ -142,8 +156,16 @@ namespace michi
                             r.fail(key, e.what());
                         }
                     }
+                    else if (k == "objective")
+                    {
+                        s.objective = r.text(kv.second, key);
+                        if (s.objective != "length" && s.objective != "clearance")
+                            r.fail(key, "expected length or clearance, got '" + s.objective + "'");
+                    }
                     else
-                        r.fail(key, "unknown key (expected time_limit, runs, memory_limit, seed, simplify, queries)");
+                        r.fail(key,
+                               "unknown key (expected time_limit, runs, memory_limit, seed, simplify, queries, "
+                               "objective)");
                 }
             }
 

@@ -2,6 +2,8 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <boost/geometry.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -153,6 +155,22 @@ namespace michi
             const double w = (axes_.hi1 - axes_.lo1) / static_cast<double>(tileCount_);
             for (std::size_t k = 0; k < tileCount_; ++k)
                 tile(axes_.lo1 + (static_cast<double>(k) + 0.5) * w);
+        }
+
+        MultiPolygon2 JMapValidityChecker::unitedPolygons() const
+        {
+            buildAll();
+            MultiPolygon2 all;
+            for (std::size_t k = 0; k < tileCount_; ++k)
+                for (const auto &polygon : tiles_[k].load()->polygons())
+                {
+                    // United rather than collected: a region cut at a tile border would otherwise keep an edge inside
+                    // the obstacle, which pictures draw and planners would take for an obstacle boundary.
+                    MultiPolygon2 merged;
+                    boost::geometry::union_(all, polygon, merged);
+                    all = std::move(merged);
+                }
+            return all;
         }
 
         std::size_t JMapValidityChecker::builtTiles() const

@@ -160,6 +160,12 @@ namespace michi
             {
                 return settings_.maxPaths;
             }
+            /** \brief "michi" (default) or "paper": the candidate rule (ConcentricCircleSettings::candidates). */
+            void setCandidates(const std::string &v);
+            const std::string &getCandidates() const
+            {
+                return settings_.candidates;
+            }
             /** \brief "length" (shortest) or "clearance" (largest minimum clearance) picks the solution. */
             void setObjective(const std::string &v);
             const std::string &getObjective() const
@@ -238,6 +244,8 @@ namespace michi
             std::vector<ompl::base::State *> liftPath(const Stage &stage, std::size_t i, bool check);
             void freePaths();
             double pathCost(const std::vector<ompl::base::State *> &states) const;
+            /** the setting "clearance", or a MaximizeMinClearanceObjective on the problem definition */
+            bool selectsClearance() const;
 
             ConcentricCircleSettings settings_;
             std::string objective_{"length"};

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -40,6 +41,10 @@ namespace michi
                 start until they cover the whole map before recursing. */
             bool outerRings{true};
             int maxPaths{16};  ///< distinct paths kept (left / right around obstacles, ...)
+            /** \brief "michi" (the settings above) or "paper": the paper's candidate rule, which overrides them
+                with one minimum-potential point per free arc, no arc end points, and exactly \e divisions (72)
+                points on every circle (maxArcPoints 0, arcEnds false, pointSpacing 0). */
+            std::string candidates{"michi"};
         };
 
         /** \brief One node of the link graph: the start, the goal, a recursion's start/goal, or a candidate
@@ -93,6 +98,12 @@ namespace michi
         {
         public:
             ConcentricCircleSearch(const CircleMap &map, ConcentricCircleSettings settings);
+
+            /** \brief The potential of paper 000 at \e p for \e goal, equation (3): the attraction -Kg / |PG| (1)
+                plus, over the obstacle edges AB within potentialRange of P whose both end points P sees, the
+                repulsion Kp / Dp^2 (2), Dp = |PA| + |PB| - |AB|. Maps without polygons: the blocked runs of
+                the circles stand for the edges, as in the search (this one uses none before a search ran). */
+            double potentialAt(const Eigen::Vector2d &p, const Eigen::Vector2d &goal) const;
 
             /** \brief Plan from \e start to \e goal (both must be free). True when at least one path was found. */
             bool run(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,

@@ -44,6 +44,10 @@ namespace michi
         {
             std::string name;
             std::map<std::string, std::string> params;
+            /** \brief planners[i].checker: this planner's own checker in a benchmark (e.g. jmap for
+                michi::ConcentricCircle, which plans on the J-map's polygons, beside stock planners on FCL);
+                empty: the problem's collision.checker. The run is named <planner>_<checker>. */
+            std::string checker;
         };
 
         struct Query
@@ -63,6 +67,10 @@ namespace michi
             /** \brief benchmark.queries: "" (every run plans one query), "all" or "A-B": run i plans query i of the
                 selection, one run per query (a dataset run, tools/problem/Dataset.h). */
             std::string queries;
+            /** \brief benchmark.objective: "" (each planner's default; OMPL's optimizing planners then minimise
+                path length), "length" (ompl::base::PathLengthOptimizationObjective) or "clearance"
+                (ompl::base::MaximizeMinClearanceObjective), set on the problem definition every planner shares. */
+            std::string objective;
         };
 
         /** \brief How an SE2 robot moves between two states (robot.motion, docs/problem-format.md). */

@@ -58,6 +58,9 @@ namespace michi
             const JMap &tile(double theta1) const;
             /** \brief Build every tile now (for pictures and measurements). */
             void buildAll() const;
+            /** \brief Every tile's polygons, united into one set (a region split at a tile border is one polygon
+                again); builds every tile first. For pictures and for planners that work on the polygons. */
+            MultiPolygon2 unitedPolygons() const;
             std::size_t tileCount() const
             {
                 return tileCount_;
