@@ -57,9 +57,22 @@ namespace michi
                 /** Links that no planned joint moves (drawn once), at the group's values \e values. */
                 std::vector<MultiPolygon2> fixedLinks(const Values &values, const Eigen::Isometry3d &view) const;
 
-            private:
+                /** The robot's full configuration: \e values of the planned joints, the problem's for the others. */
                 Values fullConfiguration(const Values &values) const;
 
+                /** Per link: moved by a planned joint (ARM; empty for SE2). */
+                const std::vector<bool> &movedLinks() const
+                {
+                    return moved_;
+                }
+
+                /** The link a trace follows (the end of the skeleton), or -1 (SE2, or no planned joint). */
+                int endLink() const
+                {
+                    return skeleton_.empty() ? -1 : skeleton_.back();
+                }
+
+            private:
                 /** moved_: links below a planned joint. skeleton_: links from the root to the end link, the child
                     of the deepest planned joint followed down while the tree does not branch (a flange or tool
                     frame, not one of several fingers). */
