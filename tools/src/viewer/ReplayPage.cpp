@@ -224,7 +224,8 @@ namespace michi
                 out += (i ? "," : "") + jsonString(names[i]);
             out += "],\"shapes\":" + shapes.json() + ",\"obstacles\":" + obstacles + ",\"map\":" + map +
                    ",\"fixedParts\":" + fixedParts + ",\"bodies\":" + robot.bodiesJson() +
-                   ",\"endBody\":" + std::to_string(robot.endBody()) + ",\"paths\":" + pathsJson + "}";
+                   ",\"endBody\":" + std::to_string(robot.endBody()) +
+                   ",\"planar\":" + (robot.planar() ? "true" : "false") + ",\"paths\":" + pathsJson + "}";
             // '<' only occurs inside JSON strings, where \u003c means the same: no "</script>" can end the block
             std::string safe;
             safe.reserve(out.size());

@@ -45,6 +45,12 @@ namespace michi
                 {
                     return endBody_;
                 }
+                /** True when the robot moves in planes parallel to x-y (SE2, planar arms): the page looks from above.
+                 */
+                bool planar() const
+                {
+                    return problem_.kind == Problem::Kind::SE2 || !geometry_.spatial();
+                }
                 /** The world pose of every body at the planned values \e values. */
                 std::vector<Eigen::Isometry3d> poses(const std::vector<double> &values) const;
 

@@ -292,11 +292,12 @@
         render();
     }
 
-    // ---- camera: framing everything drawn, from the front-right and above (top-down-ish for maps)
+    // ---- camera: framing everything drawn, from the front-right and above; from nearly straight above for robots
+    // that move in the plane (SE(2), planar arms), which tall obstacles would hide from the side
     const bounds = new THREE.Box3().setFromObject(scene);
     const centre = bounds.getCenter(new THREE.Vector3());
     const radius = Math.max(bounds.getSize(new THREE.Vector3()).length() / 2, 0.1);
-    const direction = data.kind === 'se2' ? new THREE.Vector3(0, -0.55, 1) : new THREE.Vector3(1.2, -1.0, 0.8);
+    const direction = data.planar ? new THREE.Vector3(0, -0.55, 1) : new THREE.Vector3(1.2, -1.0, 0.8);
     camera.position.copy(centre).add(direction.normalize().multiplyScalar(radius * 2.2));
     camera.near = radius / 100;
     camera.far = radius * 50;
