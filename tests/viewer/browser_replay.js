@@ -156,7 +156,8 @@ async function checkProblem(browser, name) {
               name + ': screenshot ' + file + ' is not blank (grey variance ' + stats.variance.toFixed(1) + ', ' +
                   stats.colours + ' colours)');
     }
-    check(blocked.length === 0, name + ': no request left the page' + (blocked.length ? ' (' + blocked.join(', ') + ')' : ''));
+    check(blocked.length === 0,
+          name + ': no request left the page' + (blocked.length ? ' (' + blocked.join(', ') + ')' : ''));
     await page.close();
 }
 
