@@ -57,9 +57,6 @@ namespace michi
                 /** Links that no planned joint moves (drawn once), at the group's values \e values. */
                 std::vector<MultiPolygon2> fixedLinks(const Values &values, const Eigen::Isometry3d &view) const;
 
-                /** The robot's full configuration: \e values of the planned joints, the problem's for the others. */
-                Values fullConfiguration(const Values &values) const;
-
                 /** Per link: moved by a planned joint (ARM; empty for SE2). */
                 const std::vector<bool> &movedLinks() const
                 {
@@ -73,6 +70,8 @@ namespace michi
                 }
 
             private:
+                Values fullConfiguration(const Values &values) const;
+
                 /** moved_: links below a planned joint. skeleton_: links from the root to the end link, the child
                     of the deepest planned joint followed down while the tree does not branch (a flange or tool
                     frame, not one of several fingers). */

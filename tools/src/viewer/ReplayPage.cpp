@@ -201,7 +201,7 @@ namespace michi
             const double speed = longest > 0. ? longest / options.duration : 1.;
 
             replay::ShapeTable shapes;
-            const replay::RobotBodies robot(problem, shapes);
+            const replay::RobotBodies robot(problem, shapes, options.fixedValues);
             std::string map;
             const std::string obstacles = obstaclesJson(problem, shapes, map);
             const std::string fixedParts = robot.staticPartsJson(shapes);

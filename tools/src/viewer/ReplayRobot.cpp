@@ -11,7 +11,8 @@ namespace michi
     {
         namespace replay
         {
-            RobotBodies::RobotBodies(const Problem &problem, ShapeTable &shapes) : problem_(problem), geometry_(problem)
+            RobotBodies::RobotBodies(const Problem &problem, ShapeTable &shapes, const std::vector<double> &fixedValues)
+                : problem_(problem), fixed_(fixedValues.empty() ? problem.fixedValues : fixedValues), geometry_(problem)
             {
                 if (problem.kind == Problem::Kind::SE2)
                 {
@@ -54,10 +55,19 @@ namespace michi
                     result.push_back(pose);
                     return result;
                 }
-                const auto linkPoses = problem_.model->forwardKinematics(geometry_.fullConfiguration(values));
+                const auto linkPoses = problem_.model->forwardKinematics(fullConfiguration(values));
                 for (int l : links_)
                     result.push_back(linkPoses[l]);
                 return result;
+            }
+
+            std::vector<double> RobotBodies::fullConfiguration(const std::vector<double> &values) const
+            {
+                std::vector<double> q = fixed_;
+                q.resize(problem_.model->variableCount(), 0.);
+                for (std::size_t i = 0; i < values.size(); ++i)
+                    q[problem_.groupVariables[i]] = values[i];
+                return q;
             }
 
             std::string RobotBodies::staticPartsJson(ShapeTable &shapes) const
@@ -67,7 +77,7 @@ namespace michi
                 {
                     // links no planned joint moves do not depend on the planned values: any values place them
                     const auto linkPoses = problem_.model->forwardKinematics(
-                        geometry_.fullConfiguration(std::vector<double>(problem_.dimension(), 0.)));
+                        fullConfiguration(std::vector<double>(problem_.dimension(), 0.)));
                     const auto &links = problem_.model->links();
                     const auto &moved = geometry_.movedLinks();
                     for (std::size_t l = 0; l < links.size(); ++l)

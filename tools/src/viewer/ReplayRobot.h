@@ -34,7 +34,7 @@ namespace michi
             public:
                 /** ARM: one body per link a planned joint moves that has collision geometry, plus the end link
                     (for the trace) even without; SE2: the footprint extruded to the robot's height. */
-                RobotBodies(const Problem &problem, ShapeTable &shapes);
+                RobotBodies(const Problem &problem, ShapeTable &shapes, const std::vector<double> &fixedValues = {});
 
                 const std::vector<Body> &bodies() const
                 {
@@ -61,7 +61,11 @@ namespace michi
                 std::string bodiesJson() const;
 
             private:
+                /** The full configuration: \e values for the planned joints, fixed_ for the others. */
+                std::vector<double> fullConfiguration(const std::vector<double> &values) const;
+
                 const Problem &problem_;
+                std::vector<double> fixed_;
                 svg_plot::RobotGeometry geometry_;
                 std::vector<Body> bodies_;
                 std::vector<int> links_;  ///< ARM: the link of each body

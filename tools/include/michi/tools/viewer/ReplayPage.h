@@ -21,6 +21,9 @@ namespace michi
             /** \brief About how many frames a path is cut into (plus its waypoints, which are always frames): the
                 page interpolates between frames, so this bounds the page's size, not its smoothness. */
             std::size_t frames{200};
+            /** \brief ARM: the full configuration whose joints outside the planned group the page shows (a dual-arm
+                task's other arm); empty: the problem's fixedValues. */
+            std::vector<double> fixedValues;
         };
 
         /** \brief The data a replay page shows, as JSON: the scene (obstacle shapes and poses, moving obstacles'
