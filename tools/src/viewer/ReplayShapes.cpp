@@ -49,8 +49,8 @@ namespace michi
                 }
 
                 /** Vertex clustering: vertices in one cell of a grid over the mesh's bounds become one (their mean),
-                    triangles that collapse are dropped. The grid is refined until few enough triangles are left
-                    would be slower than this single pass at a cell size that keeps about MAX_MESH_TRIANGLES. */
+                    triangles that collapse are dropped. One pass, with cells sized so that a surface spanning the
+                    bounds keeps about MAX_MESH_TRIANGLES: enough to see the shape, and the page stays small. */
                 Mesh decimated(const validity::Shape &shape)
                 {
                     const auto &vertices = shape.vertices();
@@ -64,8 +64,10 @@ namespace michi
                         lo = lo.cwiseMin(v);
                         hi = hi.cwiseMax(v);
                     }
-                    // a surface's triangle count grows with the square of the cells per side
-                    const double cellsPerSide = std::sqrt(static_cast<double>(MAX_MESH_TRIANGLES) / 2.);
+                    // a surface's triangle count grows with the square of the cells per side (two per cell); one cell
+                    // less leaves room for the extra cell a vertex on the upper bound falls into
+                    const double cellsPerSide =
+                        std::floor(std::sqrt(static_cast<double>(MAX_MESH_TRIANGLES) / 2.)) - 1.;
                     const double cell = std::max((hi - lo).maxCoeff() / cellsPerSide, 1e-9);
                     std::unordered_map<long long, int> cells;
                     std::vector<Eigen::Vector3d> sums;
