@@ -162,6 +162,7 @@ namespace michi
                     std::string out;
                     std::optional<double> time;
                     std::optional<unsigned int> seed;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -175,9 +176,13 @@ namespace michi
                     options.outDir = args.out;
                     options.planningTime = args.time.value_or(0.);  // 0: the problem's dual_arm.planning.time
                     options.progress = &std::cerr;
+                    options.html = args.html;
                     std::cout << runDualArm(problem, options);
                     std::cerr << "michi dualarm: wrote " << (fs::path(options.outDir) / "dualarm.json").string()
-                              << " and dualarm-*.svg/.png" << std::endl;
+                              << " and dualarm-*.svg/.png";
+                    if (args.html)
+                        std::cerr << " and " << (fs::path(options.outDir) / (problem.name + ".html")).string();
+                    std::cerr << std::endl;
                     return 0;
                 }
 
@@ -333,6 +338,9 @@ namespace michi
                 addOut(*c, args->out, "output folder (made if missing)");
                 addTime(*c, args->time, "time per approach plan (default: the problem's dual_arm.planning.time)");
                 addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: the stirring task (approach motions, stirring) replayed in "
+                            "3-D (docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
