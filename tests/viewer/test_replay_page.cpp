@@ -8,7 +8,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <regex>
 #include <string>
 #include <vector>
@@ -146,4 +148,81 @@ TEST(ReplayPage, RejectsAStateOfTheWrongDimension)
 {
     const Problem problem = load("se2_corridor");
     EXPECT_THROW(michi::tools::replayData(problem, {PlotPath{"bad", {{1., 2.}}}}), std::invalid_argument);
+}
+
+TEST(ReplayPage, DecimatesABigMeshAndWritesASharedShapeOnce)
+{
+    // a scene of our own: two obstacles sharing one finely tessellated sheet (0.5 m square, 2 x 150 x 150 triangles)
+    Problem problem = load("se2_corridor");
+    problem.scene = std::make_shared<michi::validity::Scene>();
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<Eigen::Vector3i> triangles;
+    const int n = 150;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            vertices.emplace_back(0.5 * i / n, 0.5 * j / n, 0.);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+            const int a = j * (n + 1) + i;
+            triangles.emplace_back(a, a + 1, a + n + 2);
+            triangles.emplace_back(a, a + n + 2, a + n + 1);
+        }
+    const auto sheet = michi::validity::Shape::mesh(vertices, triangles);
+    for (int k = 0; k < 2; ++k)
+    {
+        michi::validity::Obstacle o;
+        o.name = "sheet" + std::to_string(k);
+        o.shape = sheet;
+        o.pose.translation() = Eigen::Vector3d(2. + k, 5., 0.);
+        problem.scene->add(o);
+    }
+    const YAML::Node data = YAML::Load(michi::tools::replayData(problem, {PlotPath{"p", {{1.5, 2., 0.}}}}));
+    ASSERT_EQ(data["obstacles"].size(), 2u);
+    EXPECT_EQ(data["obstacles"][0]["shape"].as<int>(), data["obstacles"][1]["shape"].as<int>());
+    const YAML::Node mesh = data["shapes"][data["obstacles"][0]["shape"].as<int>()];
+    ASSERT_EQ(mesh["type"].as<std::string>(), "mesh");
+    const std::size_t kept = mesh["triangles"].size() / 3;
+    EXPECT_LE(kept, 20000u);
+    EXPECT_GT(kept, 2000u);  // still the sheet, not a handful of triangles
+    // clustered vertices stay within the sheet's bounds, indices within the vertices
+    const std::size_t count = mesh["vertices"].size() / 3;
+    for (std::size_t v = 0; v < count; ++v)
+    {
+        EXPECT_GE(mesh["vertices"][3 * v].as<double>(), -1e-4);
+        EXPECT_LE(mesh["vertices"][3 * v].as<double>(), 0.5 + 1e-4);
+    }
+    for (std::size_t t = 0; t < mesh["triangles"].size(); ++t)
+        EXPECT_LT(mesh["triangles"][t].as<std::size_t>(), count);
+}
+
+TEST(ReplayPage, ShowsTheOtherJointsAtTheGivenConfiguration)
+{
+    // dual_arm: the small arm is planned, the large arm's links are drawn once where its joints put them
+    const Problem problem = load("dual_arm");
+    const PlotPath path{"p", {problem.queries.front().start}};
+    const YAML::Node asLoaded = YAML::Load(michi::tools::replayData(problem, {path}));
+    michi::tools::ReplayOptions options;
+    options.fixedValues = problem.fixedValues;
+    options.fixedValues.resize(problem.model->variableCount(), 0.);
+    std::size_t changed = 0;
+    for (std::size_t v = 0; v < options.fixedValues.size(); ++v)
+        if (std::find(problem.groupVariables.begin(), problem.groupVariables.end(), static_cast<int>(v)) ==
+            problem.groupVariables.end())
+        {
+            options.fixedValues[v] += 0.5;  // every joint of the other arm
+            ++changed;
+        }
+    ASSERT_GT(changed, 0u);
+    const YAML::Node moved = YAML::Load(michi::tools::replayData(problem, {path}, options));
+    ASSERT_EQ(moved["fixedParts"].size(), asLoaded["fixedParts"].size());
+    double largest = 0.;
+    for (std::size_t i = 0; i < moved["fixedParts"].size(); ++i)
+        for (int k = 0; k < 3; ++k)
+            largest = std::max(largest, std::abs(moved["fixedParts"][i][1][k].as<double>() -
+                                                 asLoaded["fixedParts"][i][1][k].as<double>()));
+    EXPECT_GT(largest, 0.05);  // the other arm's links moved
+    // the planned arm's bodies do not depend on the other joints (each arm hangs from the base)
+    EXPECT_EQ(moved["paths"][0]["poses"][0].as<std::vector<double>>(),
+              asLoaded["paths"][0]["poses"][0].as<std::vector<double>>());
 }
