@@ -18,7 +18,13 @@ PACKAGES=(
     libtinyxml2-dev
     libcli11-dev
     clang libclang-rt-14-dev
+    libjs-three chromium nodejs
 )
+# the replay page inlines libjs-three's three.js; its browser test drives chromium with npm puppeteer-core. A NodeSource
+# nodejs brings its own npm (and conflicts with Debian's npm package): ask for npm only when there is none
+if ! command -v npm >/dev/null 2>&1; then
+    PACKAGES+=(npm)
+fi
 missing=()
 for p in "${PACKAGES[@]}"; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

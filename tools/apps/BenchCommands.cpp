@@ -10,6 +10,7 @@
 #include <michi/tools/problem/PathFile.h>
 #include <michi/tools/problem/Problem.h>
 #include <michi/tools/problem/Dataset.h>
+#include <michi/tools/viewer/ReplayPage.h>
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>
@@ -58,6 +59,7 @@ namespace michi
                     std::optional<std::string> checker;
                     std::optional<std::string> objective;
                     std::string queries;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -108,10 +110,14 @@ namespace michi
                     options.query = args.query.value_or(0);
                     options.heldOut = !args.query;  // --query: that query in every run, not the held-out ones
                     options.progress = &std::cerr;
+                    options.html = args.html;
                     const BenchResult result = runBenchmark(problem, options);
                     std::cout << result.summaryText;
                     std::cout << "\nwrote " << result.log << "\n      " << result.database << "\n      "
-                              << result.summary << "\n      " << result.picture << " (and .png)" << std::endl;
+                              << result.summary << "\n      " << result.picture << " (and .png)";
+                    if (!result.page.empty())
+                        std::cout << "\n      " << result.page;
+                    std::cout << std::endl;
                     return 0;
                 }
 
@@ -125,6 +131,7 @@ namespace michi
                     std::optional<unsigned int> seed;
                     std::optional<std::string> checker;
                     std::optional<std::string> objective;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -188,9 +195,16 @@ namespace michi
                     const std::string base = problem.name + "-" + fileSafe(name);
                     writePathFile(stage.path(base + ".path").string(), problem.valueNames(), states, comment.str());
                     writeProblemSvg(problem, {PlotPath{name, states}}, stage.path(base + ".svg").string(), query);
+                    const std::string page = problem.name + ".html";
+                    if (args.html)
+                        writeReplayPage(problem, {PlotPath{name, states}}, stage.path(page).string());
                     stage.commit();
                     const std::string stem = (stage.out() / base).string();
-                    std::cerr << "michi plan: wrote " << stem << ".path and " << stem << ".svg" << std::endl;
+                    std::cerr << "michi plan: wrote " << stem << ".path" << (args.html ? ", " : " and ") << stem
+                              << ".svg";
+                    if (args.html)
+                        std::cerr << " and " << (stage.out() / page).string();
+                    std::cerr << std::endl;
                     return 0;
                 }
             }  // namespace
@@ -241,6 +255,9 @@ namespace michi
                      "overrides --runs and the problem's benchmark.queries")
                     ->type_name("all|A-B");
                 addChoice(*c, "--objective", args->objective, OBJECTIVES, OBJECTIVE_HELP);
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: a self-contained 3-D replay of every planner's solution "
+                            "(docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
@@ -252,7 +269,9 @@ namespace michi
             {
                 auto args = std::make_shared<PlanArgs>();
                 CLI::App *c = michi.add_subcommand(
-                    "plan", "solve once, print the path, write DIR/<problem>-<planner>.path and .svg");
+                    "plan",
+                    "solve once, print the path, write DIR/<problem>-<planner>.path and .svg (and DIR/<problem>.html "
+                    "with --html)");
                 addProblem(*c, args->problem);
                 c->add_option("--planner", args->planner, "the planner (see michi list-planners)")
                     ->required()
@@ -264,6 +283,8 @@ namespace michi
                 addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
                 addChoice(*c, "--checker", args->checker, checkerNames(), CHECKER_HELP);
                 addChoice(*c, "--objective", args->objective, OBJECTIVES, OBJECTIVE_HELP);
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: a self-contained 3-D replay of the path (docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {

@@ -35,6 +35,7 @@ namespace michi
                     std::optional<double> time;
                     std::optional<std::string> view;
                     std::vector<std::string> set;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -64,6 +65,7 @@ namespace michi
                     options.checker = args.checker.value_or("");
                     options.timeLimit = args.time.value_or(options.timeLimit);
                     options.progress = &std::cerr;
+                    options.html = args.html;
                     std::cout << runCircles(loadProblem(args.problem), options);
                     return 0;
                 }
@@ -133,6 +135,7 @@ namespace michi
                     std::optional<std::string> cellSizes;
                     std::optional<std::string> angleSteps;
                     std::optional<double> time;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -148,6 +151,7 @@ namespace michi
                     options.outDir = args.out;
                     options.timeLimit = args.time.value_or(options.timeLimit);
                     options.progress = &std::cerr;
+                    options.html = args.html;
                     std::cout << runHeadingLatticeReport(loadProblem(args.problem), options);
                     return 0;
                 }
@@ -158,6 +162,7 @@ namespace michi
                     std::string out;
                     std::optional<double> time;
                     std::optional<unsigned int> seed;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -171,9 +176,13 @@ namespace michi
                     options.outDir = args.out;
                     options.planningTime = args.time.value_or(0.);  // 0: the problem's dual_arm.planning.time
                     options.progress = &std::cerr;
+                    options.html = args.html;
                     std::cout << runDualArm(problem, options);
                     std::cerr << "michi dualarm: wrote " << (fs::path(options.outDir) / "dualarm.json").string()
-                              << " and dualarm-*.svg/.png" << std::endl;
+                              << " and dualarm-*.svg/.png";
+                    if (args.html)
+                        std::cerr << " and " << (fs::path(options.outDir) / (problem.name + ".html")).string();
+                    std::cerr << std::endl;
                     return 0;
                 }
 
@@ -227,6 +236,8 @@ namespace michi
                      },
                      "picture box of every stage (default: all)")
                     ->type_name("XMIN,YMIN,XMAX,YMAX");
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: a self-contained 3-D replay of the path (docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
@@ -307,6 +318,9 @@ namespace michi
                      "angle_step values in radians, e.g. pi/8 (default 0.3927)")
                     ->type_name("A,B,...");
                 addTime(*c, args->time, "time limit per solve (default 60)");
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: a self-contained 3-D replay of the first solved path "
+                            "(docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
@@ -324,6 +338,9 @@ namespace michi
                 addOut(*c, args->out, "output folder (made if missing)");
                 addTime(*c, args->time, "time per approach plan (default: the problem's dual_arm.planning.time)");
                 addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: the stirring task (approach motions, stirring) replayed in "
+                            "3-D (docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {

@@ -3,6 +3,7 @@
 #include <michi/tools/pictures/CirclePicture.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/pictures/SvgPlot.h>
+#include <michi/tools/viewer/ReplayPage.h>
 
 #include <boost/filesystem.hpp>
 
@@ -84,6 +85,12 @@ namespace michi
             writeProblemSvg(problem, {PlotPath{"ConcentricCircle", states}}, robot, options.query);
             out << "  path: " << states.size() << " states, length " << path.length() << ", clearance "
                 << path.clearance() << " -> " << robot << "\n";
+            if (options.html)
+            {
+                const std::string page = (fs::path(options.outDir) / (problem.name + ".html")).string();
+                writeReplayPage(problem, {PlotPath{"ConcentricCircle", states}}, page);
+                out << "  replay: " << page << "\n";
+            }
             return out.str();
         }
     }  // namespace tools

@@ -7,6 +7,7 @@
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/pictures/SvgPlot.h>
+#include <michi/tools/viewer/ReplayPage.h>
 
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/geometric/PathGeometric.h>
@@ -349,6 +350,22 @@ namespace michi
                     throw std::runtime_error(std::string("cannot render ") + name +
                                              ".png (is rsvg-convert installed? scripts/setup.sh installs it)");
             writeAtomically(json.str(), stage.path("dualarm.json").string());
+            if (options.html)
+            {
+                // one page shows one configuration of the other joints: the stirring task's, the large arm at B
+                std::vector<PlotPath> paths;
+                if (stirStartWith.solved)
+                    paths.push_back({"approach to stirring, manipulability objective", stirStartWith.states});
+                if (stirStartWithout.solved)
+                    paths.push_back({"approach to stirring, path length objective", stirStartWithout.states});
+                PlotPath stirring{"stirring at type B", {}};
+                for (const auto &q : stirB.states)
+                    stirring.states.push_back(groupValues(q, problem.groupVariables));
+                paths.push_back(stirring);
+                ReplayOptions replay;
+                replay.fixedValues = fixedB;
+                writeReplayPage(problem, paths, stage.path(problem.name + ".html").string(), replay);
+            }
             stage.commit();
             return json.str();
         }

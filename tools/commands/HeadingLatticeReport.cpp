@@ -6,6 +6,7 @@
 #include <michi/tools/FileOutput.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/pictures/SvgPlot.h>
+#include <michi/tools/viewer/ReplayPage.h>
 
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ScopedState.h>
@@ -293,6 +294,7 @@ namespace michi
             boost::filesystem::create_directories(options.outDir);
             std::vector<Row> rows;
             bool drawn = !options.pictures;
+            bool paged = !options.html;  // the replay page shows the first solved configuration's path
             for (double cell : options.cellSizes)
                 for (double angle : options.angleSteps)
                 {
@@ -330,6 +332,13 @@ namespace michi
                         {
                             writePictures(problem, *planner, path, options.outDir, cell);
                             drawn = true;
+                        }
+                        if (!paged)
+                        {
+                            writeReplayPage(
+                                problem, {PlotPath{"michi::HeadingLattice", path}},
+                                (boost::filesystem::path(options.outDir) / (problem.name + ".html")).string());
+                            paged = true;
                         }
                     }
                     // the next query on the kept graph: query 1 if there is one, else query 0 again

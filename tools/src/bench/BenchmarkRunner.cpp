@@ -6,6 +6,7 @@
 
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/viewer/ReplayPage.h>
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -382,6 +383,9 @@ namespace michi
             if (!svgToPng(picture.string(), staging.path(problem.name + ".png").string()) && progress)
                 *progress << "michi bench: no PNG copy of the picture (rsvg-convert from librsvg2-bin is missing)"
                           << std::endl;
+            const fs::path page = staging.path(problem.name + ".html");
+            if (options.html)
+                writeReplayPage(problem, result.paths, page.string());
 
             staging.commit();
             const fs::path out = staging.out();
@@ -389,6 +393,8 @@ namespace michi
             result.database = (out / db.filename()).string();
             result.summary = (out / summary.filename()).string();
             result.picture = (out / picture.filename()).string();
+            if (options.html)
+                result.page = (out / page.filename()).string();
             return result;
         }
     }  // namespace tools

@@ -57,6 +57,18 @@ namespace michi
                 /** Links that no planned joint moves (drawn once), at the group's values \e values. */
                 std::vector<MultiPolygon2> fixedLinks(const Values &values, const Eigen::Isometry3d &view) const;
 
+                /** Per link: moved by a planned joint (ARM; empty for SE2). */
+                const std::vector<bool> &movedLinks() const
+                {
+                    return moved_;
+                }
+
+                /** The link a trace follows (the end of the skeleton), or -1 (SE2, or no planned joint). */
+                int endLink() const
+                {
+                    return skeleton_.empty() ? -1 : skeleton_.back();
+                }
+
             private:
                 Values fullConfiguration(const Values &values) const;
 

@@ -31,6 +31,8 @@ namespace michi
                 recorded in the log (run property "query"). Empty: the problem's benchmark.queries. */
             std::string queries;
             std::string outDir;
+            /** \brief Also write `<name>.html`, a 3-D replay of each planner's first solution (viewer/ReplayPage.h). */
+            bool html{false};
             std::ostream *progress{nullptr};  ///< progress lines (stderr in the command), or none
         };
 
@@ -55,6 +57,7 @@ namespace michi
             std::string summary;
             std::string summaryText;  ///< what summary.md holds (printed by `michi bench` without reading it back)
             std::string picture;
+            std::string page;  ///< the replay page, when BenchOptions::html (else empty)
             std::vector<PlannerSummary> planners;
             std::vector<PlotPath> paths;  ///< one solution per planner that solved
         };

@@ -19,6 +19,7 @@ namespace michi
             std::vector<double> angleSteps{0.3927};  ///< angle_step values, radians
             double timeLimit{60.};                   ///< per solve (plain timed termination condition, no thread)
             bool pictures{true};                     ///< write the pictures (for the first cell size and angle step)
+            bool html{false};  ///< write outDir/<problem>.html, a 3-D replay of the first solved path (ReplayPage.h)
             std::ostream *progress{nullptr};
         };
 

@@ -1,0 +1,88 @@
+#include "viewer/ReplayJson.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace replay
+        {
+            void appendFixed(std::string &out, double value, int decimals)
+            {
+                if (!std::isfinite(value))
+                    value = 0.;  // JSON has no NaN or infinity; nothing the page draws is infinite
+                char buffer[64];
+                int n = std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+                if (n <= 0 || n >= static_cast<int>(sizeof buffer))
+                {
+                    n = std::snprintf(buffer, sizeof buffer, "%.6g", value);
+                    out.append(buffer, n);
+                    return;
+                }
+                if (decimals > 0)
+                {
+                    while (n > 0 && buffer[n - 1] == '0')
+                        --n;
+                    if (n > 0 && buffer[n - 1] == '.')
+                        --n;
+                }
+                std::string text(buffer, n);
+                if (text == "-0")
+                    text = "0";
+                out += text;
+            }
+
+            void appendPrecise(std::string &out, double value)
+            {
+                if (!std::isfinite(value))
+                    value = 0.;
+                char buffer[64];
+                const int n = std::snprintf(buffer, sizeof buffer, "%.10g", value);
+                out.append(buffer, n);
+            }
+
+            void appendPoseValues(std::string &out, const Eigen::Isometry3d &pose)
+            {
+                const Eigen::Vector3d t = pose.translation();
+                Eigen::Quaterniond q(pose.linear());
+                q.normalize();
+                // q and -q are the same rotation; a non-negative w keeps neighbouring frames' slerp short
+                if (q.w() < 0.)
+                    q.coeffs() = -q.coeffs();
+                for (int i = 0; i < 3; ++i)
+                {
+                    appendFixed(out, t[i], POSITION_DECIMALS);
+                    out += ',';
+                }
+                appendFixed(out, q.x(), ROTATION_DECIMALS);
+                out += ',';
+                appendFixed(out, q.y(), ROTATION_DECIMALS);
+                out += ',';
+                appendFixed(out, q.z(), ROTATION_DECIMALS);
+                out += ',';
+                appendFixed(out, q.w(), ROTATION_DECIMALS);
+            }
+
+            void appendPose(std::string &out, const Eigen::Isometry3d &pose)
+            {
+                out += '[';
+                appendPoseValues(out, pose);
+                out += ']';
+            }
+
+            void appendPreciseArray(std::string &out, const std::vector<double> &values)
+            {
+                out += '[';
+                for (std::size_t i = 0; i < values.size(); ++i)
+                {
+                    if (i)
+                        out += ',';
+                    appendPrecise(out, values[i]);
+                }
+                out += ']';
+            }
+        }  // namespace replay
+    }      // namespace tools
+}  // namespace michi
