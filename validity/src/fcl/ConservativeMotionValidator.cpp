@@ -1,4 +1,5 @@
 #include <michi/validity/fcl/ConservativeMotionValidator.h>
+#include <michi/validity/MotionCount.h>
 
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/util/Console.h>
@@ -100,11 +101,11 @@ namespace michi
             // cheap rejection first, like OMPL's DiscreteMotionValidator
             if (!si_->isValid(s2))
             {
-                ++invalid_;
+                countMotion(invalid_);
                 return false;
             }
             const bool ok = walk(s1, s2, nullptr);
-            ok ? ++valid_ : ++invalid_;
+            countMotion(ok ? valid_ : invalid_);
             return ok;
         }
 
@@ -119,7 +120,7 @@ namespace michi
                 if (lastValid.first != nullptr)
                     si_->getStateSpace()->interpolate(s1, s2, t, lastValid.first);
             }
-            ok ? ++valid_ : ++invalid_;
+            countMotion(ok ? valid_ : invalid_);
             return ok;
         }
     }  // namespace validity

@@ -1,4 +1,5 @@
 #include <michi/validity/fcl/WorkspaceMotionValidator.h>
+#include <michi/validity/MotionCount.h>
 
 #include <ompl/base/SpaceInformation.h>
 
@@ -39,7 +40,7 @@ namespace michi
         {
             if (!si_->isValid(s2))
             {
-                ++invalid_;
+                countMotion(invalid_);
                 return false;
             }
             const unsigned int n = stepCount(s1, s2);
@@ -62,7 +63,7 @@ namespace michi
                 intervals.emplace(mid + 1, hi);
             }
             si_->freeState(state);
-            ok ? ++valid_ : ++invalid_;
+            countMotion(ok ? valid_ : invalid_);
             return ok;
         }
 
@@ -84,7 +85,7 @@ namespace michi
                 }
             }
             si_->freeState(state);
-            ok ? ++valid_ : ++invalid_;
+            countMotion(ok ? valid_ : invalid_);
             return ok;
         }
     }  // namespace validity

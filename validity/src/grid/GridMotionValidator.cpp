@@ -1,4 +1,5 @@
 #include <michi/validity/grid/GridMotionValidator.h>
+#include <michi/validity/MotionCount.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 
 #include <ompl/base/SpaceInformation.h>
@@ -156,7 +157,7 @@ namespace michi
             double contact = 0., lastFree = 0.;
             if (walk(pieces(from, to), &contact, &lastFree))
             {
-                ++valid_;
+                countMotion(valid_);
                 return true;
             }
             if (lastValid)
@@ -165,7 +166,7 @@ namespace michi
                     si_->getStateSpace()->interpolate(s1, s2, lastFree, lastValid->first);
                 lastValid->second = lastFree;
             }
-            ++invalid_;
+            countMotion(invalid_);
             return false;
         }
 

@@ -1,4 +1,5 @@
 #include <michi/validity/jmap/JMapMotionValidator.h>
+#include <michi/validity/MotionCount.h>
 
 #include <ompl/base/SpaceInformation.h>
 
@@ -172,9 +173,9 @@ namespace michi
                                                  : fallback_->checkMotion(s1, s2);
             }
             if (valid)
-                ++valid_;
+                countMotion(valid_);
             else
-                ++invalid_;
+                countMotion(invalid_);
             return valid;
         }
 

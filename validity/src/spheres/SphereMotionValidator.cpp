@@ -1,4 +1,5 @@
 #include <michi/validity/spheres/SphereMotionValidator.h>
+#include <michi/validity/MotionCount.h>
 
 #include <ompl/base/SpaceInformation.h>
 
@@ -83,15 +84,15 @@ namespace michi
         {
             if (!si_->isValid(s2))
             {
-                ++invalid_;
+                countMotion(invalid_);
                 return false;
             }
             double certified = 0.;
             const bool ok = check(s1, s2, certified);
             if (ok)
-                ++valid_;
+                countMotion(valid_);
             else
-                ++invalid_;
+                countMotion(invalid_);
             return ok;
         }
 
@@ -109,14 +110,14 @@ namespace michi
             }
             if (ok)
             {
-                ++valid_;
+                countMotion(valid_);
                 return true;
             }
             // the certified prefix ends at a state whose piece was shown free
             if (lastValid.first != nullptr)
                 si_->getStateSpace()->interpolate(s1, s2, certified, lastValid.first);
             lastValid.second = certified;
-            ++invalid_;
+            countMotion(invalid_);
             return false;
         }
     }  // namespace validity
