@@ -153,6 +153,19 @@ TEST(JMapValidityChecker, ArmMapPreFiltersAnArmWithAHand)
     EXPECT_LT(jmap->fclQueries(), f.states.size()) << "states inside the arm's polygons never reach FCL";
 }
 
+TEST(JMapValidityChecker, FclSweepMapOfASpatialArmInstalls)
+{
+    // arch_3dof's arm is not planar, so its J-map is an FCL sweep whose cost is measured on a start configuration
+    // while the checker is made: that used to read the context's start state before it was set (a segfault of
+    // `michi bench problems/arch_3dof.yaml --checker jmap`)
+    auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/arch_3dof.yaml");
+    problem.checker = "jmap";
+    const auto ctx = tools::makePlanningContext(problem);
+    ASSERT_NE(ctx.jmap, nullptr);
+    EXPECT_EQ(ctx.setup->getSpaceInformation()->getStateValidityChecker().get(), ctx.jmap.get());
+    EXPECT_TRUE(ctx.setup->getSpaceInformation()->isValid(ctx.setup->getProblemDefinition()->getStartState(0)));
+}
+
 TEST(JMapValidityChecker, ProblemSwitchInstallsIt)
 {
     auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/planar_2link.yaml");

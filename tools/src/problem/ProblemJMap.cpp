@@ -114,9 +114,10 @@ namespace michi
                                            " distance queries (limit " +
                                            std::to_string(static_cast<long long>(MAX_SWEEP_QUERIES)) +
                                            "): use fewer slices or collision.checker: fcl");
-                // the cost of one query, measured on the start configuration
-                std::vector<double> values;
-                ctx.setup->getStateSpace()->copyToReals(values, ctx.setup->getProblemDefinition()->getStartState(0));
+                // the cost of one query, measured on the first query's start (the context's problem definition has
+                // no start yet while its checker is made: reading it there was a null dereference)
+                std::vector<double> values = problem.queries.empty() ? std::vector<double>(problem.dimension(), 0.)
+                                                                     : problem.queries.front().start;
                 const auto &bodies = *ctx.checker->bodies();
                 const std::vector<char> wantBodies(bodies.bodies().size(), 1);
                 const std::vector<char> wantPairs(bodies.selfCheckPairs().size(), 1);
