@@ -28,7 +28,7 @@ namespace michi
             PlanningContext ctx = makePlanningContext(problem, options.query);
             const auto si = ctx.setup->getSpaceInformation();
             auto planner = std::make_shared<planners::ConcentricCircle>(si);
-            applyPlannerParams(*planner, PlannerSpec{"michi::ConcentricCircle", options.params}, problem.file);
+            applyPlannerParams(*planner, PlannerSpec{"michi::ConcentricCircle", options.params, {}}, problem.file);
             ctx.setup->setPlanner(planner);
             const auto status = ctx.setup->solve(options.timeLimit);
             std::ostringstream out;

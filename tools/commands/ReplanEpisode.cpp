@@ -58,7 +58,7 @@ namespace michi
                 if (method.reuse == Method::Reuse::DUAL)
                     for (const auto &kv : settings.dualParams)
                         params.insert(kv);
-                applyPlannerParams(*planner_, PlannerSpec{method.planner, params}, problem.file);
+                applyPlannerParams(*planner_, PlannerSpec{method.planner, params, {}}, problem.file);
                 if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
                 {
                     auto scene = planSensed_.scene;

@@ -73,7 +73,7 @@ namespace michi
                 {
                     for (const char *name :
                          {"geometric::RRTConnect", "geometric::PRM", "geometric::RRTstar", "geometric::BITstar"})
-                        problem.planners.push_back(PlannerSpec{name, {}});
+                        problem.planners.push_back(PlannerSpec{name, {}, {}});
                     return;
                 }
                 if (!list.IsSequence() || list.size() == 0)
