@@ -91,8 +91,8 @@ namespace michi
                     const Trace &trace = traces[m];
                     std::ostringstream label;
                     label << std::fixed << std::setprecision(2) << labels[m] << ": "
-                          << (trace.reached ? "reached the goal at " : "stopped at ") << trace.times.back() << " s"
-                          << (trace.collided ? ", collided" : "");
+                          << (trace.reached ? "reached the goal at " : "not at the goal by ") << trace.times.back()
+                          << " s" << (trace.collided ? ", collided" : "");
                     PlotPath path{label.str(), {}};
                     std::vector<double> times;
                     for (std::size_t i : sampled(trace.times.size()))
