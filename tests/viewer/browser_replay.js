@@ -1,7 +1,8 @@
 // The replay page in a real browser (ctest label `browser`, docs/viewer.md): for each problem, `michi plan ... --html`
 // writes a page; Debian's chromium opens it from file:// with the network off, and the test checks that the page asks
 // for nothing but itself, plays, shows at two slider positions exactly the states of michi's .path file, and draws
-// something (the screenshots are not blank).
+// something (the screenshots are not blank). It also opens the page of a `michi replan --html` episode: the executed
+// state and the moving obstacles drawn where michi exported them at two slider positions.
 //
 // node browser_replay.js --michi BIN --problems DIR --out DIR --chromium PATH --modules NODE_MODULES
 'use strict';
@@ -34,16 +35,10 @@ function readPath(file) {
         .map((l) => l.trim().split(/\s+/).map(Number));
 }
 
-async function checkProblem(browser, name) {
-    const out = path.join(args.out, name);
-    fs.rmSync(out, {recursive: true, force: true});
-    execFileSync(args.michi, ['plan', path.join(args.problems, name + '.yaml'), '--planner', PLANNER, '--time', '10',
-                              '--seed', '1', '--html', '--out', out], {stdio: ['ignore', 'ignore', 'inherit']});
-    const html = path.join(out, name + '.html');
-    const expected = readPath(path.join(out, name + '-' + PLANNER.replace(/[^A-Za-z0-9_-]/g, '_') + '.path'));
-    check(fs.existsSync(html), name + ': michi wrote ' + html);
-    check(expected.length >= 2, name + ': the .path file has ' + expected.length + ' states');
-
+/** A new tab with \e html opened from file:// with no network, once its viewer is ready: the DevTools protocol's
+    offline mode, and every request that is not the page itself (or a data: URL it makes in memory) is failed and
+    counted in \e blocked; script errors are collected in \e errors (and checked here once loaded). */
+async function openOffline(browser, html, name) {
     const page = await browser.newPage();
     const url = pathToFileURL(html).href;
     const blocked = [];
@@ -52,8 +47,6 @@ async function checkProblem(browser, name) {
     page.on('console', (m) => {
         if (m.type() === 'error') errors.push(m.text());
     });
-    // no network: the DevTools protocol's offline mode, and every request that is not the page itself (or a data:
-    // URL it makes in memory) is failed and counted
     await page.setOfflineMode(true);
     await page.setRequestInterception(true);
     page.on('request', (request) => {
@@ -69,6 +62,52 @@ async function checkProblem(browser, name) {
     await page.goto(url, {waitUntil: 'load'});
     await page.waitForFunction(() => window.michiViewer && window.michiViewer.ready, {timeout: 30000});
     check(errors.length === 0, name + ': no script error' + (errors.length ? ' (' + errors.join('; ') + ')' : ''));
+    return {page, blocked, errors};
+}
+
+/** A screenshot of \e page saved as \e file, checked not blank (grey-level variance and colour count). */
+async function checkScreenshot(page, file, name) {
+    const png = Buffer.from(await page.screenshot({type: 'png'})).toString('base64');
+    fs.writeFileSync(file, Buffer.from(png, 'base64'));
+    // decode the screenshot in the page (a data: URL, allowed) and measure its pixels' spread
+    const stats = await page.evaluate(async (b64) => {
+        const image = new Image();
+        image.src = 'data:image/png;base64,' + b64;
+        await image.decode();
+        const canvas = document.createElement('canvas');
+        canvas.width = image.width;
+        canvas.height = image.height;
+        const c = canvas.getContext('2d');
+        c.drawImage(image, 0, 0);
+        const px = c.getImageData(0, 0, image.width, image.height).data;
+        let sum = 0, sum2 = 0, n = 0;
+        const colours = new Set();
+        for (let i = 0; i < px.length; i += 4) {
+            const g = 0.299 * px[i] + 0.587 * px[i + 1] + 0.114 * px[i + 2];
+            sum += g;
+            sum2 += g * g;
+            n++;
+            if (colours.size < 1000) colours.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
+        }
+        const mean = sum / n;
+        return {variance: sum2 / n - mean * mean, colours: colours.size};
+    }, png);
+    check(stats.variance > 50 && stats.colours > 20,
+          name + ': screenshot ' + file + ' is not blank (grey variance ' + stats.variance.toFixed(1) + ', ' +
+              stats.colours + ' colours)');
+}
+
+async function checkProblem(browser, name) {
+    const out = path.join(args.out, name);
+    fs.rmSync(out, {recursive: true, force: true});
+    execFileSync(args.michi, ['plan', path.join(args.problems, name + '.yaml'), '--planner', PLANNER, '--time', '10',
+                              '--seed', '1', '--html', '--out', out], {stdio: ['ignore', 'ignore', 'inherit']});
+    const html = path.join(out, name + '.html');
+    const expected = readPath(path.join(out, name + '-' + PLANNER.replace(/[^A-Za-z0-9_-]/g, '_') + '.path'));
+    check(fs.existsSync(html), name + ': michi wrote ' + html);
+    check(expected.length >= 2, name + ': the .path file has ' + expected.length + ' states');
+
+    const {page, blocked, errors} = await openOffline(browser, html, name);
 
     // it plays: the clock advances by itself
     await page.evaluate(() => window.michiViewer.play());
@@ -126,38 +165,71 @@ async function checkProblem(browser, name) {
             check(drawn <= 1e-9, name + ': the drawn bodies sit at michi\'s poses for that frame');
         }
 
-        const file = path.join(args.out, name + '-' + shot + '.png');
-        const png = Buffer.from(await page.screenshot({type: 'png'})).toString('base64');
-        fs.writeFileSync(file, Buffer.from(png, 'base64'));
-        // decode the screenshot in the page (a data: URL, allowed) and measure its pixels' spread
-        const stats = await page.evaluate(async (b64) => {
-            const image = new Image();
-            image.src = 'data:image/png;base64,' + b64;
-            await image.decode();
-            const canvas = document.createElement('canvas');
-            canvas.width = image.width;
-            canvas.height = image.height;
-            const c = canvas.getContext('2d');
-            c.drawImage(image, 0, 0);
-            const px = c.getImageData(0, 0, image.width, image.height).data;
-            let sum = 0, sum2 = 0, n = 0;
-            const colours = new Set();
-            for (let i = 0; i < px.length; i += 4) {
-                const g = 0.299 * px[i] + 0.587 * px[i + 1] + 0.114 * px[i + 2];
-                sum += g;
-                sum2 += g * g;
-                n++;
-                if (colours.size < 1000) colours.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
-            }
-            const mean = sum / n;
-            return {variance: sum2 / n - mean * mean, colours: colours.size};
-        }, png);
-        check(stats.variance > 50 && stats.colours > 20,
-              name + ': screenshot ' + file + ' is not blank (grey variance ' + stats.variance.toFixed(1) + ', ' +
-                  stats.colours + ' colours)');
+        await checkScreenshot(page, path.join(args.out, name + '-' + shot + '.png'), name);
     }
     check(blocked.length === 0,
           name + ': no request left the page' + (blocked.length ? ' (' + blocked.join(', ') + ')' : ''));
+    await page.close();
+}
+
+/** `michi replan --html`: the page of a replan episode. At two slider positions (frames a third and two thirds
+    into the episode) the page shows the executed state michi exported for that frame and draws every moving
+    obstacle at its key frame for that time; the obstacles are elsewhere at the two times. */
+async function checkReplan(browser, name) {
+    const out = path.join(args.out, 'replan_' + name);
+    fs.rmSync(out, {recursive: true, force: true});
+    execFileSync(args.michi, ['replan', path.join(args.problems, name + '.yaml'), '--episodes', '1', '--seed', '3',
+                              '--methods', 'dual', '--html', '--out', out], {stdio: ['ignore', 'ignore', 'inherit']});
+    const html = path.join(out, name + '.html');
+    check(fs.existsSync(html), 'replan ' + name + ': michi wrote ' + html);
+    const {page, blocked} = await openOffline(browser, html, 'replan ' + name);
+
+    await page.evaluate(() => window.michiViewer.play());
+    await new Promise((r) => setTimeout(r, 700));
+    const played = await page.evaluate(() => window.michiViewer.getPose().time);
+    await page.evaluate(() => window.michiViewer.pause());
+    check(played > 0, 'replan ' + name + ': playing moved the clock to ' + played.toFixed(3) + ' s');
+
+    const data = await page.evaluate(() => window.michiViewer.data);
+    const path0 = data.paths[0];
+    const movers = data.obstacles.filter((o) => o.trajectory.length > 1);
+    check(movers.length > 0, 'replan ' + name + ': the page has ' + movers.length + ' moving obstacle(s)');
+    const drawnAt = [];
+    for (const [shot, fraction] of [['a', 1 / 3], ['b', 2 / 3]]) {
+        const frame = Math.floor(fraction * (path0.times.length - 1));
+        const t = path0.times[frame];
+        const pose = await page.evaluate((t) => {
+            const slider = document.getElementById('slider');
+            slider.value = String(t);
+            slider.dispatchEvent(new Event('input', {bubbles: true}));
+            return window.michiViewer.getPose();
+        }, t);
+        const state = pose.paths[0].state;
+        const error = Math.max(...path0.states[frame].map((v, i) => Math.abs(v - state[i])));
+        check(pose.paths[0].frame === frame && error <= TOLERANCE,
+              'replan ' + name + ': at ' + t.toFixed(3) + ' s the page shows the executed state of frame ' + frame +
+                  ' (error ' + error.toExponential(2) + ')');
+        let obstacleError = 0;
+        for (const o of movers) {
+            const key = o.trajectory.find((k) => Math.abs(k[0] - t) <= 1e-9);
+            const drawn = pose.obstacles.find((d) => d.name === o.name);
+            if (!key || !drawn) {
+                obstacleError = Infinity;
+                continue;
+            }
+            for (let i = 0; i < 3; ++i) obstacleError = Math.max(obstacleError, Math.abs(drawn.position[i] - key[1 + i]));
+        }
+        check(obstacleError <= TOLERANCE, 'replan ' + name + ': at ' + t.toFixed(3) +
+                                              ' s every moving obstacle is drawn at its key frame (error ' +
+                                              obstacleError.toExponential(2) + ')');
+        drawnAt.push(pose.obstacles);
+        await checkScreenshot(page, path.join(args.out, 'replan_' + name + '-' + shot + '.png'), 'replan ' + name);
+    }
+    const moved = drawnAt[0].some((o, i) => Math.hypot(o.position[0] - drawnAt[1][i].position[0],
+                                                       o.position[1] - drawnAt[1][i].position[1]) > 0.05);
+    check(moved, 'replan ' + name + ': the moving obstacles moved between the two slider positions');
+    check(blocked.length === 0,
+          'replan ' + name + ': no request left the page' + (blocked.length ? ' (' + blocked.join(', ') + ')' : ''));
     await page.close();
 }
 
@@ -173,6 +245,7 @@ async function checkProblem(browser, name) {
     });
     try {
         for (const name of ['panda_table_pick', 'se2_corridor']) await checkProblem(browser, name);
+        await checkReplan(browser, 'dynamic_mobile_passage');
     } finally {
         await browser.close();
     }

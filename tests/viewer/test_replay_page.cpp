@@ -150,6 +150,41 @@ TEST(ReplayPage, RejectsAStateOfTheWrongDimension)
     EXPECT_THROW(michi::tools::replayData(problem, {PlotPath{"bad", {{1., 2.}}}}), std::invalid_argument);
 }
 
+TEST(ReplayPage, TimedPathKeepsItsClockAndItsStates)
+{
+    // a path with its own times (a replan episode's executed motion): every state a frame at its time, none added,
+    // beside a path timed by length as usual
+    const Problem problem = load("se2_corridor");
+    const auto &q = problem.queries.front();
+    const PlotPath executed{"executed", {q.start, lerp(q.start, q.goal, 0.25), q.goal}};
+    const PlotPath planned{"planned", {q.start, q.goal}};
+    michi::tools::ReplayOptions options;
+    options.times = {{0., 0.5, 42.25}, {}};
+    const YAML::Node data = pageData(michi::tools::replayPage(problem, {executed, planned}, options));
+    ASSERT_EQ(data["paths"].size(), 2u);
+    const YAML::Node p = data["paths"][0];
+    ASSERT_EQ(p["times"].size(), 3u);
+    ASSERT_EQ(p["waypoints"].size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+        EXPECT_DOUBLE_EQ(p["times"][k].as<double>(), options.times[0][k]);
+        EXPECT_EQ(p["waypoints"][k].as<std::size_t>(), k);
+        for (std::size_t i = 0; i < problem.dimension(); ++i)
+            EXPECT_NEAR(p["states"][k][i].as<double>(), executed.states[k][i], 1e-9);
+    }
+    const YAML::Node other = data["paths"][1];
+    EXPECT_GT(other["times"].size(), 100u);
+    EXPECT_NEAR(other["times"][other["times"].size() - 1].as<double>(), 10., 1e-6);  // by length, as before
+
+    // times that do not fit the paths are refused
+    options.times = {{0., 1.}};  // one entry for two paths
+    EXPECT_THROW(michi::tools::replayData(problem, {executed, planned}, options), std::invalid_argument);
+    options.times = {{0., 1.}, {}};  // two times for three states
+    EXPECT_THROW(michi::tools::replayData(problem, {executed, planned}, options), std::invalid_argument);
+    options.times = {{0., 2., 1.}, {}};  // going back
+    EXPECT_THROW(michi::tools::replayData(problem, {executed, planned}, options), std::invalid_argument);
+}
+
 TEST(ReplayPage, DecimatesABigMeshAndWritesASharedShapeOnce)
 {
     // a scene of our own: two obstacles sharing one finely tessellated sheet (0.5 m square, 2 x 150 x 150 triangles)

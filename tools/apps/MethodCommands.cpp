@@ -193,6 +193,7 @@ namespace michi
                     std::optional<unsigned int> episodes;
                     std::optional<unsigned int> seed;
                     std::string methods;
+                    bool html{false};
                     bool verbose{false};
                 };
 
@@ -206,10 +207,14 @@ namespace michi
                     options.episodes = args.episodes.value_or(20);
                     options.seed = args.seed.value_or(1);
                     options.methods = splitComma(args.methods);
+                    options.html = args.html;
                     options.progress = &std::cerr;
                     std::cout << runReplan(options);
-                    std::cerr << "michi replan: wrote " << (fs::path(options.outDir) / "replan.json").string()
-                              << std::endl;
+                    std::cerr << "michi replan: wrote " << (fs::path(options.outDir) / "replan.json").string();
+                    if (args.html)  // the page is named by the problem's name, which may differ from the file's
+                        std::cerr << " and "
+                                  << (fs::path(options.outDir) / (loadProblem(args.problem).name + ".html")).string();
+                    std::cerr << std::endl;
                     return 0;
                 }
             }  // namespace
@@ -354,7 +359,7 @@ namespace michi
                 CLI::App *c = michi.add_subcommand(
                     "replan",
                     "non-stop replanning among moving obstacles (paper 002): N randomized episodes per method; writes "
-                    "DIR/replan.json and DIR/episode/frame_*.svg");
+                    "DIR/replan.json and DIR/episode/frame_*.svg (and DIR/<problem>.html with --html)");
                 addProblem(*c, args->problem);
                 addOut(*c, args->out, "output folder (made if missing)");
                 addInteger(*c, "--episodes", args->episodes, 1, 100000, "episodes per method (default 20)");
@@ -362,6 +367,9 @@ namespace michi
                 c->add_option("--methods", args->methods,
                               "methods to run, e.g. dual,rrtconnect (default: DualRoadmap and every baseline)")
                     ->type_name("A,B,...");
+                c->add_flag("--html", args->html,
+                            "also write DIR/<problem>.html: the first episode replayed in 3-D, the executed motion of "
+                            "every method and the moving obstacles on the simulated clock (docs/viewer.md)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {

@@ -16,9 +16,86 @@ namespace michi
 {
     namespace tools
     {
-        std::string runReplan(const ReplanOptions &options)
+        namespace
         {
             using namespace replan;  // the pieces of michi replan (ReplanTypes.h, ReplanMethodRun.h, ReplanReport.h)
+
+            /** The problem's static obstacles and its movers (two or more key frames); throws without a mover. */
+            void splitObstacles(const Problem &problem, const ReplanSettings &settings,
+                                std::vector<validity::Obstacle> &statics, std::vector<Mover> &movers)
+            {
+                const auto obstacles = problem.scene->obstacles();
+                for (std::size_t i = 0; i < obstacles.size(); ++i)
+                {
+                    const auto &o = obstacles[i];
+                    if (o.trajectory.size() < 2)
+                    {
+                        validity::Obstacle s = o;
+                        if (!s.trajectory.empty())
+                            s.pose = s.trajectory.front().pose;
+                        s.trajectory.clear();
+                        statics.push_back(s);
+                        continue;
+                    }
+                    Mover m;
+                    m.name = o.name;
+                    m.shape = o.shape;
+                    m.grown = grow(*o.shape, settings.margin, problem.file, "scene.obstacles (" + o.name + ")");
+                    m.trajectory = o.trajectory;
+                    movers.push_back(m);
+                }
+                if (movers.empty())
+                    throw ProblemError(problem.file, "scene.obstacles",
+                                       "michi replan needs a moving obstacle (one with a trajectory of two or more key "
+                                       "frames)");
+            }
+
+            /** Episode \e e's key frames of every mover: its timing shifted and its speed scaled, drawn from the
+                seed and the episode only (the same draws for every method). */
+            std::vector<std::vector<validity::TimedPose>> episodeTrajectories(const std::vector<Mover> &movers,
+                                                                              const ReplanSettings &settings,
+                                                                              unsigned int seed, unsigned int e)
+            {
+                std::vector<std::vector<validity::TimedPose>> out;
+                ompl::RNG rng(seed * 100003u + e);
+                for (const auto &m : movers)
+                {
+                    const double shift = rng.uniformReal(-settings.timingJitter, settings.timingJitter);
+                    const double speed = rng.uniformReal(1. - settings.speedJitter, 1. + settings.speedJitter);
+                    const double t0 = m.trajectory.front().time;
+                    std::vector<validity::TimedPose> tr = m.trajectory;
+                    for (auto &k : tr)
+                        k.time = std::max(0., t0 + shift) + (k.time - t0) / speed;
+                    out.push_back(tr);
+                }
+                return out;
+            }
+        }  // namespace
+
+        std::vector<validity::Obstacle> replanEpisodeObstacles(const std::string &problemFile, unsigned int seed,
+                                                               unsigned int episode)
+        {
+            const Problem problem = loadProblem(problemFile);
+            const ReplanSettings settings = readSettings(problemFile);
+            std::vector<validity::Obstacle> statics;
+            std::vector<Mover> movers;
+            splitObstacles(problem, settings, statics, movers);
+            const auto trajectories = episodeTrajectories(movers, settings, seed, episode);
+            std::vector<validity::Obstacle> out;
+            for (std::size_t k = 0; k < movers.size(); ++k)
+            {
+                validity::Obstacle o;
+                o.name = movers[k].name;
+                o.shape = movers[k].shape;
+                o.trajectory = trajectories[k];
+                o.pose = validity::Scene::poseAt(o.trajectory, 0.);
+                out.push_back(o);
+            }
+            return out;
+        }
+
+        std::string runReplan(const ReplanOptions &options)
+        {
             if (options.episodes == 0)
                 throw std::invalid_argument("--episodes must be a positive integer");
             // before anything draws a seed from OMPL's seed generator: then every planner's and sampler's random
@@ -26,33 +103,9 @@ namespace michi
             ompl::RNG::setSeed(options.seed);
             const Problem problem = loadProblem(options.problemFile);
             const ReplanSettings settings = readSettings(options.problemFile);
-
             std::vector<validity::Obstacle> statics;
             std::vector<Mover> movers;
-            const auto obstacles = problem.scene->obstacles();
-            for (std::size_t i = 0; i < obstacles.size(); ++i)
-            {
-                const auto &o = obstacles[i];
-                if (o.trajectory.size() < 2)
-                {
-                    validity::Obstacle s = o;
-                    if (!s.trajectory.empty())
-                        s.pose = s.trajectory.front().pose;
-                    s.trajectory.clear();
-                    statics.push_back(s);
-                    continue;
-                }
-                Mover m;
-                m.name = o.name;
-                m.shape = o.shape;
-                m.grown = grow(*o.shape, settings.margin, problem.file, "scene.obstacles (" + o.name + ")");
-                m.trajectory = o.trajectory;
-                movers.push_back(m);
-            }
-            if (movers.empty())
-                throw ProblemError(problem.file, "scene.obstacles",
-                                   "michi replan needs a moving obstacle (one with a trajectory of two or more key "
-                                   "frames)");
+            splitObstacles(problem, settings, statics, movers);
 
             std::vector<Method> methods;
             const auto all = allMethods();
@@ -79,29 +132,19 @@ namespace michi
             // the episodes' obstacle timings: the same draws for every method
             std::vector<std::vector<std::vector<validity::TimedPose>>> episodes(options.episodes);
             for (unsigned int e = 0; e < options.episodes; ++e)
-            {
-                ompl::RNG rng(options.seed * 100003u + e);
-                for (const auto &m : movers)
-                {
-                    const double shift = rng.uniformReal(-settings.timingJitter, settings.timingJitter);
-                    const double speed = rng.uniformReal(1. - settings.speedJitter, 1. + settings.speedJitter);
-                    const double t0 = m.trajectory.front().time;
-                    std::vector<validity::TimedPose> tr = m.trajectory;
-                    for (auto &k : tr)
-                        k.time = std::max(0., t0 + shift) + (k.time - t0) / speed;
-                    episodes[e].push_back(tr);
-                }
-            }
+                episodes[e] = episodeTrajectories(movers, settings, options.seed, e);
 
             std::vector<Results> results(methods.size());
             std::vector<Frame> frames;
+            std::vector<Trace> traces(options.html ? methods.size() : 0);  // the first episode of every method
             for (std::size_t mi = 0; mi < methods.size(); ++mi)
             {
                 MethodRun run(problem, statics, movers, settings, methods[mi]);
                 const auto begin = std::chrono::steady_clock::now();
                 for (unsigned int e = 0; e < options.episodes; ++e)
                 {
-                    run.episode(episodes[e], results[mi], mi == 0 && e == 0 ? &frames : nullptr);
+                    run.episode(episodes[e], results[mi], mi == 0 && e == 0 ? &frames : nullptr,
+                                e == 0 && options.html ? &traces[mi] : nullptr);
                     if (options.progress != nullptr)
                         *options.progress << "\r" << methods[mi].label << ": episode " << (e + 1) << "/"
                                           << options.episodes << std::flush;
@@ -117,6 +160,14 @@ namespace michi
             // staged output: nothing in DIR unless everything was written (an old episode/ folder is replaced)
             StagedDirectory stage(options.outDir);
             writeFrames(stage, problem, statics, movers, frames, settings.frames);
+            if (options.html)
+            {
+                std::vector<std::string> labels;
+                for (const auto &m : methods)
+                    labels.push_back(m.label);
+                writeEpisodeReplay(stage.path(problem.name + ".html").string(), problem, statics, movers, labels,
+                                   traces);
+            }
             writeAtomically(json, stage.path("replan.json").string());
             stage.commit();
             return json;

@@ -81,7 +81,7 @@ namespace michi
             }
 
             void MethodRun::episode(const std::vector<std::vector<validity::TimedPose>> &trajectories, Results &results,
-                                    std::vector<Frame> *frames)
+                                    std::vector<Frame> *frames, Trace *trace)
             {
                 for (std::size_t k = 0; k < movers_.size(); ++k)
                     setMoverTrajectory(k, trajectories[k]);
@@ -105,6 +105,22 @@ namespace michi
                 double nextSense = settings_.sensePeriod;
                 std::vector<Configuration> executed{q.start};
                 double nextFrame = 0.;
+                // the movers where they are at time t, as the world checks the robot against them
+                const auto record = [&](double time)
+                {
+                    trace->times.push_back(time);
+                    trace->states.push_back(exec.configuration());
+                    std::vector<Eigen::Isometry3d> poses;
+                    for (const auto &tr : trajectories_)
+                        poses.push_back(validity::Scene::poseAt(tr, time));
+                    trace->poses.push_back(poses);
+                };
+                if (trace != nullptr)
+                {
+                    *trace = Trace{};
+                    record(0.);
+                    trace->states.back() = q.start;
+                }
                 while (t < settings_.episodeTime)
                 {
                     const bool reproducible = settings_.realTime <= 0.;
@@ -162,6 +178,8 @@ namespace michi
                     worldSi->copyState(prev.get(), cur.get());
                     if (frames != nullptr)
                         executed.push_back(exec.configuration());
+                    if (trace != nullptr)
+                        record(t);
                     if (exec.execState() == NonStopExecutor::ExecState::FINISHED)
                     {
                         reached = true;
@@ -183,6 +201,12 @@ namespace michi
                     frames->push_back(Frame{t, executed, exec.remainingPath(), lastPoses_});
                 exec.stop();
                 exec.waitForPlanner();
+                if (trace != nullptr)
+                {
+                    trace->trajectories = trajectories_;
+                    trace->reached = reached;
+                    trace->collided = collided;
+                }
 
                 const auto &st = exec.statistics();
                 ++results.episodes;

@@ -1,10 +1,13 @@
 #include "ReplanReport.h"
 
 #include <michi/tools/pictures/SvgPlot.h>
+#include <michi/tools/viewer/ReplayPage.h>
 
 #include <boost/filesystem.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 #include <iomanip>
 #include <sstream>
 
@@ -54,6 +57,78 @@ namespace michi
                 }
             }
 
+            void writeEpisodeReplay(const std::string &file, const Problem &problem,
+                                    const std::vector<validity::Obstacle> &statics, const std::vector<Mover> &movers,
+                                    const std::vector<std::string> &labels, const std::vector<Trace> &traces)
+            {
+                if (traces.empty() || traces.size() != labels.size())
+                    throw std::logic_error("replan replay: one trace per method expected");
+                // every few simulation steps a frame: about this many over the longest episode (the page blends
+                // linearly between frames; an executed step is short, so a few steps blend as they moved)
+                constexpr std::size_t FRAMES = 500;
+                std::size_t longest = 0;
+                for (std::size_t i = 0; i < traces.size(); ++i)
+                    if (traces[i].times.size() > traces[longest].times.size())
+                        longest = i;
+                const std::size_t steps = traces[longest].times.size();
+                if (steps == 0)
+                    throw std::logic_error("replan replay: an empty trace");
+                const std::size_t every = std::max<std::size_t>(1, (steps - 1 + FRAMES - 1) / FRAMES);
+                const auto sampled = [every](std::size_t n)
+                {
+                    std::vector<std::size_t> at;
+                    for (std::size_t i = 0; i < n; i += every)
+                        at.push_back(i);
+                    if (n > 0 && at.back() != n - 1)
+                        at.push_back(n - 1);
+                    return at;
+                };
+
+                std::vector<PlotPath> paths;
+                ReplayOptions replay;
+                for (std::size_t m = 0; m < traces.size(); ++m)
+                {
+                    const Trace &trace = traces[m];
+                    std::ostringstream label;
+                    label << std::fixed << std::setprecision(2) << labels[m] << ": "
+                          << (trace.reached ? "reached the goal at " : "not at the goal by ") << trace.times.back()
+                          << " s" << (trace.collided ? ", collided" : "");
+                    PlotPath path{label.str(), {}};
+                    std::vector<double> times;
+                    for (std::size_t i : sampled(trace.times.size()))
+                    {
+                        path.states.push_back(trace.states[i]);
+                        times.push_back(trace.times[i]);
+                    }
+                    paths.push_back(path);
+                    replay.times.push_back(times);
+                }
+
+                // the moving obstacles where the first method's simulation had them, as key frames at the frames'
+                // times (after its episode: its obstacle motions as they were at its end)
+                const Trace &first = traces.front();
+                Problem p = problem;
+                p.scene = std::make_shared<validity::Scene>();
+                for (const auto &o : statics)
+                    p.scene->add(o);
+                const auto at = sampled(steps);
+                for (std::size_t k = 0; k < movers.size(); ++k)
+                {
+                    validity::Obstacle o;
+                    o.name = movers[k].name;
+                    o.shape = movers[k].shape;
+                    for (std::size_t i : at)
+                    {
+                        const double t = traces[longest].times[i];
+                        o.trajectory.push_back(validity::TimedPose{
+                            t, i < first.poses.size() ? first.poses[i][k]
+                                                      : validity::Scene::poseAt(first.trajectories[k], t)});
+                    }
+                    o.pose = o.trajectory.front().pose;
+                    p.scene->add(o);
+                }
+                writeReplayPage(p, paths, file, replay);
+            }
         }  // namespace replan
     }      // namespace tools
 }  // namespace michi

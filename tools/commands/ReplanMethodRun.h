@@ -33,9 +33,10 @@ namespace michi
                 MethodRun(const Problem &problem, const std::vector<validity::Obstacle> &statics,
                           const std::vector<Mover> &movers, const ReplanSettings &settings, const Method &method);
 
-                /** Run one episode whose moving obstacles follow \e trajectories. */
+                /** Run one episode whose moving obstacles follow \e trajectories; \e frames, \e trace (if not null)
+                    receive its pictures' frames and its step-by-step record. */
                 void episode(const std::vector<std::vector<validity::TimedPose>> &trajectories, Results &results,
-                             std::vector<Frame> *frames);
+                             std::vector<Frame> *frames, Trace *trace = nullptr);
 
             private:
                 /** \brief Replace moving obstacle \e k of the world by one that follows \e trajectory. */

@@ -2,7 +2,7 @@
 #define MICHI_TOOLS_SRC_REPLAN_REPORT_
 
 // Private to michi_tools (not installed): the outputs of `michi replan`, OUT/replan.json (ReplanReport.cpp) and
-// OUT/episode/frame_*.svg (ReplanFrames.cpp).
+// OUT/episode/frame_*.svg and OUT/<problem>.html (ReplanFrames.cpp).
 
 #include "ReplanTypes.h"
 
@@ -27,6 +27,13 @@ namespace michi
             void writeFrames(const StagedDirectory &stage, const Problem &problem,
                              const std::vector<validity::Obstacle> &statics, const std::vector<Mover> &movers,
                              const std::vector<Frame> &frames, double count);
+
+            /** OUT/<problem>.html (viewer/ReplayPage.h) at \e file: one episode replayed in 3-D, one path per method
+                (\e labels, \e traces: its executed motion on the simulated clock, every few simulation steps) and the
+                moving obstacles' poses of the first trace sampled at the same steps as key frames. */
+            void writeEpisodeReplay(const std::string &file, const Problem &problem,
+                                    const std::vector<validity::Obstacle> &statics, const std::vector<Mover> &movers,
+                                    const std::vector<std::string> &labels, const std::vector<Trace> &traces);
         }  // namespace replan
     }      // namespace tools
 }  // namespace michi

@@ -153,6 +153,20 @@ namespace michi
                 ConfigurationPath plan;
                 std::vector<Eigen::Isometry3d> poses;
             };
+
+            /** One method's episode as it was simulated, for the replay page (--html): the robot's configuration
+                and every moving obstacle's pose at each simulation step (step 0: time 0, the start), and the
+                movers' trajectories at the episode's end (obstacles_yield delays them as the episode runs), which
+                give their poses after it. */
+            struct Trace
+            {
+                std::vector<double> times;
+                std::vector<Configuration> states;
+                std::vector<std::vector<Eigen::Isometry3d>> poses;  ///< per step, one pose per mover
+                std::vector<std::vector<validity::TimedPose>> trajectories;
+                bool reached{false};
+                bool collided{false};
+            };
         }  // namespace replan
     }      // namespace tools
 }  // namespace michi

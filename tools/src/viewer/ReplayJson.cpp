@@ -43,14 +43,24 @@ namespace michi
                 out.append(buffer, n);
             }
 
+            namespace
+            {
+                /** The pose's rotation as a unit quaternion with a non-negative w: q and -q are the same rotation,
+                    and a non-negative w keeps neighbouring frames' slerp short. */
+                Eigen::Quaterniond rotation(const Eigen::Isometry3d &pose)
+                {
+                    Eigen::Quaterniond q(pose.linear());
+                    q.normalize();
+                    if (q.w() < 0.)
+                        q.coeffs() = -q.coeffs();
+                    return q;
+                }
+            }  // namespace
+
             void appendPoseValues(std::string &out, const Eigen::Isometry3d &pose)
             {
                 const Eigen::Vector3d t = pose.translation();
-                Eigen::Quaterniond q(pose.linear());
-                q.normalize();
-                // q and -q are the same rotation; a non-negative w keeps neighbouring frames' slerp short
-                if (q.w() < 0.)
-                    q.coeffs() = -q.coeffs();
+                const Eigen::Quaterniond q = rotation(pose);
                 for (int i = 0; i < 3; ++i)
                 {
                     appendFixed(out, t[i], POSITION_DECIMALS);
@@ -63,6 +73,19 @@ namespace michi
                 appendFixed(out, q.z(), ROTATION_DECIMALS);
                 out += ',';
                 appendFixed(out, q.w(), ROTATION_DECIMALS);
+            }
+
+            void appendPrecisePoseValues(std::string &out, const Eigen::Isometry3d &pose)
+            {
+                const Eigen::Vector3d t = pose.translation();
+                const Eigen::Quaterniond q = rotation(pose);
+                const double values[7] = {t[0], t[1], t[2], q.x(), q.y(), q.z(), q.w()};
+                for (int i = 0; i < 7; ++i)
+                {
+                    if (i)
+                        out += ',';
+                    appendPrecise(out, values[i]);
+                }
             }
 
             void appendPose(std::string &out, const Eigen::Isometry3d &pose)

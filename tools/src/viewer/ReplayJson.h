@@ -33,6 +33,10 @@ namespace michi
             /** x,y,z,qx,qy,qz,qw without brackets, for flat per-frame arrays. */
             void appendPoseValues(std::string &out, const Eigen::Isometry3d &pose);
 
+            /** As appendPoseValues but every number precise (appendPrecise): a moving obstacle's key frames, which a
+                replan page samples from the simulation and a test compares with it within 1e-6. */
+            void appendPrecisePoseValues(std::string &out, const Eigen::Isometry3d &pose);
+
             /** "[a,b,...]" of precise numbers. */
             void appendPreciseArray(std::string &out, const std::vector<double> &values);
         }  // namespace replay

@@ -47,7 +47,7 @@ namespace michi
                         out += k ? ",[" : "[";
                         replay::appendPrecise(out, obstacle.trajectory[k].time);
                         out += ',';
-                        replay::appendPoseValues(out, obstacle.trajectory[k].pose);
+                        replay::appendPrecisePoseValues(out, obstacle.trajectory[k].pose);
                         out += ']';
                     }
                     out += "]}";
@@ -109,6 +109,17 @@ namespace michi
                 f.waypoints.push_back(f.states.size());
                 f.states.push_back(states.back());
                 f.times.push_back(travelled / speed);
+                return f;
+            }
+
+            /** A path that keeps its own clock (ReplayOptions::times): every state a frame and a waypoint. */
+            Frames timedPath(const std::vector<std::vector<double>> &states, const std::vector<double> &times)
+            {
+                Frames f;
+                f.times = times;
+                f.states = states;
+                for (std::size_t i = 0; i < states.size(); ++i)
+                    f.waypoints.push_back(i);
                 return f;
             }
 
@@ -193,11 +204,34 @@ namespace michi
                                                     " values, expected " + std::to_string(dimension));
             if (!(options.duration > 0.))
                 throw std::invalid_argument("replay page: duration must be positive");
+            if (!options.times.empty() && options.times.size() != paths.size())
+                throw std::invalid_argument("replay page of " + problem.name + ": times for " +
+                                            std::to_string(options.times.size()) + " paths, but " +
+                                            std::to_string(paths.size()) + " paths");
+            const auto timed = [&](std::size_t i)
+            {
+                return !options.times.empty() && !options.times[i].empty();
+            };
+            for (std::size_t i = 0; i < paths.size(); ++i)
+            {
+                if (!timed(i))
+                    continue;
+                const auto &times = options.times[i];
+                bool ordered = times.size() == paths[i].states.size();
+                for (std::size_t k = 0; ordered && k < times.size(); ++k)
+                    ordered = std::isfinite(times[k]) && times[k] >= 0. && (k == 0 || times[k] >= times[k - 1]);
+                if (!ordered)
+                    throw std::invalid_argument("replay page of " + problem.name + ": path '" + paths[i].label +
+                                                "' needs one finite, non-negative, non-decreasing time per state (" +
+                                                std::to_string(paths[i].states.size()) + " states, " +
+                                                std::to_string(times.size()) + " times)");
+            }
             const ob::StateSpacePtr space = makeStateSpace(problem);
             space->setup();
             double longest = 0.;
-            for (const auto &path : paths)
-                longest = std::max(longest, pathLength(space, path.states));
+            for (std::size_t i = 0; i < paths.size(); ++i)
+                if (!timed(i))
+                    longest = std::max(longest, pathLength(space, paths[i].states));
             const double speed = longest > 0. ? longest / options.duration : 1.;
 
             replay::ShapeTable shapes;
@@ -206,13 +240,17 @@ namespace michi
             const std::string obstacles = obstaclesJson(problem, shapes, map);
             const std::string fixedParts = robot.staticPartsJson(shapes);
             std::string pathsJson = "[";
-            for (const auto &path : paths)
+            for (std::size_t i = 0; i < paths.size(); ++i)
             {
+                const auto &path = paths[i];
                 if (path.states.empty())
                     continue;
                 if (pathsJson.size() > 1)
                     pathsJson += ',';
-                pathsJson += pathJson(path, cutPath(space, path.states, speed, options.frames), robot);
+                pathsJson += pathJson(path,
+                                      timed(i) ? timedPath(path.states, options.times[i])
+                                               : cutPath(space, path.states, speed, options.frames),
+                                      robot);
             }
             pathsJson += "]";
 

@@ -327,6 +327,11 @@
                     }),
                 };
             }),
+            // the moving obstacles as drawn (key frames blended at the clock's time)
+            obstacles: moving.map(function (m) {
+                return {name: m.object.name, position: m.object.position.toArray(),
+                        quaternion: m.object.quaternion.toArray()};
+            }),
         };
     }
 

@@ -24,6 +24,11 @@ namespace michi
             /** \brief ARM: the full configuration whose joints outside the planned group the page shows (a dual-arm
                 task's other arm); empty: the problem's fixedValues. */
             std::vector<double> fixedValues;
+            /** \brief Empty, or one entry per path: empty for a path timed as above, else the time (seconds) of each
+                of the path's states, non-decreasing. Such a path plays on that clock (e.g. the executed motion of a
+                `michi replan` episode, whose moving obstacles' key frames are on the same clock): every state is a
+                frame and a waypoint, none is added, and \e duration and \e frames do not apply to it. */
+            std::vector<std::vector<double>> times;
         };
 
         /** \brief The data a replay page shows, as JSON: the scene (obstacle shapes and poses, moving obstacles'
@@ -32,7 +37,9 @@ namespace michi
             (forward kinematics of the problem's URDF, or the SE(2) footprint's placement) so the page needs no
             robot model and shows exactly the geometry the checker saw. Paths are states as in PlotPath
             (Problem::valueNames() order), interpolated with the problem's own state space
-            (makeStateSpace()). Throws std::invalid_argument for a path whose states have the wrong dimension. */
+            (makeStateSpace()). Moving obstacles' key frames are written with full precision (10 digits). Throws
+            std::invalid_argument for a path whose states have the wrong dimension, or times (ReplayOptions::times)
+            that do not match the paths. */
         std::string replayData(const Problem &problem, const std::vector<PlotPath> &paths,
                                const ReplayOptions &options = {});
 
