@@ -53,6 +53,7 @@ namespace michi
                     std::optional<std::size_t> query;
                     std::optional<std::string> checker;
                     std::string queries;
+                    std::optional<unsigned int> seed;
                     bool verbose{false};
                 };
 
@@ -88,6 +89,8 @@ namespace michi
                     Problem problem = loadProblem(args.problem);
                     if (args.checker && !compare)
                         problem.checker = *args.checker;
+                    if (args.seed)
+                        problem.benchmark.seed = *args.seed;  // runBenchmark seeds ompl::RNG with it
                     BenchOptions options;
                     if (compare)
                         for (const auto &name : splitComma(*args.checker))
@@ -230,6 +233,7 @@ namespace michi
                      "plan query i of the problem in run i, one run per query: all, or A-B (indices, inclusive); "
                      "overrides --runs and the problem's benchmark.queries")
                     ->type_name("all|A-B");
+                addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {
