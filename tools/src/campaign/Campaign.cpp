@@ -80,7 +80,7 @@ namespace michi
             }
 
             /** datasets: a list of folders, or {folder, queries} (default: every query of every file) */
-            void readDatasets(const Reader &r, const YAML::Node &list, Campaign &c)
+            void readDatasets(const Reader &r, const std::string &file, const YAML::Node &list, Campaign &c)
             {
                 if (!list)
                     return;
@@ -100,7 +100,12 @@ namespace michi
                             s = selection(r, n["queries"], key + ".queries");
                     }
                     const std::string folderKey = n.IsMap() ? key + ".folder" : key;
-                    const std::string folder = r.path(folderNode, folderKey);
+                    // relative to the campaign file, as Reader::path() resolves files
+                    const fs::path given(r.text(folderNode, folderKey));
+                    const fs::path full = given.is_absolute() ? given : fs::path(file).parent_path() / given;
+                    if (!fs::is_directory(full))
+                        r.fail(folderKey, "'" + full.string() + "' is not a folder of problem files");
+                    const std::string folder = full.lexically_normal().string();
                     try
                     {
                         c.datasets.push_back(loadDatasetFolder(folder, s));
@@ -222,7 +227,7 @@ namespace michi
             if (!root["problems"] && !root["datasets"])
                 r.fail("problems", "missing: give problems (files), datasets (folders) or both");
             readProblems(r, root["problems"], c);
-            readDatasets(r, root["datasets"], c);
+            readDatasets(r, file, root["datasets"], c);
             readPlanners(r, root["planners"], c);
             readCheckers(r, root["checkers"], c);
             return c;
