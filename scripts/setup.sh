@@ -18,6 +18,7 @@ PACKAGES=(
     libtinyxml2-dev
     libcli11-dev
     clang libclang-rt-14-dev
+    slurm-wlm
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
