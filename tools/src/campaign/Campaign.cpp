@@ -282,9 +282,19 @@ namespace michi
         std::vector<WorkUnit> shardUnits(const std::vector<WorkUnit> &units, unsigned int k, unsigned int n)
         {
             std::vector<WorkUnit> share;
-            for (const auto &u : units)
-                if (u.id % n == k - 1)
-                    share.push_back(u);
+            // the units dealt round-robin in an order shuffled by a hash of their id: shards differ in size by at
+            // most one, and unlike id mod N no shard gets every unit of one planner when N is a multiple of the plan's
+            // period (runs x checkers x planners)
+            std::vector<std::pair<std::uint64_t, std::size_t>> order;
+            for (std::size_t i = 0; i < units.size(); ++i)
+                order.emplace_back(splitMix64(units[i].id ^ 0x6d696368ULL), i);
+            std::sort(order.begin(), order.end());
+            std::vector<std::size_t> mine;
+            for (std::size_t p = k - 1; p < order.size(); p += n)
+                mine.push_back(order[p].second);
+            std::sort(mine.begin(), mine.end());  // run in plan order
+            for (const std::size_t i : mine)
+                share.push_back(units[i]);
             return share;
         }
 

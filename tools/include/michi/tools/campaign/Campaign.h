@@ -69,8 +69,9 @@ namespace michi
         /** \brief "K/N" with 1 <= K <= N; std::invalid_argument (what was expected) otherwise. */
         std::pair<unsigned int, unsigned int> parseShard(const std::string &text);
 
-        /** \brief Shard K of N: the units whose id is K-1 modulo N (every unit in exactly one shard, and each
-            shard gets a similar mix of problems and planners). */
+        /** \brief Shard K of N: the units shuffled by a hash (SplitMix64) of their id, then dealt round-robin, so
+            every unit is in exactly one shard, shards differ in size by at most one, and each gets a similar mix of
+            problems and planners whatever N is. Returned in plan order. */
         std::vector<WorkUnit> shardUnits(const std::vector<WorkUnit> &units, unsigned int k, unsigned int n);
 
         /** \brief The planner's name in logs and the database: its label, suffixed "_<checker>" when the
