@@ -17,9 +17,7 @@
 
 #include <unistd.h>
 
-#ifndef MICHI_GIT_HASH
-#define MICHI_GIT_HASH "unknown"
-#endif
+#include "michi_git_hash.h"  // MICHI_GIT_HASH, generated at build time (cmake/michiGitHash.cmake)
 
 namespace fs = boost::filesystem;
 
