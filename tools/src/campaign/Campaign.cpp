@@ -47,15 +47,16 @@ namespace michi
                 {
                     const std::string key = "problems[" + std::to_string(i) + "]";
                     const YAML::Node n = list[i];
-                    YAML::Node fileNode = n;
                     std::string queries;
                     if (n.IsMap())
                     {
                         r.keys(n, key, {"file", "queries"});
-                        fileNode = r.require(n, "file", key);
+                        r.require(n, "file", key);
                         if (n["queries"])
                             queries = key + ".queries";
                     }
+                    // built once, never assigned: yaml-cpp's Node::operator= would overwrite the node it refers to
+                    const YAML::Node fileNode = n.IsMap() ? n["file"] : n;
                     const std::string fileKey = n.IsMap() ? key + ".file" : key;
                     const std::string file = r.path(fileNode, fileKey);
                     const Problem problem = loadProblem(file);
@@ -91,14 +92,14 @@ namespace michi
                     const std::string key = "datasets[" + std::to_string(i) + "]";
                     const YAML::Node n = list[i];
                     QuerySelection s;
-                    YAML::Node folderNode = n;
                     if (n.IsMap())
                     {
                         r.keys(n, key, {"folder", "queries"});
-                        folderNode = r.require(n, "folder", key);
+                        r.require(n, "folder", key);
                         if (n["queries"])
                             s = selection(r, n["queries"], key + ".queries");
                     }
+                    const YAML::Node folderNode = n.IsMap() ? n["folder"] : n;
                     const std::string folderKey = n.IsMap() ? key + ".folder" : key;
                     // relative to the campaign file, as Reader::path() resolves files
                     const fs::path given(r.text(folderNode, folderKey));
