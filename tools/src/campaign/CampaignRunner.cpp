@@ -273,7 +273,8 @@ namespace michi
                 else if (WIFSIGNALED(child.status))
                 {
                     record.signal = WTERMSIG(child.status);
-                    record.cause = std::string("SIG") + sigabbrev_np(record.signal) + " (signal " +
+                    const char *abbrev = sigabbrev_np(record.signal);  // null for a number glibc does not name
+                    record.cause = (abbrev ? std::string("SIG") + abbrev : std::string("a signal")) + " (signal " +
                                    std::to_string(record.signal) + ")";
                     failedRun(record, "crash", ob::PlannerStatus::CRASH);
                 }
