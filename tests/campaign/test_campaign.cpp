@@ -129,6 +129,22 @@ TEST_F(Campaign, PlanPrintsOneLinePerUnitWithDistinctSeeds)
     EXPECT_EQ(runMichi("campaign plan --seed 11 " + file.string()).output, run.output);
 }
 
+TEST_F(Campaign, DatasetFoldersAndQuerySelectionsMakeTheirUnits)
+{
+    // a dataset folder (100 MotionBenchMaker problems) and 3 MovingAI scenario queries of one problem, 2 planners,
+    // 2 checkers: (100 + 3) x 2 x 2 units
+    const fs::path file = write(
+        "datasets.yaml", "problems:\n  - {file: " + problemFile("movingai_arena") + ", queries: 0-2}\ndatasets:\n  - " +
+                             (fs::path(MICHI_SOURCE_DIR) / "problems" / "datasets" / "table_pick").string() +
+                             "\nplanners: [geometric::RRTConnect, geometric::PRM]\ncheckers: [problem, fcl]\n");
+    const CommandRun run = runMichi("campaign plan " + file.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(lines(run.output), 412u);
+    EXPECT_NE(run.output.find("\tmovingai_arena[0-2]\t"), std::string::npos) << run.output.substr(0, 400);
+    EXPECT_NE(run.output.find("\ttable_pick\t"), std::string::npos);
+    EXPECT_NE(run.output.find("table_pick_0100.yaml#0\tgeometric::PRM\tfcl\trun 0"), std::string::npos);
+}
+
 TEST_F(Campaign, BadCampaignFileNamesFileAndKeyAndWritesNothing)
 {
     const fs::path bad = write("bad.yaml", "name: bad\nproblems: [" + problemFile("planar_2link") +
