@@ -307,8 +307,12 @@ namespace michi
 
         std::string planLine(const Campaign &campaign, const WorkUnit &unit)
         {
-            return std::to_string(unit.id) + "\t" + unit.dataset + "\t" + unit.entry.problemFile + "#" +
-                   std::to_string(unit.entry.query) + "\t" + campaign.planners.at(unit.planner).label + "\t" +
+            // the problem relative to the campaign file, so that shards started from different folders (or with an
+            // absolute campaign path) write the same plan, which resume and merge compare
+            const fs::path folder = fs::absolute(fs::path(campaign.file)).parent_path().lexically_normal();
+            const fs::path problem = fs::absolute(fs::path(unit.entry.problemFile)).lexically_normal();
+            return std::to_string(unit.id) + "\t" + unit.dataset + "\t" + problem.lexically_relative(folder).string() +
+                   "#" + std::to_string(unit.entry.query) + "\t" + campaign.planners.at(unit.planner).label + "\t" +
                    unit.checker + "\trun " + std::to_string(unit.run) + "\tseed " + std::to_string(unit.seed);
         }
     }  // namespace tools

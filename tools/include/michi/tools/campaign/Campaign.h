@@ -78,7 +78,8 @@ namespace michi
             campaign has more than one checker. */
         std::string unitPlannerName(const Campaign &campaign, const WorkUnit &unit);
 
-        /** \brief One line: id, dataset, problem file#query, planner label, checker, run, seed (tab-separated). */
+        /** \brief One line: id, dataset, problem file (relative to the campaign file's folder)#query, planner label,
+            checker, run, seed (tab-separated). The same whatever the working folder. */
         std::string planLine(const Campaign &campaign, const WorkUnit &unit);
     }  // namespace tools
 }  // namespace michi
