@@ -171,7 +171,14 @@ namespace michi
                 }
                 catch (const ProblemError &e)
                 {
-                    throw ProblemError(campaign.file, key + ".params", e.what());
+                    // applyPlannerParams() names "planners.<name>.params.<param>" of a problem file; here the
+                    // parameter is under this configuration's key of the campaign file
+                    const std::string what = e.what();
+                    const std::string prefix = e.file() + ": " + e.key() + ": ";
+                    const auto param = e.key().find(".params.");
+                    throw ProblemError(campaign.file,
+                                       key + ".params" + (param == std::string::npos ? "" : e.key().substr(param + 7)),
+                                       what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
                 }
                 catch (const std::invalid_argument &e)
                 {
