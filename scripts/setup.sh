@@ -19,6 +19,7 @@ PACKAGES=(
     libcli11-dev
     clang libclang-rt-14-dev
     libjs-three chromium nodejs
+    slurm-wlm
 )
 # the replay page inlines libjs-three's three.js; its browser test drives chromium with npm puppeteer-core. A NodeSource
 # nodejs brings its own npm (and conflicts with Debian's npm package): ask for npm only when there is none

@@ -29,7 +29,8 @@ namespace
                                   "experience-queries",
                                   "path-seed-figure",
                                   "path-seed-library",
-                                  "list-planners"};
+                                  "list-planners",
+                                  "campaign"};
 
     std::string problemFile(const std::string &name)
     {

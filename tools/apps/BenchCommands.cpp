@@ -60,6 +60,7 @@ namespace michi
                     std::optional<std::string> objective;
                     std::string queries;
                     bool html{false};
+                    std::optional<unsigned int> seed;
                     bool verbose{false};
                 };
 
@@ -97,6 +98,8 @@ namespace michi
                         problem.checker = *args.checker;
                     if (args.objective)
                         problem.benchmark.objective = *args.objective;
+                    if (args.seed)
+                        problem.benchmark.seed = *args.seed;  // runBenchmark seeds ompl::RNG with it
                     BenchOptions options;
                     if (compare)
                         for (const auto &name : splitComma(*args.checker))
@@ -258,6 +261,7 @@ namespace michi
                 c->add_flag("--html", args->html,
                             "also write DIR/<problem>.html: a self-contained 3-D replay of every planner's solution "
                             "(docs/viewer.md)");
+                addSeed(*c, args->seed, "ompl::RNG seed (default: the problem's benchmark.seed)");
                 addVerbose(*c, args->verbose);
                 return [args]
                 {

@@ -124,6 +124,7 @@ namespace michi
             Runner addExperienceQueries(CLI::App &michi);
             Runner addPathSeedFigure(CLI::App &michi);
             Runner addPathSeedLibrary(CLI::App &michi);
+            Runner addCampaign(CLI::App &michi);
         }  // namespace cli
     }      // namespace tools
 }  // namespace michi

@@ -29,6 +29,7 @@ namespace
     const std::vector<std::pair<const char *, Runner (*)(CLI::App &)>> COMMANDS{
         {"bench", addBench},
         {"plan", addPlan},
+        {"campaign", addCampaign},
         {"verify-checker", addVerifyChecker},
         {"circles", addCircles},
         {"jmap", addJMap},

@@ -66,7 +66,8 @@ namespace michi
                 const std::string &label = problem.queries[i].label;
                 d.entries.push_back(DatasetEntry{
                     problem.file, i,
-                    problem.name + " #" + std::to_string(i) + (label.empty() ? std::string() : " (" + label + ")")});
+                    problem.name + " #" + std::to_string(i) + (label.empty() ? std::string() : " (" + label + ")"),
+                    problem.name});
             }
             return d;
         }

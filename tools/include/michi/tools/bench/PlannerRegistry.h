@@ -20,8 +20,14 @@ namespace michi
         /** \brief Allocate by name; throws std::invalid_argument listing the known names for an unknown one. */
         ompl::base::PlannerPtr allocatePlanner(const std::string &name, const ompl::base::SpaceInformationPtr &si);
 
-        /** \brief The names, sorted. */
+        /** \brief The names, sorted (the test planners are not among them). */
         std::vector<std::string> plannerNames();
+
+        /** \brief True for the planners made for testing the tools' crash handling, and only when the environment
+            variable MICHI_TEST_PLANNERS is 1: `test::Segfault` raises SIGSEGV in solve(), `test::Hang` sleeps and
+            never returns (it ignores its termination condition). allocatePlanner() makes them then; they never
+            appear in plannerNames(). */
+        bool isTestPlanner(const std::string &name);
     }  // namespace tools
 }  // namespace michi
 

@@ -30,7 +30,8 @@ namespace michi
         {
             std::string problemFile;
             std::size_t query{0};
-            std::string label;  ///< "movingai_arena #3 (arena.map.scen line 41)"
+            std::string label;        ///< "movingai_arena #3 (arena.map.scen line 41)"
+            std::string problemName;  ///< the problem's name (an OMPL log's experiment name)
         };
 
         /** \brief A named list of queries, each a query of a problem file: what `michi bench --queries`,

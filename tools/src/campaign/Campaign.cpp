@@ -1,0 +1,319 @@
+// The campaign file reader and the work-unit plan. Read with the problem loader's Reader (problem/ProblemYaml.h), so
+// a mistake is reported exactly like one in a problem file: "<file>: <key>: <what was expected>".
+#include <michi/tools/campaign/Campaign.h>
+#include <michi/tools/bench/PlannerRegistry.h>
+#include <michi/tools/bench/PlanningContext.h>
+
+#include "problem/ProblemYaml.h"
+
+#include <boost/filesystem.hpp>
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            using problem_file::Reader;
+
+            /** "all", "A-B" or "A" under \e key, as a selection */
+            QuerySelection selection(const Reader &r, const YAML::Node &n, const std::string &key)
+            {
+                try
+                {
+                    return parseQuerySelection(r.text(n, key));
+                }
+                catch (const std::invalid_argument &e)
+                {
+                    r.fail(key, e.what());
+                }
+            }
+
+            /** problems: a list of files, or {file, queries}: each a dataset of its own queries (default: the
+                problem's benchmark.queries, else its query 0, as `michi bench` plans) */
+            void readProblems(const Reader &r, const YAML::Node &list, Campaign &c)
+            {
+                if (!list)
+                    return;
+                if (!list.IsSequence())
+                    r.fail("problems", "expected a list of problem files or {file, queries}");
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = "problems[" + std::to_string(i) + "]";
+                    const YAML::Node n = list[i];
+                    std::string queries;
+                    if (n.IsMap())
+                    {
+                        r.keys(n, key, {"file", "queries"});
+                        r.require(n, "file", key);
+                        if (n["queries"])
+                            queries = key + ".queries";
+                    }
+                    // built once, never assigned: yaml-cpp's Node::operator= would overwrite the node it refers to
+                    const YAML::Node fileNode = n.IsMap() ? n["file"] : n;
+                    const std::string fileKey = n.IsMap() ? key + ".file" : key;
+                    const std::string file = r.path(fileNode, fileKey);
+                    const Problem problem = loadProblem(file);
+                    QuerySelection s;
+                    if (!queries.empty())
+                        s = selection(r, n["queries"], queries);
+                    else if (!problem.benchmark.queries.empty())
+                        s = parseQuerySelection(problem.benchmark.queries);
+                    else
+                        s = QuerySelection{false, 0, 0};
+                    try
+                    {
+                        c.datasets.push_back(datasetOf(problem, s));
+                        if (queries.empty())
+                            c.datasets.back().name = problem.name;  // not "name[0-0]" for its one query
+                    }
+                    catch (const ProblemError &e)
+                    {
+                        r.fail(queries.empty() ? fileKey : queries, e.what());
+                    }
+                }
+            }
+
+            /** datasets: a list of folders, or {folder, queries} (default: every query of every file) */
+            void readDatasets(const Reader &r, const std::string &file, const YAML::Node &list, Campaign &c)
+            {
+                if (!list)
+                    return;
+                if (!list.IsSequence())
+                    r.fail("datasets", "expected a list of folders of problem files or {folder, queries}");
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = "datasets[" + std::to_string(i) + "]";
+                    const YAML::Node n = list[i];
+                    QuerySelection s;
+                    if (n.IsMap())
+                    {
+                        r.keys(n, key, {"folder", "queries"});
+                        r.require(n, "folder", key);
+                        if (n["queries"])
+                            s = selection(r, n["queries"], key + ".queries");
+                    }
+                    const YAML::Node folderNode = n.IsMap() ? n["folder"] : n;
+                    const std::string folderKey = n.IsMap() ? key + ".folder" : key;
+                    // relative to the campaign file, as Reader::path() resolves files
+                    const fs::path given(r.text(folderNode, folderKey));
+                    const fs::path full = given.is_absolute() ? given : fs::path(file).parent_path() / given;
+                    if (!fs::is_directory(full))
+                        r.fail(folderKey, "'" + full.string() + "' is not a folder of problem files");
+                    const std::string folder = full.lexically_normal().string();
+                    try
+                    {
+                        c.datasets.push_back(loadDatasetFolder(folder, s));
+                    }
+                    catch (const ProblemError &)
+                    {
+                        throw;  // names the problem file and key
+                    }
+                    catch (const std::runtime_error &e)
+                    {
+                        r.fail(folderKey, e.what());
+                    }
+                }
+            }
+
+            void readPlanners(const Reader &r, const YAML::Node &list, Campaign &c)
+            {
+                if (!list || !list.IsSequence() || list.size() == 0)
+                    r.fail("planners", "expected a non-empty list of planner names or {label, name, params}");
+                std::set<std::string> labels;
+                const auto names = plannerNames();
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = "planners[" + std::to_string(i) + "]";
+                    CampaignPlanner p;
+                    if (list[i].IsScalar())
+                        p.name = list[i].Scalar();
+                    else if (list[i].IsMap())
+                    {
+                        r.keys(list[i], key, {"label", "name", "params"});
+                        p.name = r.text(r.require(list[i], "name", key), key + ".name");
+                        if (list[i]["label"])
+                            p.label = r.text(list[i]["label"], key + ".label");
+                        if (const YAML::Node params = list[i]["params"])
+                        {
+                            if (!params.IsMap())
+                                r.fail(key + ".params", "expected a mapping of parameter name to value");
+                            for (const auto &kv : params)
+                                p.params[kv.first.as<std::string>()] =
+                                    r.text(kv.second, key + ".params." + kv.first.as<std::string>());
+                        }
+                    }
+                    else
+                        r.fail(key, "expected a planner name or {label, name, params}");
+                    if (std::find(names.begin(), names.end(), p.name) == names.end() && !isTestPlanner(p.name))
+                        r.fail(key, "unknown planner '" + p.name + "' (see michi list-planners)");
+                    if (p.label.empty())
+                        p.label = p.name;
+                    // the label is a planner name in the log, whose runs are ';'-separated lines
+                    if (p.label.find_first_of(";\n\r") != std::string::npos)
+                        r.fail(key + ".label", "must not hold ';' or a line break");
+                    if (!labels.insert(p.label).second)
+                        r.fail(key + ".label",
+                               "label '" + p.label + "' is used twice (give each configuration its own)");
+                    c.planners.push_back(p);
+                }
+            }
+
+            void readCheckers(const Reader &r, const YAML::Node &list, Campaign &c)
+            {
+                if (!list)
+                {
+                    c.checkers = {"problem"};
+                    return;
+                }
+                if (!list.IsSequence() || list.size() == 0)
+                    r.fail("checkers", "expected a non-empty list of checker names");
+                const auto &known = checkerNames();
+                for (std::size_t i = 0; i < list.size(); ++i)
+                {
+                    const std::string key = "checkers[" + std::to_string(i) + "]";
+                    const std::string name = r.text(list[i], key);
+                    if (name != "problem" && std::find(known.begin(), known.end(), name) == known.end())
+                    {
+                        std::string all = "problem";
+                        for (const auto &k : known)
+                            all += ", " + k;
+                        r.fail(key, "expected one of " + all + ", got '" + name + "'");
+                    }
+                    if (std::find(c.checkers.begin(), c.checkers.end(), name) != c.checkers.end())
+                        r.fail(key, "checker '" + name + "' is listed twice");
+                    c.checkers.push_back(name);
+                }
+            }
+
+            std::uint64_t splitMix64(std::uint64_t x)
+            {
+                x += 0x9e3779b97f4a7c15ULL;
+                x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+                x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+                return x ^ (x >> 31);
+            }
+        }  // namespace
+
+        Campaign loadCampaign(const std::string &file)
+        {
+            const Reader r(file);
+            const YAML::Node root = problem_file::loadYaml(file);
+            if (!root.IsMap())
+                r.fail("", "expected a mapping (name, seed, time_limit, runs, problems, datasets, planners, ...)");
+            r.keys(root, "",
+                   {"name", "description", "seed", "time_limit", "runs", "hang_margin", "problems", "datasets",
+                    "planners", "checkers"});
+            Campaign c;
+            c.file = file;
+            c.name = root["name"] ? r.text(root["name"], "name") : fs::path(file).stem().string();
+            if (c.name.empty() || c.name.find_first_of(" \t\n\r;/") != std::string::npos)
+                r.fail("name", "expected a name without spaces, ';' or '/'");
+            if (root["seed"])
+                c.seed = r.count(root["seed"], "seed");
+            c.timeLimit = r.number(root, "time_limit", "", c.timeLimit);
+            if (!(c.timeLimit > 0.) || c.timeLimit > 1e6)
+                r.fail("time_limit", "expected seconds in (0, 1e6]");
+            if (root["runs"])
+                c.runs = r.count(root["runs"], "runs");
+            c.hangMargin = r.number(root, "hang_margin", "", c.hangMargin);
+            if (!(c.hangMargin > 0.) || c.hangMargin > 1e6)
+                r.fail("hang_margin", "expected seconds in (0, 1e6]");
+            if (!root["problems"] && !root["datasets"])
+                r.fail("problems", "missing: give problems (files), datasets (folders) or both");
+            readProblems(r, root["problems"], c);
+            readDatasets(r, file, root["datasets"], c);
+            readPlanners(r, root["planners"], c);
+            readCheckers(r, root["checkers"], c);
+            return c;
+        }
+
+        std::uint32_t unitSeed(unsigned int campaignSeed, std::size_t id)
+        {
+            const std::uint64_t mixed = splitMix64((static_cast<std::uint64_t>(campaignSeed) << 32) ^ id);
+            const auto seed = static_cast<std::uint32_t>(mixed ^ (mixed >> 32));
+            return seed == 0 ? 1 : seed;
+        }
+
+        std::vector<WorkUnit> planUnits(const Campaign &campaign)
+        {
+            std::vector<WorkUnit> units;
+            for (const auto &dataset : campaign.datasets)
+                for (const auto &entry : dataset.entries)
+                    for (std::size_t p = 0; p < campaign.planners.size(); ++p)
+                        for (const auto &checker : campaign.checkers)
+                            for (unsigned int run = 0; run < campaign.runs; ++run)
+                            {
+                                WorkUnit u;
+                                u.id = units.size();
+                                u.dataset = dataset.name;
+                                u.entry = entry;
+                                u.planner = p;
+                                u.checker = checker;
+                                u.run = run;
+                                u.seed = unitSeed(campaign.seed, u.id);
+                                units.push_back(u);
+                            }
+            return units;
+        }
+
+        std::pair<unsigned int, unsigned int> parseShard(const std::string &text)
+        {
+            const auto slash = text.find('/');
+            auto number = [&](const std::string &s)
+            {
+                if (s.empty() || s.size() > 6 || !std::all_of(s.begin(), s.end(), ::isdigit))
+                    throw std::invalid_argument("expected K/N with 1 <= K <= N (e.g. 2/4), got '" + text + "'");
+                return static_cast<unsigned int>(std::stoul(s));
+            };
+            if (slash == std::string::npos)
+                number("");
+            const unsigned int k = number(text.substr(0, slash)), n = number(text.substr(slash + 1));
+            if (k < 1 || k > n)
+                throw std::invalid_argument("expected K/N with 1 <= K <= N (e.g. 2/4), got '" + text + "'");
+            return {k, n};
+        }
+
+        std::vector<WorkUnit> shardUnits(const std::vector<WorkUnit> &units, unsigned int k, unsigned int n)
+        {
+            std::vector<WorkUnit> share;
+            // the units dealt round-robin in an order shuffled by a hash of their id: shards differ in size by at
+            // most one, and unlike id mod N no shard gets every unit of one planner when N is a multiple of the plan's
+            // period (runs x checkers x planners)
+            std::vector<std::pair<std::uint64_t, std::size_t>> order;
+            for (std::size_t i = 0; i < units.size(); ++i)
+                order.emplace_back(splitMix64(units[i].id ^ 0x6d696368ULL), i);
+            std::sort(order.begin(), order.end());
+            std::vector<std::size_t> mine;
+            for (std::size_t p = k - 1; p < order.size(); p += n)
+                mine.push_back(order[p].second);
+            std::sort(mine.begin(), mine.end());  // run in plan order
+            for (const std::size_t i : mine)
+                share.push_back(units[i]);
+            return share;
+        }
+
+        std::string unitPlannerName(const Campaign &campaign, const WorkUnit &unit)
+        {
+            const std::string &label = campaign.planners.at(unit.planner).label;
+            return campaign.checkers.size() > 1 ? label + "_" + unit.checker : label;
+        }
+
+        std::string planLine(const Campaign &campaign, const WorkUnit &unit)
+        {
+            // the problem relative to the campaign file, so that shards started from different folders (or with an
+            // absolute campaign path) write the same plan, which resume and merge compare
+            const fs::path folder = fs::absolute(fs::path(campaign.file)).parent_path().lexically_normal();
+            const fs::path problem = fs::absolute(fs::path(unit.entry.problemFile)).lexically_normal();
+            return std::to_string(unit.id) + "\t" + unit.dataset + "\t" + problem.lexically_relative(folder).string() +
+                   "#" + std::to_string(unit.entry.query) + "\t" + campaign.planners.at(unit.planner).label + "\t" +
+                   unit.checker + "\trun " + std::to_string(unit.run) + "\tseed " + std::to_string(unit.seed);
+        }
+    }  // namespace tools
+}  // namespace michi

@@ -1,0 +1,167 @@
+// `campaign merge`: shard folders -> one OMPL log per problem, one Planner Arena database, one summary.
+#include <michi/tools/campaign/CampaignMerge.h>
+#include <michi/tools/FileOutput.h>
+
+#include <boost/filesystem.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace fs = boost::filesystem;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            std::string readText(const fs::path &file)
+            {
+                std::ifstream in(file.string());
+                if (!in)
+                    throw std::runtime_error(file.string() + ": cannot read it (not a campaign run folder?)");
+                std::stringstream s;
+                s << in.rdbuf();
+                return s.str();
+            }
+
+            /** the campaign seed, from the plan's header line "# campaign NAME seed S" */
+            unsigned int planSeed(const std::string &plan)
+            {
+                const auto at = plan.find(" seed ");
+                if (plan.rfind("# campaign ", 0) != 0 || at == std::string::npos || at > plan.find('\n'))
+                    return 0;
+                return static_cast<unsigned int>(std::stoul(plan.substr(at + 6)));
+            }
+
+            std::string fileSafe(std::string s)
+            {
+                for (char &c : s)
+                    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.')
+                        c = '_';
+                return s;
+            }
+
+            std::string lastLine(const fs::path &file)
+            {
+                std::ifstream in(file.string());
+                std::string line, last;
+                while (std::getline(in, line))
+                    if (!line.empty())
+                        last = line;
+                return last;
+            }
+        }  // namespace
+
+        MergeResult mergeCampaign(const std::vector<std::string> &dirs, const std::string &outDir,
+                                  std::ostream *progress)
+        {
+            if (dirs.empty())
+                throw std::runtime_error("no campaign run folder given");
+            std::string plan;
+            std::map<std::size_t, UnitRecord> records;
+            for (const auto &dir : dirs)
+            {
+                const std::string p = readText(fs::path(dir) / "campaign.plan");
+                if (plan.empty())
+                    plan = p;
+                else if (p != plan)
+                    throw std::runtime_error(dir + ": its campaign.plan differs from " + dirs.front() +
+                                             "'s (shards of different campaigns)");
+                const fs::path units = fs::path(dir) / "units";
+                if (!fs::is_directory(units))
+                    continue;  // a shard that has not finished a unit yet
+                std::vector<fs::path> files;
+                for (const auto &e : fs::directory_iterator(units))
+                    if (e.path().extension() == ".run")
+                        files.push_back(e.path());
+                std::sort(files.begin(), files.end());
+                for (const auto &f : files)
+                {
+                    UnitRecord r = readUnitRecord(f.string());
+                    if (r.outcome == "pending")
+                        throw std::runtime_error(f.string() + ": a unit spec, not a result");
+                    records.emplace(r.id, std::move(r));  // a unit in two folders (a rerun shard) counts once
+                }
+            }
+            std::size_t planned = 0;
+            {
+                std::istringstream in(plan);
+                std::string line;
+                while (std::getline(in, line))
+                    planned += !line.empty() && line[0] != '#';
+            }
+            const unsigned int seed = planSeed(plan);
+
+            MergeResult result;
+            result.planned = planned;
+            std::vector<UnitRecord> all;
+            for (auto &kv : records)
+            {
+                if (kv.first >= planned)
+                    throw std::runtime_error("unit " + std::to_string(kv.first) + " is not in the campaign's plan (" +
+                                             std::to_string(planned) + " units)");
+                result.failed += kv.second.outcome != "done";
+                all.push_back(kv.second);
+            }
+            result.merged = all.size();
+            result.missing = planned - all.size();
+            if (all.empty())
+                throw std::runtime_error("no finished unit in " + dirs.front() +
+                                         (dirs.size() > 1 ? " and the rest" : ""));
+
+            // one log per problem file, in plan order (records are sorted by unit id)
+            std::vector<std::string> problems;
+            std::map<std::string, std::vector<UnitRecord>> byProblem;
+            for (const auto &r : all)
+            {
+                if (!byProblem.count(r.problemFile))
+                    problems.push_back(r.problemFile);
+                byProblem[r.problemFile].push_back(r);
+            }
+            StagedDirectory staging(outDir);
+            fs::create_directories(staging.path("logs"));
+            std::set<std::string> names;
+            std::vector<std::string> logFiles;
+            for (const auto &file : problems)
+            {
+                const auto &rs = byProblem[file];
+                std::string name =
+                    fileSafe(rs.front().problem.empty() ? fs::path(file).stem().string() : rs.front().problem);
+                for (int i = 2; names.count(name); ++i)  // two problem files of one name
+                    name = fileSafe(rs.front().problem) + "-" + std::to_string(i);
+                names.insert(name);
+                const fs::path log = staging.path("logs") / (name + ".log");
+                writeAtomically(campaignLog(rs, seed), log.string());
+                logFiles.push_back(log.string());
+                result.logs.push_back((staging.out() / "logs" / (name + ".log")).string());
+            }
+            if (progress)
+                *progress << "michi campaign merge: " << all.size() << " units of " << planned << " (" << result.failed
+                          << " failed) in " << logFiles.size() << " logs" << std::endl;
+
+            const fs::path db = staging.path("campaign.db");
+            const fs::path statsLog = staging.path("ompl_benchmark_statistics.out");
+            std::string command = "ompl_benchmark_statistics";
+            for (const auto &l : logFiles)
+                command += " " + shellQuote(l);
+            command += " -d " + shellQuote(db.string()) + " > " + shellQuote(statsLog.string()) + " 2>&1";
+            const int rc = std::system(command.c_str());
+            if (rc != 0 || !fs::exists(db))
+                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) +
+                                         "): " + lastLine(statsLog) + " (is the ompl-demos package installed?)");
+            fs::remove(statsLog);
+
+            result.summaryText = campaignSummary(all, planned);
+            writeAtomically(result.summaryText, staging.path("summary.md").string());
+            staging.commit();
+            result.database = (staging.out() / "campaign.db").string();
+            result.summary = (staging.out() / "summary.md").string();
+            return result;
+        }
+    }  // namespace tools
+}  // namespace michi
