@@ -211,7 +211,7 @@ namespace michi
             const std::string prefix = !ownQuery && (problem.queries.size() > 1 || query > 0)
                                            ? "queries[" + std::to_string(query) + "]."
                                            : std::string();
-            const Query q = ownQuery ? Query{options.start, options.goal} : problem.queries[query];
+            const Query q = ownQuery ? Query{options.start, options.goal, {}} : problem.queries[query];
             checkEndpoint(problem, ctx, q.start, prefix.empty() ? "start" : prefix + "start");
             checkEndpoint(problem, ctx, q.goal, prefix.empty() ? "goal" : prefix + "goal");
             ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
@@ -302,7 +302,7 @@ namespace michi
         ob::PlannerPtr makePlanner(const Problem &problem, const std::string &name, const ob::SpaceInformationPtr &si,
                                    const std::map<std::string, std::string> &extra)
         {
-            PlannerSpec spec{name, {}};
+            PlannerSpec spec{name, {}, {}};
             for (const auto &s : problem.planners)
                 if (s.name == name)
                     spec = s;

@@ -167,7 +167,7 @@ namespace michi
                 try
                 {
                     auto planner = allocatePlanner(p.name, ctx.setup->getSpaceInformation());
-                    applyPlannerParams(*planner, PlannerSpec{p.name, p.params}, campaign.file);
+                    applyPlannerParams(*planner, PlannerSpec{p.name, p.params, {}}, campaign.file);
                 }
                 catch (const ProblemError &e)
                 {

@@ -103,7 +103,7 @@ namespace michi
             si->setStateValidityChecker(counting);
 
             ob::PlannerPtr planner = allocatePlanner(spec.planner, si);
-            applyPlannerParams(*planner, PlannerSpec{spec.planner, spec.params}, spec.problemFile);
+            applyPlannerParams(*planner, PlannerSpec{spec.planner, spec.params, {}}, spec.problemFile);
             planner->setName(spec.plannerName);
             trainExperiencePlanners(problem, ctx, {planner}, nullptr);
 
