@@ -25,20 +25,9 @@ namespace fs = boost::filesystem;
 namespace
 {
     using michi::test::CommandRun;
+    using michi::test::problemFile;
     using michi::test::runMichi;
-
-    std::string problemFile(const std::string &name)
-    {
-        return (fs::path(MICHI_SOURCE_DIR) / "problems" / (name + ".yaml")).string();
-    }
-
-    std::string slurp(const fs::path &p)
-    {
-        std::ifstream in(p.string());
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    using michi::test::slurp;
 
     /** the rows of an SQLite query, "a|b" per row (Debian's sqlite3 command) */
     std::string sql(const fs::path &db, const std::string &query)

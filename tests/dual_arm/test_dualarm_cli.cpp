@@ -19,14 +19,7 @@ namespace
 {
     using michi::test::CommandRun;
     using michi::test::runMichi;
-
-    std::string slurp(const fs::path &p)
-    {
-        std::ifstream in(p.string());
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    using michi::test::slurp;
 
     /** The bundled dual_arm problem, made coarse and quick, written to \e dir; \e edit changes its text. */
     std::string quickProblem(const fs::path &dir, const std::pair<std::string, std::string> &edit = {})

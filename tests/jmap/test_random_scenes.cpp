@@ -23,18 +23,8 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    std::string problemFile(const std::string &name)
-    {
-        return test::sourcePath("problems/" + name + ".yaml");
-    }
-
-    std::string slurp(const fs::path &p)
-    {
-        std::ifstream in(p);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    using michi::test::problemFile;
+    using michi::test::slurp;
 
     /** the integer after "key": in a JSON text, -1 when missing */
     long jsonInteger(const std::string &json, const std::string &key)

@@ -16,13 +16,7 @@ using michi::test::runMichi;
 
 namespace
 {
-    std::string slurp(const fs::path &p)
-    {
-        std::ifstream in(p.string(), std::ios::binary);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    using michi::test::slurp;
 
     void spit(const fs::path &p, const std::string &text)
     {

@@ -1,6 +1,8 @@
 #include "support/MichiCommand.h"
 
 #include <array>
+#include <fstream>
+#include <sstream>
 #include <cstdio>
 #include <sys/wait.h>
 
@@ -22,6 +24,19 @@ namespace michi
             const int status = pclose(pipe);
             run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
             return run;
+        }
+
+        std::string problemFile(const std::string &name)
+        {
+            return std::string(MICHI_SOURCE_DIR) + "/problems/" + name + ".yaml";
+        }
+
+        std::string slurp(const std::string &file)
+        {
+            std::ifstream in(file, std::ios::binary);
+            std::stringstream s;
+            s << in.rdbuf();
+            return s.str();
         }
     }  // namespace test
 }  // namespace michi

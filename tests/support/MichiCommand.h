@@ -3,6 +3,7 @@
 #define MICHI_TESTS_SUPPORT_MICHI_COMMAND_
 
 #include <string>
+#include <utility>
 
 namespace michi
 {
@@ -17,6 +18,19 @@ namespace michi
 
         /** \brief Run build/bin/michi with \e args (a shell command line) and capture both output streams. */
         CommandRun runMichi(const std::string &args);
+
+        /** \brief A bundled problem: problems/<name>.yaml of the source tree. */
+        std::string problemFile(const std::string &name);
+
+        /** \brief The bytes of a file (empty when it cannot be read): what a command wrote. */
+        std::string slurp(const std::string &file);
+
+        /** \brief The same for a path object (boost::filesystem::path, std::filesystem::path). */
+        template <typename Path, typename = decltype(std::declval<const Path &>().string())>
+        std::string slurp(const Path &file)
+        {
+            return slurp(std::string(file.string()));
+        }
     }  // namespace test
 }  // namespace michi
 

@@ -20,20 +20,9 @@ namespace fs = boost::filesystem;
 namespace
 {
     using michi::test::CommandRun;
+    using michi::test::problemFile;
     using michi::test::runMichi;
-
-    std::string problemFile(const std::string &name)
-    {
-        return (fs::path(MICHI_SOURCE_DIR) / "problems" / (name + ".yaml")).string();
-    }
-
-    std::string slurp(const fs::path &p)
-    {
-        std::ifstream in(p.string());
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    using michi::test::slurp;
 
     class Cli : public ::testing::Test
     {

@@ -16,6 +16,7 @@ namespace fs = boost::filesystem;
 namespace
 {
     using michi::test::CommandRun;
+    using michi::test::problemFile;
     using michi::test::runMichi;
 
     const char *ALL_COMMANDS[] = {"bench",
@@ -31,11 +32,6 @@ namespace
                                   "path-seed-library",
                                   "list-planners",
                                   "campaign"};
-
-    std::string problemFile(const std::string &name)
-    {
-        return (fs::path(MICHI_SOURCE_DIR) / "problems" / (name + ".yaml")).string();
-    }
 
     std::size_t lines(const std::string &text)
     {

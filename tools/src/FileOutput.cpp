@@ -53,6 +53,16 @@ namespace michi
             return quoted + "'";
         }
 
+        std::string lastLine(const std::string &file)
+        {
+            std::ifstream in(file);
+            std::string line, last;
+            while (std::getline(in, line))
+                if (!line.empty())
+                    last = line;
+            return last;
+        }
+
         std::string jsonString(const std::string &text)
         {
             std::string out = "\"";

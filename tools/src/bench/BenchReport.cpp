@@ -52,13 +52,8 @@ namespace michi
             const int rc = std::system(command.c_str());
             if (rc != 0 || !fs::exists(db))
             {
-                std::ifstream in(statsLog.string());
-                std::string line, last;
-                while (std::getline(in, line))
-                    if (!line.empty())
-                        last = line;
-                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) + "): " + last +
-                                         " (is the ompl-demos package installed?)");
+                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) + "): " +
+                                         lastLine(statsLog.string()) + " (is the ompl-demos package installed?)");
             }
             fs::remove(statsLog);
 

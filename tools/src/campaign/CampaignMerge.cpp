@@ -46,15 +46,6 @@ namespace michi
                 return s;
             }
 
-            std::string lastLine(const fs::path &file)
-            {
-                std::ifstream in(file.string());
-                std::string line, last;
-                while (std::getline(in, line))
-                    if (!line.empty())
-                        last = line;
-                return last;
-            }
         }  // namespace
 
         MergeResult mergeCampaign(const std::vector<std::string> &dirs, const std::string &outDir,
@@ -152,8 +143,8 @@ namespace michi
             command += " -d " + shellQuote(db.string()) + " > " + shellQuote(statsLog.string()) + " 2>&1";
             const int rc = std::system(command.c_str());
             if (rc != 0 || !fs::exists(db))
-                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) +
-                                         "): " + lastLine(statsLog) + " (is the ompl-demos package installed?)");
+                throw std::runtime_error("ompl_benchmark_statistics failed (exit " + std::to_string(rc) + "): " +
+                                         lastLine(statsLog.string()) + " (is the ompl-demos package installed?)");
             fs::remove(statsLog);
 
             result.summaryText = campaignSummary(all, planned);

@@ -41,16 +41,6 @@ namespace michi
                 return s.str();
             }
 
-            std::string lastLine(const fs::path &file)
-            {
-                std::ifstream in(file.string());
-                std::string line, last;
-                while (std::getline(in, line))
-                    if (!line.empty())
-                        last = line;
-                return last;
-            }
-
             /** "1m05s" */
             std::string duration(double seconds)
             {
@@ -287,7 +277,7 @@ namespace michi
                 }
                 else
                 {
-                    const std::string why = lastLine(errFile);
+                    const std::string why = lastLine(errFile.string());
                     record.cause = why.empty() ? "exit status " + std::to_string(WEXITSTATUS(child.status)) : why;
                     failedRun(record, "error", ob::PlannerStatus::ABORT);
                 }

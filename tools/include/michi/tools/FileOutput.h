@@ -16,6 +16,10 @@ namespace michi
         /** \brief \e text quoted for a POSIX shell (single quotes). */
         std::string shellQuote(const std::string &text);
 
+        /** \brief The last non-empty line of a text file (empty when it cannot be read): the line to quote from a
+            tool's log in an error message. */
+        std::string lastLine(const std::string &file);
+
         /** \brief \e text as a JSON string literal (quotes, backslashes and control characters escaped). */
         std::string jsonString(const std::string &text);
 
