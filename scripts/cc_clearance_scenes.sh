@@ -25,8 +25,11 @@ import glob, os, sqlite3, statistics as st, sys
 rows = {}
 for db in sorted(glob.glob(os.path.join(sys.argv[1], "*", "*.db"))):
     c = sqlite3.connect(db)
+    # a database where no run solved has no solution_clearance column
+    cols = {r[1] for r in c.execute("pragma table_info(runs)")}
+    clearance = "r.solution_clearance" if "solution_clearance" in cols else "NULL"
     for name, solved, t, cl in c.execute(
-            "select p.name, r.solved, r.time, r.solution_clearance from runs r join plannerConfigs p on p.id = r.plannerid"):
+            "select p.name, r.solved, r.time, %s from runs r join plannerConfigs p on p.id = r.plannerid" % clearance):
         key = next(k for k in ("ConcentricCircle", "RRTConnect", "RRTstar", "BITstar") if k in name)
         rows.setdefault(db, {}).setdefault(key, []).append((solved, t, cl))
 def med(runs, i):
