@@ -68,7 +68,23 @@ namespace michi
                        ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
                              " for what the map cannot decide)"
                        : "FCL validity checker, " + problem.motionValidator + " motion validator")
-               << ". Median time over all runs (failures count at the time they gave up); length"
+               << ".";
+            // planners[i].checker: runs named <planner>_<checker> used that checker and its motion validator
+            if (compareChecker.empty())
+                for (const char *checker : {"fcl", "jmap", "grid", "spheres"})
+                {
+                    const std::string suffix = std::string("_") + checker;
+                    if (std::any_of(planners.begin(), planners.end(),
+                                    [&](const PlannerSummary &p)
+                                    {
+                                        return p.name.size() > suffix.size() &&
+                                               p.name.compare(p.name.size() - suffix.size(), suffix.size(), suffix) ==
+                                                   0;
+                                    }))
+                        md << " Planners suffixed " << suffix << ": " << checker
+                           << " validity checker and its motion validator (the problem's planners[i].checker).";
+                }
+            md << " Median time over all runs (failures count at the time they gave up); length"
                   " and clearance over solved runs.\n\n";
             md << "| planner | runs | success | certified paths | median time (s) | median length | median clearance "
                   "|\n";
