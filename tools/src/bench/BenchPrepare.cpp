@@ -87,6 +87,11 @@ namespace michi
             const ob::MotionValidatorPtr fclMotions = ctx.referenceMotions;
 
             benchmark = std::make_unique<ot::Benchmark>(*ctx.setup, problem.name);
+            const bool mixedCheckers = std::any_of(specs.begin(), specs.end(),
+                                                   [this](const PlannerSpec &spec)
+                                                   {
+                                                       return !spec.checker.empty() && spec.checker != problem.checker;
+                                                   });
             for (const auto &spec : specs)
             {
                 auto make = [&]
@@ -108,7 +113,9 @@ namespace michi
                     const std::string wanted = spec.checker.empty() ? problem.checker : spec.checker;
                     if (wanted != problem.checker)
                         planner->setName(planner->getName() + "_" + wanted);
-                    if (installed != problem.checker || wanted != problem.checker)
+                    // With planners on different checkers every planner names its own: the pre-run event would
+                    // otherwise leave the previous planner's checker installed for one that has no entry.
+                    if (mixedCheckers)
                         checking[planner.get()] =
                             wanted == installed ? std::make_pair(fastChecker, fastMotions)
                                                 : std::make_pair(ob::StateValidityCheckerPtr(ctx.checker), fclMotions);
