@@ -3,6 +3,8 @@
 #include <michi/planners/concentric_circle/CircleLifts.h>
 #include "PathClearance.h"
 
+#include <michi/validity/jmap/JMapValidityChecker.h>
+
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace ob = ompl::base;
@@ -105,10 +108,7 @@ namespace michi
             jmapMap_.reset();
             jmapChecker_ = nullptr;
             if (mode_ == "auto" || mode_ == "jmap")
-            {
-                jmapMap_ = makeJMapCircleMap(si_);
-                jmapChecker_ = si_->getStateValidityChecker().get();
-            }
+                refreshJMapMap();
         }
 
         void ConcentricCircle::freePaths()
@@ -156,6 +156,20 @@ namespace michi
             return states;
         }
 
+        void ConcentricCircle::refreshJMapMap()
+        {
+            // Made again when the space has another checker, or the same J-map checker sees a changed scene (its
+            // tiles are rebuilt then, so the united polygons would be stale).
+            const auto *checker = si_->getStateValidityChecker().get();
+            const auto *jmap = dynamic_cast<const validity::JMapValidityChecker *>(checker);
+            const std::uint64_t generation = jmap ? jmap->fcl()->scene()->changeCount() : 0;
+            if (checker == jmapChecker_ && generation == jmapGeneration_)
+                return;
+            jmapMap_ = makeJMapCircleMap(si_);
+            jmapChecker_ = checker;
+            jmapGeneration_ = generation;
+        }
+
         bool ConcentricCircle::selectsClearance() const
         {
             // The problem's objective counts as well: a MaximizeMinClearanceObjective on the problem definition asks
@@ -168,9 +182,6 @@ namespace michi
 
         double ConcentricCircle::pathCost(const std::vector<ob::State *> &states) const
         {
-            // The problem's objective counts as well: a MaximizeMinClearanceObjective on the problem definition asks
-            // every planner, this one included, for clearance (michi bench --objective clearance). A path-length
-            // objective does not override the setting: OMPL's optimizing planners put one there by default.
             if (!selectsClearance())
             {
                 double len = 0.;
@@ -201,11 +212,7 @@ namespace michi
         bool ConcentricCircle::solveJMap(const std::vector<double> &start, const std::vector<double> &goal,
                                          const ob::PlannerTerminationCondition &ptc)
         {
-            if (jmapChecker_ != si_->getStateValidityChecker().get())
-            {
-                jmapMap_ = makeJMapCircleMap(si_);
-                jmapChecker_ = si_->getStateValidityChecker().get();
-            }
+            refreshJMapMap();
             const auto map = jmapMap_;
             if (!map)
                 return false;

@@ -6,6 +6,7 @@
 
 #include <ompl/base/Planner.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -260,6 +261,8 @@ namespace michi
                 query); \e jmapChecker_ is the checker it was made from, so a changed checker is noticed. */
             std::shared_ptr<CircleMap> jmapMap_;
             const void *jmapChecker_{nullptr};
+            std::uint64_t jmapGeneration_{0};  ///< the scene's changeCount() when jmapMap_ was made
+            void refreshJMapMap();
             std::string usedMode_;
             std::vector<std::vector<ompl::base::State *>> fullPaths_;
             int bestPath_{-1};
