@@ -86,7 +86,8 @@ namespace michi
                     if (!list[i].IsMap())
                         throw ProblemError(file, key, "expected {start: [...], goal: [...]}");
                     out.push_back(Query{readState(list[i]["start"], file, key + ".start", problem),
-                                        readState(list[i]["goal"], file, key + ".goal", problem), {}});
+                                        readState(list[i]["goal"], file, key + ".goal", problem),
+                                        {}});
                 }
                 return out;
             }
