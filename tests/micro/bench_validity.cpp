@@ -56,7 +56,8 @@ namespace
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
     }
 
-    /** The sphere checker (SphereModel::enclose of the problem's robot, default budget) of a fixture. */
+    /** The sphere checker of a fixture as `--checker spheres` makes it: SphereModel::enclose of the problem's
+        robot (default budget), the wrist's self-pair tables and FCL for other overlapping self pairs. */
     std::shared_ptr<michi::validity::SphereValidityChecker> sphereChecker(Fixture &f)
     {
         static std::map<Fixture *, std::shared_ptr<michi::validity::SphereValidityChecker>> cache;
@@ -66,7 +67,7 @@ namespace
             auto group = std::dynamic_pointer_cast<const michi::validity::RobotGroupBodies>(f.ctx.bodies);
             c = std::make_shared<michi::validity::SphereValidityChecker>(
                 f.ctx.setup->getSpaceInformation(), group, michi::validity::SphereModel::enclose(*group->model()),
-                f.ctx.scene);
+                f.ctx.scene, f.ctx.checker);
         }
         return c;
     }

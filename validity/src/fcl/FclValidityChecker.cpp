@@ -243,6 +243,23 @@ namespace michi
             return "";
         }
 
+        bool FclValidityChecker::pairCollides(const double *values, std::size_t pair) const
+        {
+            ++queries_;
+            const auto lease = pool_->acquire(values);
+            const auto &objects = lease.objects();
+            const auto &p = bodies_->selfCheckPairs().at(pair);
+            for (const auto &a : objects[p.first])
+                for (const auto &b : objects[p.second])
+                {
+                    fcl::CollisionRequestd request;
+                    fcl::CollisionResultd result;
+                    if (fcl::collide(a.get(), b.get(), request, result) > 0)
+                        return true;
+                }
+            return false;
+        }
+
         double FclValidityChecker::clearanceConfiguration(const double *values) const
         {
             return proximity(values, false).distance;

@@ -24,7 +24,7 @@ namespace michi
             certified = 0.;
             const auto &space = si_->getStateSpace();
             thread_local std::vector<double> a, b, mid;
-            thread_local Eigen::VectorXf delta, grow, growBody;
+            thread_local Eigen::VectorXf delta, grow, growBody, span;
             space->copyToReals(a, s1);
             space->copyToReals(b, s2);
             const std::size_t dim = a.size();
@@ -62,8 +62,9 @@ namespace michi
                 space->copyToReals(mid, m);
                 grow = whole * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
                 growBody = wholeBody * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
+                span = delta * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
                 ++checks_;
-                if (checker_->isFreeInflated(mid.data(), grow.data(), growBody.data()))
+                if (checker_->isFreeInflated(mid.data(), grow.data(), growBody.data(), span.data()))
                 {
                     certified = p.t1;
                     continue;

@@ -1,11 +1,16 @@
 #include <michi/validity/spheres/SphereValidityChecker.h>
 
+#include "SelfPairTable.h"
 #include "SphereObstacles.h"
 
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <map>
+#include <set>
+#include <tuple>
 
 namespace michi
 {
@@ -154,8 +159,100 @@ namespace michi
                 for (std::size_t k = 0; k < self.size(); ++k)
                     staticSelfBlocked_ = staticSelfBlocked_ || self[k] <= 0.;
             }
+            if (exact_)
+                makeSelfPairTables();
             // the first snapshot of the scene
             obstacles();
+        }
+
+        namespace
+        {
+            /** Cells per joint value of a self-pair table (one value: 1024 cells; two: 256 x 256, 8 KiB). */
+            constexpr int TABLE_CELLS_1D = 1024, TABLE_CELLS_2D = 256;
+        }  // namespace
+
+        void SphereValidityChecker::makeSelfPairTables()
+        {
+            const auto &model = *bodies_->model();
+            const auto &vars = bodies_->variables();
+            // group values on the tree path between two links: the joints above one link and not the other
+            auto rootJoints = [&](int link)
+            {
+                std::set<int> joints;
+                for (int j = model.links()[link].parentJoint; j >= 0;
+                     j = model.links()[model.joints()[j].parentLink].parentJoint)
+                    joints.insert(j);
+                return joints;
+            };
+            // the tables depend on the robot, its group and the sphere model (the displacement bounds): shared
+            using Key =
+                std::tuple<const RobotModel *, std::vector<int>, std::vector<std::pair<int, int>>, const SphereModel *>;
+            static std::mutex mutex;
+            static std::map<Key, std::weak_ptr<const std::vector<std::shared_ptr<const SelfPairTable>>>> cache;
+            const Key key{&model, vars, bodies_->selfCheckPairs(), spheres_.get()};
+            std::lock_guard<std::mutex> lock(mutex);
+            pairTables_ = cache[key].lock();
+            if (pairTables_)
+                return;
+            auto tables = std::make_shared<std::vector<std::shared_ptr<const SelfPairTable>>>(selfPairs_.size());
+            std::vector<double> values(vars.size(), 0.), obstacle, self;
+            std::vector<char> wantBodies(bodies_->bodies().size(), 0), wantPairs(bodies_->selfCheckPairs().size(), 0);
+            for (std::size_t k = 0; k < selfPairs_.size(); ++k)
+            {
+                const auto &p = selfPairs_[k];
+                if (static_[p.first] && static_[p.second])
+                    continue;
+                const std::set<int> a = rootJoints(bodyLink_[p.first]), b = rootJoints(bodyLink_[p.second]);
+                std::vector<int> on;  // group indices of the values on the path
+                for (const std::set<int> *one : {&a, &b})
+                    for (int j : *one)
+                        if ((one == &a ? b : a).count(j) == 0 && model.joints()[j].variable >= 0)
+                        {
+                            const auto it = std::find(vars.begin(), vars.end(), model.joints()[j].variable);
+                            if (it != vars.end())
+                                on.push_back(static_cast<int>(it - vars.begin()));
+                        }
+                std::sort(on.begin(), on.end());
+                on.erase(std::unique(on.begin(), on.end()), on.end());
+                if (on.empty() || on.size() > 2)
+                    continue;
+                std::vector<double> lo, hi, closing;
+                std::vector<char> wrap;
+                for (int v : on)
+                {
+                    const RobotJoint &joint = model.variableJoint(vars[v]);
+                    const bool continuous = joint.type == RobotJoint::Type::CONTINUOUS;
+                    lo.push_back(continuous ? -M_PI : joint.lower);
+                    hi.push_back(continuous ? M_PI : joint.upper);
+                    wrap.push_back(continuous ? 1 : 0);
+                    // the two bodies close in at most as fast as both move
+                    closing.push_back(static_cast<double>(bodyCoefficients_(p.first, v)) +
+                                      static_cast<double>(bodyCoefficients_(p.second, v)));
+                }
+                const std::size_t pairIndex = static_cast<std::size_t>(selfPairIndex_[k]);
+                auto distance = [&](const double *at)
+                {
+                    for (std::size_t d = 0; d < on.size(); ++d)
+                        values[on[d]] = at[d];
+                    wantPairs.assign(wantPairs.size(), 0);
+                    wantPairs[pairIndex] = 1;
+                    exact_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
+                    return self[pairIndex];
+                };
+                (*tables)[k] = std::make_shared<SelfPairTable>(
+                    on, lo, hi, wrap, closing, on.size() == 1 ? TABLE_CELLS_1D : TABLE_CELLS_2D, distance);
+            }
+            pairTables_ = tables;
+            cache[key] = tables;
+        }
+
+        std::size_t SphereValidityChecker::tabulatedPairs() const
+        {
+            std::size_t n = 0;
+            if (pairTables_)
+                for (const auto &t : *pairTables_)
+                    n += t ? 1 : 0;
+            return n;
         }
 
         SphereValidityChecker::~SphereValidityChecker() = default;
@@ -228,7 +325,7 @@ namespace michi
         }
 
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
-                                             const float *bodyInflation, std::string *why) const
+                                             const float *bodyInflation, const float *valueSpan, std::string *why) const
         {
             const std::size_t nb = bodyLink_.size();
             const float *r = radius_.data();
@@ -280,6 +377,16 @@ namespace michi
                 const auto &p = selfPairs_[k];
                 if (static_[p.first] && static_[p.second])
                     continue;
+                if (pairTables_ && (*pairTables_)[k])
+                {
+                    const SelfPairTable &table = *(*pairTables_)[k];
+                    if (valueSpan != nullptr ? table.freeOver(values, valueSpan) : table.free(values))
+                        continue;
+                    if (why != nullptr)
+                        *why = bodies_->model()->links()[bodyLink_[p.first]].name + " touches " +
+                               bodies_->model()->links()[bodyLink_[p.second]].name + " (self-pair table)";
+                    return true;
+                }
                 const float reach = s.bodyRadius[p.first] + s.bodyRadius[p.second];
                 if ((s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() >= reach * reach)
                     continue;
@@ -293,19 +400,15 @@ namespace michi
                               .any();
                 if (!hit)
                     continue;
-                if (exact_)
+                if (exact_ && inflation == nullptr)
                 {
-                    // links that sit close by construction (a wrist) overlap as spheres in most states: the real
-                    // geometry decides, at the distance the motion needs
-                    s.wantPairs.assign(exact_->bodies()->selfCheckPairs().size(), 0);
-                    s.wantPairs[selfPairIndex_[k]] = 1;
-                    s.wantBodies.assign(exact_->bodies()->bodies().size(), 0);
-                    exact_->bodyDistances(values, s.wantBodies, s.wantPairs, s.obstacleDistances, s.selfDistances);
-                    const double need =
-                        bodyInflation != nullptr ? bodyInflation[p.first] + bodyInflation[p.second] : 0.;
-                    if (s.selfDistances[selfPairIndex_[k]] > need)
+                    // the spheres of two links overlap: their real geometry decides (a boolean query)
+                    if (!exact_->pairCollides(values, static_cast<std::size_t>(selfPairIndex_[k])))
                         continue;
                 }
+                // in a motion the spheres decide: an FCL distance between two meshes near contact costs about
+                // 100 microseconds, and the motion validator would ask it for every piece. A motion whose grown
+                // spheres keep touching is rejected (conservative), never passed unchecked
                 if (why != nullptr)
                     *why = bodies_->model()->links()[bodyLink_[p.first]].name + " touches " +
                            bodies_->model()->links()[bodyLink_[p.second]].name;
@@ -316,15 +419,15 @@ namespace michi
 
         bool SphereValidityChecker::isValidConfiguration(const double *values) const
         {
-            return isFreeInflated(values, nullptr, nullptr);
+            return isFreeInflated(values, nullptr, nullptr, nullptr);
         }
 
         bool SphereValidityChecker::isFreeInflated(const double *values, const float *inflation,
-                                                   const float *bodyInflation) const
+                                                   const float *bodyInflation, const float *valueSpan) const
         {
             thread_local Scratch s;
             place(values, s);
-            return !collides(s, values, inflation, bodyInflation, nullptr);
+            return !collides(s, values, inflation, bodyInflation, valueSpan, nullptr);
         }
 
         std::string SphereValidityChecker::describeCollision(const double *values) const
@@ -332,7 +435,7 @@ namespace michi
             Scratch s;
             place(values, s);
             std::string why;
-            collides(s, values, nullptr, nullptr, &why);
+            collides(s, values, nullptr, nullptr, nullptr, &why);
             return why;
         }
 

@@ -31,7 +31,7 @@ namespace michi
             std::size_t motions{0};
             unsigned int seed{1};
             std::size_t unsafeStates{0};    ///< the checker says valid, FCL says invalid: must be 0
-            std::size_t unsafeMotions{0};   ///< the checker's motion validator says valid, FCL's (exact) invalid
+            std::size_t unsafeMotions{0};   ///< the checker's motion validator says valid, FCL's reference invalid
             std::size_t referenceValid{0};  ///< states FCL calls valid
             std::size_t falseInvalid{0};    ///< of those, the ones the checker calls invalid
             std::size_t motionsValid{0};    ///< motions the checker calls valid (each then checked by FCL)
@@ -49,10 +49,11 @@ namespace michi
 
         /** \brief Check \e options.states uniform states and as many random short motions with the checker
             (and its motion validator) that makePlanningContext() installs for \e options.checker, and with FCL on
-            the same scene: FclValidityChecker for states, ConservativeMotionValidator (exact) for the motions the
-            checker calls valid. Generic over every checker the planning context can install. Times are measured
-            in the same run, in batches of 1,000 states (in the cache, as the states a planner checks are) alternating
-           between the two. */
+            the same scene: FclValidityChecker for states, and for the motions the checker calls valid
+            ConservativeMotionValidator (exact), or for the sphere checker (arm meshes, where exact distances are
+            too slow for a million motions) certifyPath's FCL checks ten times finer than the planners' resolution.
+           Generic over every checker the planning context can install. Times are measured in the same run, in batches
+           of 1,000 states (in the cache, as the states a planner checks are) alternating between the two. */
         VerifyCheckerResult verifyChecker(const Problem &problem, const VerifyCheckerOptions &options);
     }  // namespace tools
 }  // namespace michi

@@ -57,6 +57,9 @@ namespace michi
             void bodyDistances(const double *values, const std::vector<char> &wantBodies,
                                const std::vector<char> &wantPairs, std::vector<double> &obstacle,
                                std::vector<double> &self) const;
+            /** \brief Do the two bodies of self-check pair \e pair (selfCheckPairs() order) touch? A boolean FCL
+                query on their real geometry, cheaper than a distance. */
+            bool pairCollides(const double *values, std::size_t pair) const;
             /** \brief "link3 touches obstacle 'wall'" or "link1 touches link4"; empty when valid. */
             std::string describeCollision(const double *values) const;
 

@@ -20,6 +20,7 @@ namespace michi
     namespace validity
     {
         class SphereObstacles;
+        class SelfPairTable;
 
         /** \brief Collision checking of an arm with the spheres of a SphereModel (which enclose its links) against a
             scene, in structure-of-arrays form: forward kinematics of the links, then every sphere centre of a
@@ -34,9 +35,10 @@ namespace michi
         class SphereValidityChecker : public ompl::base::StateValidityChecker
         {
         public:
-            /** \param exactSelf when given (an FCL checker of the same bodies), a self-collision pair whose
-                spheres overlap is decided by FCL's distance between the two links' real geometry: links that sit
-                close by construction (a wrist) would otherwise be judged in collision in most states. */
+            /** \param exactSelf when given (an FCL checker of the same bodies): self pairs whose relative pose
+                depends on one or two joint values (a wrist, which sits close by construction) are decided by
+                tables built once with FCL on the real geometry (certified over each cell); in a state check, other
+                pairs whose spheres overlap are decided by an FCL collision query between the two links. */
             SphereValidityChecker(const ompl::base::SpaceInformationPtr &si,
                                   std::shared_ptr<const RobotGroupBodies> bodies, SphereModelPtr spheres,
                                   ScenePtr scene, FclValidityCheckerPtr exactSelf = nullptr);
@@ -48,10 +50,15 @@ namespace michi
 
             /** \brief Validity of group values (bodies()->dimension() values). */
             bool isValidConfiguration(const double *values) const;
-            /** \brief The same with every sphere grown by \e inflation[s] metres (sphereCount() values) and,
-                for self pairs FCL decides, every body's geometry by \e bodyInflation[b] (bodyCount() values):
-                true means nothing touches while each sphere / body moves by up to its inflation. */
-            bool isFreeInflated(const double *values, const float *inflation, const float *bodyInflation) const;
+            /** \brief The same with every sphere grown by \e inflation[s] metres (sphereCount() values), and
+                for self pairs a table decides, every group value within \e valueSpan[v] of values[v]: true means
+                nothing touches while each sphere moves by up to its inflation. With an inflation, spheres decide
+                every other self pair (no FCL query). \e bodyInflation (bodyCount() values) is kept for callers
+                and may be null. */
+            bool isFreeInflated(const double *values, const float *inflation, const float *bodyInflation,
+                                const float *valueSpan) const;
+            /** \brief Self pairs decided by a table over one or two joint values (see selfPairTables). */
+            std::size_t tabulatedPairs() const;
             /** \brief "panda_hand touches obstacle 'can'" or "link1 touches link4" (spheres); empty when valid. */
             std::string describeCollision(const double *values) const;
             /** \brief Lower bound of the distance between the robot and the scene (<= 0 when the spheres touch). */
@@ -96,7 +103,8 @@ namespace michi
             /** Place every sphere for \e values into \e s (world centres). */
             void place(const double *values, Scratch &s) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *bodyInflation,
-                          std::string *why) const;
+                          const float *valueSpan, std::string *why) const;
+            void makeSelfPairTables();
             const SphereObstacles &obstacles() const;
 
             std::shared_ptr<const RobotGroupBodies> bodies_;
@@ -114,6 +122,9 @@ namespace michi
             std::vector<char> static_;       ///< body not moved by the group (decided by FCL when exact_ is given)
             bool staticSelfBlocked_{false};  ///< index of each pair in bodies_->selfCheckPairs()
             FclValidityCheckerPtr exact_;
+            /** per self pair (selfPairs_ order): its table, or null when spheres (and FCL) decide it; the tables
+                depend on the robot only and are shared by checkers of the same robot and sphere model */
+            std::shared_ptr<const std::vector<std::shared_ptr<const SelfPairTable>>> pairTables_;
             Eigen::MatrixXf bodyCoefficients_;
             Eigen::MatrixXf coefficients_;
             std::vector<double> fullTemplate_;  ///< the whole robot's configuration (other joints fixed)

@@ -1,0 +1,137 @@
+// Self-pair tables: a cell read as free is free over the whole cell (certified), on a hand-made distance and on the
+// Panda's wrist pairs against FCL; continuous joints wrap; values outside the range are never free.
+#include "../../validity/src/spheres/SelfPairTable.h"
+
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/validity/spheres/SphereValidityChecker.h>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace michi;
+using namespace michi::validity;
+
+namespace
+{
+    /** Two bodies that touch where x is within 0.3 of 1.0 (and of 1.0 + 2 pi: a continuous joint), a distance
+        that grows by at most 1 metre per unit of x. */
+    double bandDistance(double x)
+    {
+        const double wrapped = std::remainder(x - 1.0, 2. * M_PI);
+        return std::abs(wrapped) - 0.3;
+    }
+}  // namespace
+
+TEST(SelfPairTable, FreeCellsAreFreeEverywhereInside)
+{
+    const SelfPairTable table({0}, {-M_PI}, {M_PI}, {1}, {1.0}, 256,
+                              [](const double *at)
+                              {
+                                  return bandDistance(at[0]);
+                              });
+    ompl::RNG rng(4);
+    int free = 0;
+    for (int i = 0; i < 20000; ++i)
+    {
+        const double x = rng.uniformReal(-M_PI, M_PI);
+        const double v[1] = {x};
+        if (!table.free(v))
+            continue;
+        ++free;
+        EXPECT_GT(bandDistance(x), 0.) << "free at " << x;
+        // a span: every value within it is free
+        const float span[1] = {0.05f};
+        if (table.freeOver(v, span))
+            for (int k = -10; k <= 10; ++k)
+                EXPECT_GT(bandDistance(x + 0.005 * k), 0.) << "span around " << x;
+    }
+    // the band is 0.6 of 2 pi wide: the rest, less a few cells at its edges, is free
+    EXPECT_GT(free, 20000 * 0.85);
+    EXPECT_LT(table.evaluations(), 256u * 2u);  // adaptive: far fewer queries than cells where it is far
+}
+
+TEST(SelfPairTable, ContinuousJointsWrapAndLimitedJointsDoNot)
+{
+    const SelfPairTable wrapped({0}, {-M_PI}, {M_PI}, {1}, {1.0}, 128,
+                                [](const double *at)
+                                {
+                                    return bandDistance(at[0]);
+                                });
+    for (double x : {-3.0, -2.0, 0.0, 2.5, 3.1})
+    {
+        const double v[1] = {x}, shifted[1] = {x + 2. * M_PI}, back[1] = {x - 4. * M_PI};
+        EXPECT_EQ(wrapped.free(v), wrapped.free(shifted)) << x;
+        EXPECT_EQ(wrapped.free(v), wrapped.free(back)) << x;
+    }
+    // a span across the -pi/pi seam reads the cells on both sides
+    const double nearSeam[1] = {M_PI - 0.01};
+    const float wide[1] = {0.05f};
+    EXPECT_TRUE(wrapped.freeOver(nearSeam, wide));
+
+    const SelfPairTable limited({0}, {-1.0}, {2.5}, {0}, {1.0}, 128,
+                                [](const double *)
+                                {
+                                    return 1.0;
+                                });
+    const double inside[1] = {2.5}, outside[1] = {2.6}, nan[1] = {std::nan("")};
+    EXPECT_TRUE(limited.free(inside));
+    EXPECT_FALSE(limited.free(outside));
+    EXPECT_FALSE(limited.free(nan));
+}
+
+TEST(SelfPairTable, TwoValuesCertifiedAgainstTheirDistance)
+{
+    // a disc of radius 0.5 around (0.2, -0.4) in the plane of the two values is contact
+    auto distance = [](const double *at)
+    {
+        return std::hypot(at[0] - 0.2, at[1] + 0.4) - 0.5;
+    };
+    const SelfPairTable table({2, 5}, {-2., -3.}, {2., 3.}, {0, 0}, {1., 1.}, 128, distance);
+    EXPECT_EQ(table.variables(), (std::vector<int>{2, 5}));
+    ompl::RNG rng(8);
+    int free = 0;
+    for (int i = 0; i < 20000; ++i)
+    {
+        double v[6] = {9., 9., rng.uniformReal(-2., 2.), 9., 9., rng.uniformReal(-3., 3.)};
+        if (!table.free(v))
+            continue;
+        ++free;
+        const double at[2] = {v[2], v[5]};
+        EXPECT_GT(distance(at), 0.);
+    }
+    EXPECT_GT(free, 20000 * 0.9);  // the disc is 3 % of the box
+    EXPECT_GT(table.freeFraction(), 0.9);
+}
+
+TEST(SelfPairTable, PandaWristTablesAgreeWithFcl)
+{
+    const auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/panda_table_pick.yaml");
+    auto ctx = tools::makePlanningContext(problem);
+    auto group = std::dynamic_pointer_cast<const RobotGroupBodies>(ctx.bodies);
+    auto spheres = std::make_shared<SphereValidityChecker>(
+        ctx.setup->getSpaceInformation(), group, SphereModel::enclose(*group->model()), ctx.scene, ctx.checker);
+    // link5 against link7, the hand and both fingers depend on joints 6 and 7 only
+    EXPECT_EQ(spheres->tabulatedPairs(), 4u);
+    // states the spheres accept are free for FCL, self pairs included; and the wrist no longer makes most states
+    // false-invalid (spheres alone overlap there in most states)
+    ompl::RNG rng(12);
+    const auto &bounds = ctx.setup->getStateSpace()->as<ompl::base::RealVectorStateSpace>()->getBounds();
+    int fclValid = 0, falseInvalid = 0;
+    for (int i = 0; i < 2000; ++i)
+    {
+        std::vector<double> q;
+        for (std::size_t d = 0; d < bounds.low.size(); ++d)
+            q.push_back(rng.uniformReal(bounds.low[d], bounds.high[d]));
+        const bool exact = ctx.checker->isValidConfiguration(q.data());
+        const bool fast = spheres->isValidConfiguration(q.data());
+        ASSERT_FALSE(fast && !exact) << ctx.checker->describeCollision(q.data());
+        fclValid += exact;
+        falseInvalid += exact && !fast;
+    }
+    ASSERT_GT(fclValid, 1000);
+    EXPECT_LT(falseInvalid, fclValid / 20) << falseInvalid << " of " << fclValid;
+}

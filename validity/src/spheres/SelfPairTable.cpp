@@ -1,0 +1,131 @@
+#include "SelfPairTable.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace michi
+{
+    namespace validity
+    {
+        SelfPairTable::SelfPairTable(std::vector<int> variables, std::vector<double> lo, std::vector<double> hi,
+                                     std::vector<char> wrap, std::vector<double> closing, int cellsPerVariable,
+                                     const std::function<double(const double *)> &distance)
+            : variables_(std::move(variables))
+        {
+            if (variables_.empty() || variables_.size() > 2 || lo.size() != variables_.size() ||
+                hi.size() != variables_.size() || wrap.size() != variables_.size() ||
+                closing.size() != variables_.size() || cellsPerVariable < 1)
+                throw std::invalid_argument("SelfPairTable: one or two variables with a range each");
+            for (std::size_t d = 0; d < variables_.size(); ++d)
+            {
+                if (!(hi[d] > lo[d]) || !std::isfinite(hi[d] - lo[d]))
+                    throw std::invalid_argument("SelfPairTable: empty or unbounded range");
+                n_[d] = cellsPerVariable;
+                lo_[d] = lo[d];
+                h_[d] = (hi[d] - lo[d]) / cellsPerVariable;
+                wrap_[d] = wrap[d] != 0;
+                closing_[d] = closing[d];
+            }
+            const std::size_t cells = static_cast<std::size_t>(n_[0]) * static_cast<std::size_t>(n_[1]);
+            bits_.assign((cells + 63) / 64, 0);
+            fill(0, n_[0], 0, n_[1], distance);
+        }
+
+        void SelfPairTable::fill(int i0, int i1, int j0, int j1, const std::function<double(const double *)> &distance)
+        {
+            // the box's centre, and how far the bodies can close in from there to any point of the box
+            const double centre[2] = {lo_[0] + 0.5 * (i0 + i1) * h_[0], lo_[1] + 0.5 * (j0 + j1) * h_[1]};
+            const double reach =
+                (closing_[0] * 0.5 * (i1 - i0) * h_[0] + closing_[1] * 0.5 * (j1 - j0) * h_[1]) * (1. + 1e-6) + 1e-7;
+            ++evaluations_;
+            const double d = distance(centre);
+            if (d > reach)
+            {
+                for (int j = j0; j < j1; ++j)
+                    for (int i = i0; i < i1; ++i)
+                    {
+                        const std::size_t k =
+                            static_cast<std::size_t>(j) * static_cast<std::size_t>(n_[0]) + static_cast<std::size_t>(i);
+                        bits_[k >> 6] |= std::uint64_t{1} << (k & 63);
+                    }
+                return;
+            }
+            if (i1 - i0 == 1 && j1 - j0 == 1)
+                return;  // the finest cell: not shown free
+            // a box in contact at its centre is split all the same: its corners may be free
+            const int im = i1 - i0 > 1 ? (i0 + i1) / 2 : i1, jm = j1 - j0 > 1 ? (j0 + j1) / 2 : j1;
+            fill(i0, im, j0, jm, distance);
+            if (im < i1)
+                fill(im, i1, j0, jm, distance);
+            if (jm < j1)
+            {
+                fill(i0, im, jm, j1, distance);
+                if (im < i1)
+                    fill(im, i1, jm, j1, distance);
+            }
+        }
+
+        bool SelfPairTable::range(int d, double v, double s, int &first, int &last) const
+        {
+            if (!std::isfinite(v) || !std::isfinite(s))
+                return false;
+            if (wrap_[d])
+            {
+                const double period = h_[d] * n_[d];
+                v = lo_[d] + std::fmod(std::fmod(v - lo_[d], period) + period, period);
+            }
+            // cells are closed boxes, so the cell a value's floor names covers it even on a boundary
+            const double a = (v - s - lo_[d]) / h_[d], b = (v + s - lo_[d]) / h_[d];
+            if (!wrap_[d] && (a < -1e-9 || b > n_[d] + 1e-9))
+                return false;  // outside the joint's range: not certified
+            first = static_cast<int>(std::floor(a));
+            last = static_cast<int>(std::floor(b));
+            if (wrap_[d])
+            {
+                if (last - first + 1 >= n_[d])
+                {
+                    first = 0;
+                    last = n_[d] - 1;
+                }
+                return true;
+            }
+            first = std::max(first, 0);
+            last = std::min(last, n_[d] - 1);
+            return true;
+        }
+
+        bool SelfPairTable::freeWithin(const double *values, double span0, double span1) const
+        {
+            int i0, i1, j0 = 0, j1 = 0;
+            if (!range(0, values[variables_[0]], span0, i0, i1))
+                return false;
+            if (variables_.size() == 2 && !range(1, values[variables_[1]], span1, j0, j1))
+                return false;
+            // indices may run past the ends of a continuous joint's range: they wrap
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                    if (!cell(((i % n_[0]) + n_[0]) % n_[0], ((j % n_[1]) + n_[1]) % n_[1]))
+                        return false;
+            return true;
+        }
+
+        bool SelfPairTable::free(const double *values) const
+        {
+            return freeWithin(values, 0., 0.);
+        }
+
+        bool SelfPairTable::freeOver(const double *values, const float *span) const
+        {
+            return freeWithin(values, span[variables_[0]], variables_.size() == 2 ? span[variables_[1]] : 0.);
+        }
+
+        double SelfPairTable::freeFraction() const
+        {
+            std::size_t set = 0;
+            for (std::uint64_t w : bits_)
+                set += static_cast<std::size_t>(__builtin_popcountll(w));
+            return static_cast<double>(set) / (static_cast<double>(n_[0]) * n_[1]);
+        }
+    }  // namespace validity
+}  // namespace michi
