@@ -74,12 +74,13 @@ namespace
 TEST(ReplanPage, ReplaysTheEpisodeWithTheSimulatedObstacleMotion)
 {
     michi::test::TempDir dir;
-    // obstacles_yield off: then the obstacles follow the episode's timings exactly (with it, they wait for a robot
-    // in their way, which only the simulation knows)
+    // obstacles_yield off (the scenario's setting): then the obstacles follow the episode's timings exactly (with
+    // it, they wait for a robot in their way, which only the simulation knows)
     std::string text = readFile(michi::test::sourcePath("problems/dynamic_mobile_passage.yaml"));
     const auto yield = text.find("obstacles_yield: true");
-    ASSERT_NE(yield, std::string::npos);
-    text.replace(yield, 21, "obstacles_yield: false");
+    if (yield != std::string::npos)
+        text.replace(yield, 21, "obstacles_yield: false");
+    ASSERT_NE(text.find("obstacles_yield: false"), std::string::npos);
     const std::string file = dir.write("passage.yaml", text);
     const std::string out = dir.path() + "/run";
     const auto run =

@@ -15,6 +15,9 @@
 #include <iostream>
 #include <limits>
 
+#include <pthread.h>
+#include <time.h>
+
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
@@ -247,16 +250,30 @@ namespace michi
                     // one per search, lazy edge check and sample) instead of wall time, with 10 x planning_time
                     // as a wall-clock backstop; the baselines keep planning_time (their work per evaluation
                     // differs too much for one count to be fair)
+                    // as the baselines; clock cpu: every planner gets planning_time of this thread's CPU time (the
+                    // time charged on the simulated clock), with 10 x that of wall clock as a backstop
                     const bool counted = settings_.realTime <= 0. && method_.reuse == Method::Reuse::DUAL;
+                    const bool cpuLimit = settings_.realTime > 0. && settings_.cpuClock;
                     const unsigned long work = counted ? static_cast<unsigned long>(settings_.planningWork)
                                                        : std::numeric_limits<unsigned long>::max();
                     std::atomic<unsigned long> evaluations{0};  // PRM evaluates it in two threads
+                    // this (planning) thread's CPU clock, readable from PRM's other thread too
+                    clockid_t cpuClock{};
+                    pthread_getcpuclockid(pthread_self(), &cpuClock);
+                    const auto cpuNow = [cpuClock]
+                    {
+                        timespec ts{};
+                        clock_gettime(cpuClock, &ts);
+                        return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+                    };
+                    const double cpuEnd =
+                        cpuLimit ? cpuNow() + settings_.planningTime : std::numeric_limits<double>::infinity();
                     const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
-                        ob::timedPlannerTerminationCondition(settings_.planningTime * (counted ? 10. : 1.)),
+                        ob::timedPlannerTerminationCondition(settings_.planningTime * (counted || cpuLimit ? 10. : 1.)),
                         ob::PlannerTerminationCondition(
-                            [&cancel, &evaluations, work]
+                            [&cancel, &evaluations, work, cpuLimit, cpuNow, cpuEnd]
                             {
-                                return cancel.load() || ++evaluations > work;
+                                return cancel.load() || ++evaluations > work || (cpuLimit && cpuNow() > cpuEnd);
                             }));
                     const auto solveBegin = std::chrono::steady_clock::now();
                     const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;
