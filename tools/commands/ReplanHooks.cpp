@@ -1,5 +1,6 @@
 #include "ReplanMethodRun.h"
 
+#include <michi/planners/dual_roadmap/DualRoadmap.h>
 #include <michi/planners/dual_roadmap/InterferencePrediction.h>
 
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -38,6 +39,46 @@ namespace michi
                 si->getStateSpace()->copyToReals(q, s);
                 return q;
             }
+
+            namespace
+            {
+                /** The predicted copies of the moving obstacles (names "<mover>~<i>") as circles (x, y, bounding
+                    radius) in the plane: what a change of the sensed world can touch. */
+                std::vector<Eigen::Vector3d> copyCircles(const validity::Scene &scene)
+                {
+                    std::vector<Eigen::Vector3d> out;
+                    for (const auto &o : scene.obstacles())
+                        if (o.name.find('~') != std::string::npos)
+                            out.emplace_back(o.pose.translation().x(), o.pose.translation().y(),
+                                             o.shape->boundingRadius());
+                    return out;
+                }
+
+                /** For an SE(2) robot of circumradius \e radius: the motion a -> b (its centre on the segment, the
+                    body within \e radius of it, for OMPL's SE(2) and turn-move-turn motions alike) may be affected
+                    when a circle comes within reach of the segment. */
+                planners::DualRoadmap::ChangeRegion se2Region(std::vector<Eigen::Vector3d> circles, double radius,
+                                                              const ob::StateSpacePtr &space)
+                {
+                    return [circles = std::move(circles), radius, space](const ob::State *a, const ob::State *b)
+                    {
+                        std::vector<double> qa, qb;
+                        space->copyToReals(qa, a);
+                        space->copyToReals(qb, b);
+                        const Eigen::Vector2d pa(qa[0], qa[1]), d = Eigen::Vector2d(qb[0], qb[1]) - pa;
+                        const double dd = d.squaredNorm();
+                        for (const auto &c : circles)
+                        {
+                            const Eigen::Vector2d p(c.x(), c.y());
+                            const double t = dd > 0. ? std::clamp((p - pa).dot(d) / dd, 0., 1.) : 0.;
+                            // 1 mm of slack for rounding: conservative
+                            if ((pa + t * d - p).norm() <= radius + c.z() + 1e-3)
+                                return true;
+                        }
+                        return false;
+                    };
+                }
+            }  // namespace
 
             double MethodRun::firstInterferenceFree(const ob::SpaceInformationPtr &esi, const ConfigurationPath &path,
                                                     double lookahead)
@@ -196,8 +237,32 @@ namespace michi
                         std::lock_guard<std::mutex> lock(snapshotMutex_);
                         snap = snapshots_.at(id);
                     }
+                    // DualRoadmap on an SE(2) robot is told where the sensed world changed since its last query (the
+                    // moved copies, before and after), so it keeps what it proved elsewhere (the issue: each query
+                    // re-checked everything); other robots: the whole scene counts as changed
+                    auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_);
+                    const bool region = dual && problem_.kind == Problem::Kind::SE2;
+                    std::vector<Eigen::Vector3d> before;
+                    if (region)
+                        before = copyCircles(*planSensed_.scene);
                     planSensed_.update(movers_, snap.poses, snap.velocities);
                     planNow_.update(movers_, snap.poses, snap.velocities);
+                    if (region)
+                    {
+                        const auto after = copyCircles(*planSensed_.scene);
+                        std::vector<Eigen::Vector3d> moved;
+                        for (std::size_t i = 0; i < after.size(); ++i)
+                            if (i >= before.size() || before[i] != after[i])
+                            {
+                                if (i < before.size())
+                                    moved.push_back(before[i]);
+                                moved.push_back(after[i]);
+                            }
+                        double radius = 0.;
+                        for (const auto &p : problem_.footprint)
+                            radius = std::max(radius, p.norm());
+                        dual->notifySceneChanged(se2Region(std::move(moved), radius, psi->getStateSpace()));
+                    }
                     ob::ScopedState<> s(psi), g(psi);
                     toState(psi, from, s.get());
                     toState(psi, goal, g.get());
@@ -240,7 +305,8 @@ namespace michi
                             }
                             break;
                         case Method::Reuse::DUAL:
-                            planner_->clear();
+                            // nothing: solve() takes the new query and keeps its working roadmap (re-checked
+                            // lazily after a scene change); clear() would throw it away every query
                             break;
                     }
                     planner_->setProblemDefinition(pdef);
