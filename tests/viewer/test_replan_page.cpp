@@ -166,7 +166,7 @@ TEST(ReplanPage, ReplaysTheEpisodeWithTheSimulatedObstacleMotion)
 
 TEST(ReplanPage, ArmEpisodeOfTheBundledProblem)
 {
-    // the bundled file as it is (obstacles_yield on): a 7-joint arm, one method
+    // the bundled file as it is (real time, obstacles_yield off): a 7-joint arm, one method
     michi::test::TempDir dir;
     const std::string out = dir.path() + "/run";
     const auto run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_reach_box.yaml") +

@@ -42,6 +42,27 @@ namespace michi
 
             namespace
             {
+                /** Radius of the circle round \e shape's outline in the plane: upright shapes (their z axis vertical)
+                    by their cross-section, which is what an SE(2) robot meets (its height is not compared: the
+                    region stays conservative); others by their bounding sphere. */
+                double planarRadius(const validity::Shape &shape, const Eigen::Isometry3d &pose)
+                {
+                    if (std::fabs(pose.linear()(2, 2)) < 1. - 1e-9)
+                        return shape.boundingRadius();
+                    const Eigen::Vector3d &z = shape.size();
+                    switch (shape.type())
+                    {
+                        case validity::Shape::Type::BOX:
+                            return 0.5 * std::hypot(z.x(), z.y());
+                        case validity::Shape::Type::SPHERE:
+                        case validity::Shape::Type::CYLINDER:
+                        case validity::Shape::Type::CAPSULE:
+                            return z.x();
+                        default:
+                            return shape.boundingRadius();
+                    }
+                }
+
                 /** The predicted copies of the moving obstacles (names "<mover>~<i>") as circles (x, y, bounding
                     radius) in the plane: what a change of the sensed world can touch. */
                 std::vector<Eigen::Vector3d> copyCircles(const validity::Scene &scene)
@@ -50,7 +71,7 @@ namespace michi
                     for (const auto &o : scene.obstacles())
                         if (o.name.find('~') != std::string::npos)
                             out.emplace_back(o.pose.translation().x(), o.pose.translation().y(),
-                                             o.shape->boundingRadius());
+                                             planarRadius(*o.shape, o.pose));
                     return out;
                 }
 
