@@ -13,6 +13,8 @@
 #include <limits>
 #include <mutex>
 
+#include <time.h>
+
 using michi::planners::Configuration;
 using michi::planners::ConfigurationPath;
 using michi::planners::NonStopExecutor;
@@ -63,8 +65,17 @@ namespace
         std::unique_ptr<NonStopExecutor> exec;
         bool deformOk{false};
         int deformCalls{0};
+        double burn{0.};  ///< CPU seconds the planner spends (spinning on its thread CPU clock) before it answers
 
-        explicit Harness(double safety = 0., double planningDelay = 0., bool synchronous = false)
+        static double threadCpu()
+        {
+            timespec ts{};
+            clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+            return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+        }
+
+        explicit Harness(double safety = 0., double planningDelay = 0., bool synchronous = false,
+                         double cpuTimeScale = 0.)
         {
             michi::planners::NonStopHooks hooks;
             hooks.distance = [](const Configuration &a, const Configuration &b)
@@ -122,6 +133,10 @@ namespace
                     return false;
                 }
                 --gate.released;
+                // real work, not a sleep: only CPU time is charged (cpuTimeScale)
+                for (const double end = threadCpu() + burn; threadCpu() < end;)
+                {
+                }
                 if (!gate.succeed)
                     return false;
                 // a detour 2 m to the side of where the query starts
@@ -139,6 +154,7 @@ namespace
             settings.stopMargin = 0.1;
             settings.planningDelay = planningDelay;
             settings.synchronous = synchronous;
+            settings.cpuTimeScale = cpuTimeScale;
             exec = std::make_unique<NonStopExecutor>(hooks, settings);
         }
 
@@ -435,4 +451,25 @@ TEST(NonStopExecutor, PlanningDelayIsChargedOnTheSimulatedClockAndSynchronousQue
     h.steps(1);  // 0.5 s: due
     EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
     EXPECT_TRUE(h.saw(Exec::STOPPED, Sig::PATH_FOUND, Exec::EXECUTE));
+}
+
+TEST(NonStopExecutor, CpuTimeOfAQueryIsChargedOnTheSimulatedClock)
+{
+    // real_time with clock cpu: the answer is due once the simulated clock has advanced by the CPU time the planner
+    // really spent (at least burn; the spinning stops right after it, so far below 0.5 s)
+    Harness h(0., 0., true, 1.);
+    h.burn = 0.1;
+    {
+        std::lock_guard<std::mutex> lock(h.gate.mutex);
+        h.gate.released = 1;
+    }
+    h.exec->start({0., 0.}, {10., 0.});
+    EXPECT_EQ(h.exec->planState(), NonStopExecutor::PlanState::WAIT_QUERY);
+    h.steps(9);  // 0.09 s of simulated time, less than the CPU time spent: not due
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_EQ(h.exec->configuration(), (Configuration{0., 0.}));
+    h.steps(41);  // 0.5 s
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    ASSERT_EQ(h.exec->statistics().cpuLatencies.size(), 1u);
+    EXPECT_GE(h.exec->statistics().cpuLatencies[0], 0.1);
 }

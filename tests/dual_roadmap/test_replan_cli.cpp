@@ -42,7 +42,9 @@ TEST(ReplanCli, WritesResultsForMethodAndBaselines)
     const std::string json = readFile(out + "/replan.json");
     for (const char *key : {"\"episodes\": 2", "\"reached_goal\"", "\"collisions\"", "\"stops\"", "\"deformations\"",
                             "\"replans\"", "\"replan_latency_ms_median\"", "\"replan_latency_ms_p95\"", "\"baselines\"",
-                            "\"michi::DualRoadmap (no learning roadmap)\"", "\"median_latency_ratio_to_method\""})
+                            "\"michi::DualRoadmap (no learning roadmap)\"", "\"median_latency_ratio_to_method\"",
+                            "\"motion_collisions\"", "\"unavoidable_collisions\"", "\"real_time\": 1",
+                            "\"clock\": \"cpu\"", "\"obstacles_yield\": false", "\"replan_cpu_ms_median\""})
         EXPECT_NE(json.find(key), std::string::npos) << key << " missing in\n" << json;
     EXPECT_TRUE(fs::exists(out + "/episode/frame_00.svg"));
     EXPECT_FALSE(fs::exists(out + ".partial"));
@@ -82,14 +84,20 @@ TEST(ReplanCli, BadInputIsRejectedAndWritesNothing)
 
 TEST(ReplanCli, SameSeedGivesTheSameEpisodes)
 {
-    // extras.replan.real_time 0 (the scenario's setting): planning is charged on the simulated clock and limited by
-    // a work count, so two runs with the same --seed have the same outcomes (wall-clock latencies aside)
+    // extras.replan.real_time 0: planning is charged a fixed time on the simulated clock and limited by a work
+    // count, so two runs with the same --seed have the same outcomes (wall-clock latencies aside). The scenario's
+    // own setting (real_time 1, clock cpu) charges the CPU time really spent, which no two runs share exactly.
     michi::test::TempDir dir;
+    std::string text = readFile(michi::test::sourcePath("problems/dynamic_mobile_passage.yaml"));
+    const auto realTime = text.find("real_time: 1");
+    ASSERT_NE(realTime, std::string::npos);
+    text.replace(realTime, 12, "real_time: 0");
+    const std::string file = dir.write("passage.yaml", text);
     std::vector<std::string> outcomes;
     for (const char *name : {"/a", "/b"})
     {
-        const auto run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_mobile_passage.yaml") +
-                                  " --episodes 3 --seed 5 --methods dual --out " + dir.path() + name);
+        const auto run =
+            runMichi("replan " + file + " --episodes 3 --seed 5 --methods dual --out " + dir.path() + name);
         ASSERT_EQ(run.exitCode, 0) << run.output;
         const std::string json = readFile(dir.path() + name + "/replan.json");
         std::string outcome;

@@ -74,12 +74,13 @@ namespace
 TEST(ReplanPage, ReplaysTheEpisodeWithTheSimulatedObstacleMotion)
 {
     michi::test::TempDir dir;
-    // obstacles_yield off: then the obstacles follow the episode's timings exactly (with it, they wait for a robot
-    // in their way, which only the simulation knows)
+    // obstacles_yield off (the scenario's setting): then the obstacles follow the episode's timings exactly (with
+    // it, they wait for a robot in their way, which only the simulation knows)
     std::string text = readFile(michi::test::sourcePath("problems/dynamic_mobile_passage.yaml"));
     const auto yield = text.find("obstacles_yield: true");
-    ASSERT_NE(yield, std::string::npos);
-    text.replace(yield, 21, "obstacles_yield: false");
+    if (yield != std::string::npos)
+        text.replace(yield, 21, "obstacles_yield: false");
+    ASSERT_NE(text.find("obstacles_yield: false"), std::string::npos);
     const std::string file = dir.write("passage.yaml", text);
     const std::string out = dir.path() + "/run";
     const auto run =
@@ -165,7 +166,7 @@ TEST(ReplanPage, ReplaysTheEpisodeWithTheSimulatedObstacleMotion)
 
 TEST(ReplanPage, ArmEpisodeOfTheBundledProblem)
 {
-    // the bundled file as it is (obstacles_yield on): a 7-joint arm, one method
+    // the bundled file as it is (real time, obstacles_yield off): a 7-joint arm, one method
     michi::test::TempDir dir;
     const std::string out = dir.path() + "/run";
     const auto run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_reach_box.yaml") +

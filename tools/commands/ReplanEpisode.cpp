@@ -102,6 +102,7 @@ namespace michi
                 ob::ScopedState<> prev(worldSi), cur(worldSi);
                 toState(worldSi, q.start, prev.get());
                 bool collided = false, reached = false;
+                bool inContact = false;  // the previous step ended in collision (one contact is counted once)
                 double nextSense = settings_.sensePeriod;
                 std::vector<Configuration> executed{q.start};
                 double nextFrame = 0.;
@@ -123,11 +124,13 @@ namespace michi
                 }
                 while (t < settings_.episodeTime)
                 {
-                    const bool reproducible = settings_.realTime <= 0.;
+                    // real_time 0 and clock cpu: the planner's time is charged on the simulated clock (fixed or
+                    // its CPU time), so the simulation waits for it; clock wall: it runs on meanwhile
+                    const bool charged = settings_.realTime <= 0. || settings_.cpuClock;
                     if (exec.planState() == NonStopExecutor::PlanState::PLANNING)
                     {
-                        if (reproducible)
-                            exec.waitForPlanner();  // the planner's time is charged on the simulated clock
+                        if (charged)
+                            exec.waitForPlanner();
                         else
                             exec.waitForPlanner(settings_.dt * settings_.realTime);
                     }
@@ -153,8 +156,19 @@ namespace michi
                     exec.step(settings_.dt);
                     toState(worldSi, exec.configuration(), cur.get());
                     // the swept motion of this step against the obstacles where they are now
-                    if (!worldSi->isValid(prev.get()) || !worldSi->isValid(cur.get()) ||
-                        !worldSi->checkMotion(prev.get(), cur.get()))
+                    const bool contact = !worldSi->isValid(prev.get()) || !worldSi->isValid(cur.get()) ||
+                                         !worldSi->checkMotion(prev.get(), cur.get());
+                    if (contact && !inContact)
+                    {
+                        // A new contact. The robot's fault unless it stood still during the step (then an obstacle
+                        // drove into it); a moving robot hit from the side counts as its own: strict on purpose.
+                        if (worldSi->distance(prev.get(), cur.get()) > 0.)
+                            ++results.motionCollisions;
+                        else
+                            ++results.unavoidableCollisions;
+                    }
+                    inContact = contact;
+                    if (contact)
                     {
                         if (!collided && std::getenv("MICHI_REPLAN_DEBUG") != nullptr)
                         {
@@ -217,8 +231,18 @@ namespace michi
                 results.replans += st.queries > 0 ? st.queries - 1 : 0;
                 results.failures += st.failures;
                 results.cancelled += st.cancelled;
+                // the latency that counts is the one charged on the simulated clock: CPU time with clock cpu
+                const bool cpu = settings_.realTime > 0. && settings_.cpuClock;
                 for (std::size_t i = 0; i < st.latencies.size(); ++i)
-                    (i == 0 ? results.initialLatency : results.replanLatency).push_back(1000. * st.latencies[i]);
+                {
+                    const double charged = cpu ? st.cpuLatencies[i] : st.latencies[i];
+                    (i == 0 ? results.initialLatency : results.replanLatency).push_back(1000. * charged);
+                    if (i > 0)
+                    {
+                        results.replanWall.push_back(1000. * st.latencies[i]);
+                        results.replanCpu.push_back(1000. * st.cpuLatencies[i]);
+                    }
+                }
                 if (reached)
                     results.timeToGoal.push_back(t);
                 results.episodeEnd.push_back(t);
@@ -243,6 +267,12 @@ namespace michi
                 if (settings_.realTime <= 0.)
                 {
                     s.planningDelay = settings_.planningDelay;
+                    s.synchronous = true;
+                }
+                else if (settings_.cpuClock)
+                {
+                    // every query planned to its end while the world waits, then charged what it really cost
+                    s.cpuTimeScale = settings_.realTime;
                     s.synchronous = true;
                 }
                 return s;

@@ -1,5 +1,6 @@
 #include "ReplanMethodRun.h"
 
+#include <michi/planners/dual_roadmap/DualRoadmap.h>
 #include <michi/planners/dual_roadmap/InterferencePrediction.h>
 
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -14,6 +15,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+
+#include <pthread.h>
+#include <time.h>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -35,6 +39,67 @@ namespace michi
                 si->getStateSpace()->copyToReals(q, s);
                 return q;
             }
+
+            namespace
+            {
+                /** Radius of the circle round \e shape's outline in the plane: upright shapes (their z axis vertical)
+                    by their cross-section, which is what an SE(2) robot meets (its height is not compared: the
+                    region stays conservative); others by their bounding sphere. */
+                double planarRadius(const validity::Shape &shape, const Eigen::Isometry3d &pose)
+                {
+                    if (std::fabs(pose.linear()(2, 2)) < 1. - 1e-9)
+                        return shape.boundingRadius();
+                    const Eigen::Vector3d &z = shape.size();
+                    switch (shape.type())
+                    {
+                        case validity::Shape::Type::BOX:
+                            return 0.5 * std::hypot(z.x(), z.y());
+                        case validity::Shape::Type::SPHERE:
+                        case validity::Shape::Type::CYLINDER:
+                        case validity::Shape::Type::CAPSULE:
+                            return z.x();
+                        default:
+                            return shape.boundingRadius();
+                    }
+                }
+
+                /** The predicted copies of the moving obstacles (names "<mover>~<i>") as circles (x, y, bounding
+                    radius) in the plane: what a change of the sensed world can touch. */
+                std::vector<Eigen::Vector3d> copyCircles(const validity::Scene &scene)
+                {
+                    std::vector<Eigen::Vector3d> out;
+                    for (const auto &o : scene.obstacles())
+                        if (o.name.find('~') != std::string::npos)
+                            out.emplace_back(o.pose.translation().x(), o.pose.translation().y(),
+                                             planarRadius(*o.shape, o.pose));
+                    return out;
+                }
+
+                /** For an SE(2) robot of circumradius \e radius: the motion a -> b (its centre on the segment, the
+                    body within \e radius of it, for OMPL's SE(2) and turn-move-turn motions alike) may be affected
+                    when a circle comes within reach of the segment. */
+                planners::DualRoadmap::ChangeRegion se2Region(std::vector<Eigen::Vector3d> circles, double radius,
+                                                              const ob::StateSpacePtr &space)
+                {
+                    return [circles = std::move(circles), radius, space](const ob::State *a, const ob::State *b)
+                    {
+                        std::vector<double> qa, qb;
+                        space->copyToReals(qa, a);
+                        space->copyToReals(qb, b);
+                        const Eigen::Vector2d pa(qa[0], qa[1]), d = Eigen::Vector2d(qb[0], qb[1]) - pa;
+                        const double dd = d.squaredNorm();
+                        for (const auto &c : circles)
+                        {
+                            const Eigen::Vector2d p(c.x(), c.y());
+                            const double t = dd > 0. ? std::clamp((p - pa).dot(d) / dd, 0., 1.) : 0.;
+                            // 1 mm of slack for rounding: conservative
+                            if ((pa + t * d - p).norm() <= radius + c.z() + 1e-3)
+                                return true;
+                        }
+                        return false;
+                    };
+                }
+            }  // namespace
 
             double MethodRun::firstInterferenceFree(const ob::SpaceInformationPtr &esi, const ConfigurationPath &path,
                                                     double lookahead)
@@ -193,8 +258,32 @@ namespace michi
                         std::lock_guard<std::mutex> lock(snapshotMutex_);
                         snap = snapshots_.at(id);
                     }
+                    // DualRoadmap on an SE(2) robot is told where the sensed world changed since its last query (the
+                    // moved copies, before and after), so it keeps what it proved elsewhere (the issue: each query
+                    // re-checked everything); other robots: the whole scene counts as changed
+                    auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_);
+                    const bool region = dual && problem_.kind == Problem::Kind::SE2;
+                    std::vector<Eigen::Vector3d> before;
+                    if (region)
+                        before = copyCircles(*planSensed_.scene);
                     planSensed_.update(movers_, snap.poses, snap.velocities);
                     planNow_.update(movers_, snap.poses, snap.velocities);
+                    if (region)
+                    {
+                        const auto after = copyCircles(*planSensed_.scene);
+                        std::vector<Eigen::Vector3d> moved;
+                        for (std::size_t i = 0; i < after.size(); ++i)
+                            if (i >= before.size() || before[i] != after[i])
+                            {
+                                if (i < before.size())
+                                    moved.push_back(before[i]);
+                                moved.push_back(after[i]);
+                            }
+                        double radius = 0.;
+                        for (const auto &p : problem_.footprint)
+                            radius = std::max(radius, p.norm());
+                        dual->notifySceneChanged(se2Region(std::move(moved), radius, psi->getStateSpace()));
+                    }
                     ob::ScopedState<> s(psi), g(psi);
                     toState(psi, from, s.get());
                     toState(psi, goal, g.get());
@@ -237,7 +326,8 @@ namespace michi
                             }
                             break;
                         case Method::Reuse::DUAL:
-                            planner_->clear();
+                            // nothing: solve() takes the new query and keeps its working roadmap (re-checked
+                            // lazily after a scene change); clear() would throw it away every query
                             break;
                     }
                     planner_->setProblemDefinition(pdef);
@@ -247,16 +337,30 @@ namespace michi
                     // one per search, lazy edge check and sample) instead of wall time, with 10 x planning_time
                     // as a wall-clock backstop; the baselines keep planning_time (their work per evaluation
                     // differs too much for one count to be fair)
+                    // as the baselines; clock cpu: every planner gets planning_time of this thread's CPU time (the
+                    // time charged on the simulated clock), with 10 x that of wall clock as a backstop
                     const bool counted = settings_.realTime <= 0. && method_.reuse == Method::Reuse::DUAL;
+                    const bool cpuLimit = settings_.realTime > 0. && settings_.cpuClock;
                     const unsigned long work = counted ? static_cast<unsigned long>(settings_.planningWork)
                                                        : std::numeric_limits<unsigned long>::max();
                     std::atomic<unsigned long> evaluations{0};  // PRM evaluates it in two threads
+                    // this (planning) thread's CPU clock, readable from PRM's other thread too
+                    clockid_t cpuClock{};
+                    pthread_getcpuclockid(pthread_self(), &cpuClock);
+                    const auto cpuNow = [cpuClock]
+                    {
+                        timespec ts{};
+                        clock_gettime(cpuClock, &ts);
+                        return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+                    };
+                    const double cpuEnd =
+                        cpuLimit ? cpuNow() + settings_.planningTime : std::numeric_limits<double>::infinity();
                     const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
-                        ob::timedPlannerTerminationCondition(settings_.planningTime * (counted ? 10. : 1.)),
+                        ob::timedPlannerTerminationCondition(settings_.planningTime * (counted || cpuLimit ? 10. : 1.)),
                         ob::PlannerTerminationCondition(
-                            [&cancel, &evaluations, work]
+                            [&cancel, &evaluations, work, cpuLimit, cpuNow, cpuEnd]
                             {
-                                return cancel.load() || ++evaluations > work;
+                                return cancel.load() || ++evaluations > work || (cpuLimit && cpuNow() > cpuEnd);
                             }));
                     const auto solveBegin = std::chrono::steady_clock::now();
                     const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;

@@ -48,8 +48,12 @@ namespace michi
                         << indent << "\"cancelled_queries\": " << r.cancelled << ",\n"
                         << indent << "\"planning_failures\": " << r.failures << ",\n"
                         << indent << "\"obstacle_waits\": " << r.obstacleWaits << ",\n"
+                        << indent << "\"motion_collisions\": " << r.motionCollisions << ",\n"
+                        << indent << "\"unavoidable_collisions\": " << r.unavoidableCollisions << ",\n"
                         << indent << "\"replan_latency_ms_median\": " << num(percentile(r.replanLatency, 50.)) << ",\n"
                         << indent << "\"replan_latency_ms_p95\": " << num(percentile(r.replanLatency, 95.)) << ",\n"
+                        << indent << "\"replan_wall_ms_median\": " << num(percentile(r.replanWall, 50.)) << ",\n"
+                        << indent << "\"replan_cpu_ms_median\": " << num(percentile(r.replanCpu, 50.)) << ",\n"
                         << indent << "\"initial_plan_ms_median\": " << num(percentile(r.initialLatency, 50.)) << ",\n"
                         << indent << "\"time_to_goal_s_median\": " << num(percentile(r.timeToGoal, 50.)) << ",\n"
                         << indent << "\"learning_edges\": " << r.learningEdges << ",\n"
@@ -75,7 +79,8 @@ namespace michi
                      << ", \"margin\": " << num(settings.margin)
                      << ", \"prediction_horizon\": " << num(settings.predictionHorizon)
                      << ", \"planning_time\": " << num(settings.planningTime)
-                     << ", \"real_time\": " << num(settings.realTime)
+                     << ", \"real_time\": " << num(settings.realTime) << ", \"clock\": \""
+                     << (settings.cpuClock ? "cpu" : "wall") << "\""
                      << ", \"planning_delay\": " << num(settings.planningDelay)
                      << ", \"planning_work\": " << num(settings.planningWork)
                      << ", \"episode_time\": " << num(settings.episodeTime)

@@ -60,7 +60,7 @@ namespace michi
                 std::string expected;
                 for (const auto &kv : numbers)
                     expected += kv.first + ", ";
-                expected += "deformation, obstacles_yield, dual_roadmap_params";
+                expected += "clock, deformation, obstacles_yield, dual_roadmap_params";
                 for (const auto &kv : r)
                 {
                     const std::string key = kv.first.as<std::string>();
@@ -71,6 +71,14 @@ namespace michi
                             fail(file, path, "expected a mapping of DualRoadmap parameter names to values");
                         for (const auto &p : kv.second)
                             s.dualParams[p.first.as<std::string>()] = p.second.as<std::string>();
+                        continue;
+                    }
+                    if (key == "clock")
+                    {
+                        const std::string clock = kv.second.IsScalar() ? kv.second.as<std::string>() : "";
+                        if (clock != "cpu" && clock != "wall")
+                            fail(file, path, "expected cpu or wall");
+                        s.cpuClock = clock == "cpu";
                         continue;
                     }
                     if (key == "deformation" || key == "obstacles_yield")

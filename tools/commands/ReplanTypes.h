@@ -51,10 +51,18 @@ namespace michi
                 double episodeTime{60.};       ///< simulated seconds before an episode counts as failed
                 double timingJitter{1.};       ///< moving obstacles start up to this many seconds earlier / later
                 double speedJitter{0.3};       ///< and move up to this fraction faster / slower
-                double realTime{1.};           ///< while planning, simulated time follows the wall clock times this
-                /** real_time 0: reproducible runs. Every query is charged planning_delay simulated seconds, the
-                    simulation waits for the planner (in wall time) before it steps on, and the planner stops after
-                    planning_work evaluations of its termination condition (a work count, not wall time). */
+                /** real_time > 0: planning takes time on the simulated clock, real_time simulated seconds per
+                    second of planning, measured by `clock`. real_time 0: the old reproducible model: every query is
+                    charged planning_delay simulated seconds, the simulation waits for the planner (in wall time)
+                    before it steps on, and DualRoadmap stops after planning_work evaluations of its termination
+                    condition (a work count, not wall time). */
+                double realTime{1.};
+                /** clock (with real_time > 0). cpu (true): each query is planned while the simulation waits and is
+                    charged the CPU time the planning thread really spent (its thread CPU clock), every planner
+                    limited to planning_time of that CPU time: outcomes follow from the planners' real cost and the
+                    load of other processes does not count. wall (false): planner and simulation run concurrently,
+                    the simulated clock following the wall clock. */
+                bool cpuClock{true};
                 double planningDelay{0.1};
                 double planningWork{200000.};
                 double escapeHorizon{0.};  ///< escapes avoid the obstacles' true shapes over this many seconds
@@ -137,7 +145,13 @@ namespace michi
             {
                 unsigned int episodes{0}, reached{0}, collisions{0}, collisionSteps{0}, stops{0}, deformations{0},
                     replans{0}, cancelled{0}, failures{0}, obstacleWaits{0};
-                std::vector<double> replanLatency;   ///< ms
+                /** contacts (a step in collision after one free of it) while the robot moved: caused by its motion */
+                unsigned int motionCollisions{0};
+                /** contacts with a robot that stood still during the step: an obstacle drove into it */
+                unsigned int unavoidableCollisions{0};
+                std::vector<double> replanLatency;   ///< ms charged on the simulated clock (CPU with clock cpu)
+                std::vector<double> replanWall;      ///< ms wall clock
+                std::vector<double> replanCpu;       ///< ms planning-thread CPU time
                 std::vector<double> initialLatency;  ///< ms
                 std::vector<double> timeToGoal;      ///< simulated s
                 std::vector<double> episodeEnd;      ///< simulated s at which each episode ended

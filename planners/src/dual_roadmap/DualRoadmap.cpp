@@ -4,16 +4,15 @@
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/geometric/PathGeometric.h>
-#include <ompl/geometric/PathSimplifier.h>
 #include <ompl/tools/config/SelfConfig.h>
 #include <ompl/util/Exception.h>
-
-#include <boost/graph/astar_search.hpp>
 
 #include <algorithm>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <queue>
 #include <sstream>
 #include <stdexcept>
 
@@ -52,6 +51,10 @@ namespace michi
             declareParam<bool>("lazy_seeding", this, &DualRoadmap::setLazySeeding, &DualRoadmap::getLazySeeding, "0,1");
             declareParam<unsigned int>("max_learning_edges", this, &DualRoadmap::setMaxLearningEdges,
                                        &DualRoadmap::getMaxLearningEdges, "0:1000:1000000");
+            declareParam<double>("unknown_edge_penalty", this, &DualRoadmap::setUnknownEdgePenalty,
+                                 &DualRoadmap::getUnknownEdgePenalty, "1.:0.5:10.");
+            declareParam<unsigned int>("max_working_vertices", this, &DualRoadmap::setMaxWorkingVertices,
+                                       &DualRoadmap::getMaxWorkingVertices, "10:10:1000000");
 
             // Benchmark reads progress properties from its own thread while solve() runs: hence the atomic copy of the
             // count.
@@ -94,6 +97,8 @@ namespace michi
                 nn_->clear();
             startVertices_.clear();
             goalVertices_.clear();
+            queryHistory_.clear();
+            learnedWorkingEdges_ = 0;
         }
 
         void DualRoadmap::clear()
@@ -123,7 +128,75 @@ namespace michi
 
         void DualRoadmap::notifySceneChanged()
         {
+            notifySceneChanged(ChangeRegion());
+        }
+
+        void DualRoadmap::notifySceneChanged(ChangeRegion affects)
+        {
+            std::lock_guard<std::mutex> lock(regionMutex_);
+            // two changes before one solve(): their union is the change (either may affect a motion)
+            if (haveRegion_ && pendingRegion_ && affects)
+            {
+                ChangeRegion first = std::move(pendingRegion_);
+                pendingRegion_ = [first, affects](const ob::State *a, const ob::State *b)
+                {
+                    return first(a, b) || affects(a, b);
+                };
+            }
+            else if (!haveRegion_ || !affects)
+                pendingRegion_ = std::move(affects);
+            haveRegion_ = true;
             changed_ = true;
+        }
+
+        bool DualRoadmap::unaffectedSince(std::uint64_t since, const ob::State *a, const ob::State *b) const
+        {
+            // history_.back() led to epoch_, history_[i] to epoch_ - (size - 1 - i)
+            if (since == 0 || since >= epoch_ || epoch_ - since > history_.size())
+                return since == epoch_;
+            for (std::size_t i = history_.size() - (epoch_ - since); i < history_.size(); ++i)
+                if (!history_[i] || history_[i](a, b))
+                    return false;
+            return true;
+        }
+
+        bool DualRoadmap::knownValid(Vertex v)
+        {
+            auto &p = graph_[v];
+            // carried over when no change since touched it; else forgotten, so it is not asked again
+            if (p.validIn != 0 && p.validIn != epoch_)
+                p.validIn = unaffectedSince(p.validIn, p.state, p.state) ? epoch_ : 0;
+            return p.validIn == epoch_;
+        }
+
+        bool DualRoadmap::knownInvalid(Vertex v)
+        {
+            auto &p = graph_[v];
+            if (p.invalidIn != 0 && p.invalidIn != epoch_)
+                p.invalidIn = unaffectedSince(p.invalidIn, p.state, p.state) ? epoch_ : 0;
+            return p.invalidIn == epoch_;
+        }
+
+        bool DualRoadmap::knownValid(const Graph::edge_descriptor &e)
+        {
+            auto &p = graph_[e];
+            if (p.validIn != 0 && p.validIn != epoch_)
+                p.validIn = unaffectedSince(p.validIn, graph_[boost::source(e, graph_)].state,
+                                            graph_[boost::target(e, graph_)].state)
+                                ? epoch_
+                                : 0;
+            return p.validIn == epoch_;
+        }
+
+        bool DualRoadmap::knownInvalid(const Graph::edge_descriptor &e)
+        {
+            auto &p = graph_[e];
+            if (p.invalidIn != 0 && p.invalidIn != epoch_)
+                p.invalidIn = unaffectedSince(p.invalidIn, graph_[boost::source(e, graph_)].state,
+                                              graph_[boost::target(e, graph_)].state)
+                                  ? epoch_
+                                  : 0;
+            return p.invalidIn == epoch_;
         }
 
         void DualRoadmap::setSceneChangeCounter(std::function<std::uint64_t()> counter)
@@ -184,39 +257,88 @@ namespace michi
                 const double d = si_->distance(graph_[v].state, graph_[n].state);
                 if (d > range)
                     continue;
-                auto e = boost::add_edge(v, n, graph_);
+                auto e = addEdgeOnce(v, n);
                 if (e.second)
-                {
-                    graph_[e.first].weight = d;
-                    graph_[e.first].checked = false;
-                }
+                    graph_[e.first].weight = d;  // validity unknown (epochs 0) until a candidate path uses it
             }
         }
 
-        void DualRoadmap::rebuildWorking(const ob::PlannerTerminationCondition &ptc)
+        std::pair<DualRoadmap::Graph::edge_descriptor, bool> DualRoadmap::addEdgeOnce(Vertex a, Vertex b)
         {
-            freeWorking();
+            // vecS out-edge lists (a plain vector per vertex: the searches iterate them fast) allow parallel edges,
+            // so uniqueness is kept here; degrees are about k, so the lookup is short
+            const auto e = boost::edge(a, b, graph_);
+            if (e.second)
+                return {e.first, false};
+            return boost::add_edge(a, b, graph_);
+        }
+
+        DualRoadmap::Vertex DualRoadmap::addQueryVertex(const ob::State *state)
+        {
+            // The same goal (or start) query after query is one vertex, not a pile of duplicates that would crowd every
+            // k-nearest query around it.
+            for (Vertex n : queryHistory_)
+                if (si_->distance(graph_[n].state, state) <= 0.)
+                {
+                    graph_[n].validIn = epoch_;  // the planner's input states are valid
+                    graph_[n].invalidIn = 0;
+                    return n;
+                }
+            const Vertex v = addWorkingVertex(si_->cloneState(state), -1);
+            graph_[v].validIn = epoch_;
+            return v;
+        }
+
+        DualRoadmap::Vertex DualRoadmap::rememberQueryVertex(Vertex v)
+        {
+            // most recently used last: a goal asked query after query is never pushed out by the starts
+            const auto it = std::find(queryHistory_.begin(), queryHistory_.end(), v);
+            if (it != queryHistory_.end())
+                queryHistory_.erase(it);
+            queryHistory_.push_back(v);
+            if (queryHistory_.size() > 8)
+                queryHistory_.erase(queryHistory_.begin());
+            return v;
+        }
+
+        void DualRoadmap::seedWorking(const std::vector<const ob::State *> &near,
+                                      const ob::PlannerTerminationCondition &ptc)
+        {
             seeded_ = 0;
-            if (!useLearning_ || learnEdges_.empty())
+            if (!useLearning_ || learnEdges_.empty() || seedEdges_ == 0)
                 return;
-            // Paper 002, Fig. 2: after a change the working roadmap is cleared and seeded with randomly chosen local
-            // paths of the learning roadmap. Only seedEdges_ of them, so seeding costs a bounded number of checks
-            // however much has been learned.
-            // random choice of learning edges, re-checked in the current scene
+            // Paper 002, Fig. 2: a new working roadmap starts from local paths of the learning roadmap. Those nearest
+            // the query's start and goal first (the issue with random ones: most lay far from the query and cost
+            // checks for nothing). Only into an empty working roadmap: a scene change keeps the roadmap (solve()).
+            std::vector<double> key(learnStates_.size(), std::numeric_limits<double>::infinity());
+            for (std::size_t i = 0; i < learnStates_.size(); ++i)
+                for (const auto *q : near)
+                    key[i] = std::min(key[i], si_->distance(learnStates_[i], q));
             std::vector<std::size_t> order(learnEdges_.size());
-            for (std::size_t i = 0; i < order.size(); ++i)
-                order[i] = i;
-            // Fisher-Yates shuffle through rng_ (not std::shuffle), so that ompl::RNG::setSeed() reproduces the choice.
-            for (std::size_t i = order.size(); i > 1; --i)
-                std::swap(order[i - 1], order[rng_.uniformInt(0, static_cast<int>(i - 1))]);
+            std::iota(order.begin(), order.end(), std::size_t(0));
+            const auto edgeKey = [&](std::size_t i)
+            {
+                return std::min(key[learnEdges_[i].first], key[learnEdges_[i].second]);
+            };
+            const std::size_t tries = std::min<std::size_t>(seedEdges_, order.size());
+            // ties broken by index: the same roadmap and query give the same seeds
+            std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(tries), order.end(),
+                              [&](std::size_t a, std::size_t b)
+                              {
+                                  const double ka = edgeKey(a), kb = edgeKey(b);
+                                  return ka < kb || (ka == kb && a < b);
+                              });
             std::map<std::size_t, Vertex> inWorking;
             // A learning state shared by several chosen edges is checked and added once.
             std::map<std::size_t, bool> stateValid;
             auto valid = [&](std::size_t id)
             {
+                if (lazySeeding_)
+                    return true;  // checked on a candidate path, like every other vertex
                 auto it = stateValid.find(id);
                 if (it != stateValid.end())
                     return it->second;
+                ++work_.stateChecks;
                 const bool ok = si_->isValid(learnStates_[id]);
                 stateValid[id] = ok;
                 return ok;
@@ -227,26 +349,32 @@ namespace michi
                 if (it != inWorking.end())
                     return it->second;
                 const Vertex v = addWorkingVertex(si_->cloneState(learnStates_[id]), static_cast<long>(id));
+                if (!lazySeeding_)
+                    graph_[v].validIn = epoch_;
                 inWorking[id] = v;
                 return v;
             };
-            const std::size_t tries = std::min<std::size_t>(seedEdges_, order.size());
             for (std::size_t i = 0; i < tries && !ptc; ++i)
             {
                 const auto &edge = learnEdges_[order[i]];
                 if (!valid(edge.first) || !valid(edge.second))
                     continue;
-                // Both end states are always checked (cheap, and an invalid vertex would poison every edge it has); the
-                // motion is checked here only without lazy seeding, else later and only if a candidate path uses it.
-                if (!lazySeeding_ && !si_->checkMotion(learnStates_[edge.first], learnStates_[edge.second]))
-                    continue;
+                if (!lazySeeding_)
+                {
+                    ++work_.motionChecks;
+                    if (!si_->checkMotion(learnStates_[edge.first], learnStates_[edge.second]))
+                        continue;
+                }
                 const Vertex a = vertexFor(edge.first);
                 const Vertex b = vertexFor(edge.second);
-                auto e = boost::add_edge(a, b, graph_);
+                auto e = addEdgeOnce(a, b);
                 if (e.second)
                 {
                     graph_[e.first].weight = si_->distance(graph_[a].state, graph_[b].state);
-                    graph_[e.first].checked = !lazySeeding_;
+                    graph_[e.first].learned = true;
+                    if (!lazySeeding_)
+                        graph_[e.first].validIn = epoch_;
+                    ++learnedWorkingEdges_;
                     ++seeded_;
                 }
             }
@@ -262,113 +390,175 @@ namespace michi
             }
         }
 
-        namespace
+        std::vector<DualRoadmap::Vertex> DualRoadmap::shortestPath(Vertex start, const std::vector<Vertex> &goals)
         {
-            // Thrown by the A* visitor to stop at the first goal vertex examined: Boost's astar_search has no early
-            // exit, and the search would otherwise settle the whole component.
-            struct FoundGoal
-            {
-            };
-        }  // namespace
-
-        std::vector<DualRoadmap::Vertex> DualRoadmap::shortestPath(Vertex start, const std::vector<Vertex> &goals) const
-        {
+            // Plain A* with lazily re-validated records: Boost's astar_search initialises every vertex per search
+            // (O(V), the top of the profile with many lazy re-searches); here a vertex's entries count only when
+            // stamped by this search, so a search costs what it explores.
             const std::size_t n = boost::num_vertices(graph_);
-            std::vector<Vertex> pred(n);
-            std::vector<double> dist(n);
-            std::vector<char> isGoal(n, 0);
-            for (Vertex g : goals)
-                isGoal[g] = 1;
-
-            struct Heuristic : public boost::astar_heuristic<Graph, double>
+            if (stamp_.size() < n)
             {
-                const DualRoadmap *self;
-                const std::vector<Vertex> *goals;
-                // Admissible: the distance to the nearest goal never exceeds the path length through the roadmap's
-                // edges, whose weights are the same distances.
-                double operator()(Vertex v) const
-                {
-                    double best = std::numeric_limits<double>::infinity();
-                    for (Vertex g : *goals)
-                        best = std::min(best, self->si_->distance(self->graph_[v].state, self->graph_[g].state));
-                    return best;
-                }
+                stamp_.resize(n, 0);
+                closed_.resize(n, 0);
+                cost_.resize(n, 0.);
+                pred_.resize(n, 0);
+            }
+            ++search_;
+            // Admissible and consistent: the distance to the nearest goal never exceeds the path length through the
+            // roadmap's edges, whose weights are the same distances.
+            const auto h = [&](Vertex v)
+            {
+                double best = std::numeric_limits<double>::infinity();
+                for (Vertex g : goals)
+                    best = std::min(best, si_->distance(graph_[v].state, graph_[g].state));
+                return best;
             };
-            struct Visitor : public boost::default_astar_visitor
+            using Item = std::pair<double, Vertex>;  // (f, vertex): ties broken by index, deterministic
+            std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+            stamp_[start] = search_;
+            cost_[start] = 0.;
+            pred_[start] = start;
+            open.emplace(h(start), start);
+            while (!open.empty())
             {
-                const std::vector<char> *isGoal;
-                Vertex *found;
-                void examine_vertex(Vertex u, const Graph &) const
+                const Vertex u = open.top().second;
+                open.pop();
+                if (closed_[u] == search_)
+                    continue;
+                closed_[u] = search_;
+                if (std::find(goals.begin(), goals.end(), u) != goals.end())
                 {
-                    if ((*isGoal)[u])
-                    {
-                        *found = u;
-                        throw FoundGoal();
-                    }
+                    std::vector<Vertex> path{u};
+                    for (Vertex v = u; v != start; v = pred_[v])
+                        path.push_back(pred_[v]);
+                    std::reverse(path.begin(), path.end());
+                    return path;
                 }
-            };
-            Heuristic h;
-            h.self = this;
-            h.goals = &goals;
-            Vertex found = start;
-            Visitor vis;
-            vis.isGoal = &isGoal;
-            vis.found = &found;
-            bool reached = false;
-            try
-            {
-                boost::astar_search(graph_, start, h,
-                                    boost::predecessor_map(&pred[0])
-                                        .distance_map(&dist[0])
-                                        .weight_map(boost::get(&EdgeProperties::weight, graph_))
-                                        .visitor(vis));
+                for (auto e : boost::make_iterator_range(boost::out_edges(u, graph_)))
+                {
+                    const Vertex w = boost::target(e, graph_);
+                    if (closed_[w] == search_)
+                        continue;
+                    // Unknown motions cost more than proved ones: the search prefers what needs no check, so after a
+                    // local change the path goes round rather than through what must be re-checked (still A*: the
+                    // heuristic never exceeds the weights, which only grow)
+                    const double g = cost_[u] + graph_[e].weight * (knownValid(e) ? 1. : unknownPenalty_);
+                    if (stamp_[w] == search_ && g >= cost_[w])
+                        continue;
+                    // impassable in this scene: found invalid (now, or earlier and untouched by the changes since)
+                    if (knownInvalid(e) || knownInvalid(w))
+                        continue;
+                    stamp_[w] = search_;
+                    cost_[w] = g;
+                    pred_[w] = u;
+                    open.emplace(g + h(w), w);
+                }
             }
-            catch (const FoundGoal &)
-            {
-                reached = true;
-            }
-            std::vector<Vertex> path;
-            if (!reached)
-                return path;
-            for (Vertex v = found; v != start; v = pred[v])
-            {
-                path.push_back(v);
-                // A vertex that is its own predecessor was never reached from start: no path (guards against an endless
-                // walk).
-                if (pred[v] == v)
-                    return {};
-            }
-            path.push_back(start);
-            std::reverse(path.begin(), path.end());
-            return path;
+            return {};
         }
 
         bool DualRoadmap::validatePath(const std::vector<Vertex> &path, const ob::PlannerTerminationCondition &ptc)
         {
+            // States first (one check each, and an invalid one rules out all its edges), then motions, in order.
+            // Every state of the path is checked before giving up: a moved obstacle usually covers several
+            // vertices of a candidate path, and each found at once saves a search (the profile's top item).
+            bool statesValid = true;
+            for (Vertex v : path)
+            {
+                if (knownValid(v))
+                    continue;
+                if (ptc)
+                    return false;
+                ++work_.stateChecks;
+                if (!si_->isValid(graph_[v].state))
+                {
+                    graph_[v].invalidIn = epoch_;  // impassable in this scene, so the next search goes round it
+                    graph_[v].validIn = 0;
+                    statesValid = false;
+                    continue;
+                }
+                graph_[v].validIn = epoch_;
+                graph_[v].invalidIn = 0;
+            }
+            if (!statesValid)
+                return false;
             for (std::size_t i = 0; i + 1 < path.size(); ++i)
             {
                 if (ptc)
                     return false;
                 auto e = boost::edge(path[i], path[i + 1], graph_);
-                if (!e.second)
+                if (!e.second || knownInvalid(e.first))
                     return false;
-                if (graph_[e.first].checked)
+                if (knownValid(e.first))
                     continue;
+                ++work_.motionChecks;
                 if (si_->checkMotion(graph_[path[i]].state, graph_[path[i + 1]].state))
                 {
-                    graph_[e.first].checked = true;
+                    graph_[e.first].validIn = epoch_;
+                    graph_[e.first].invalidIn = 0;
                     // Paper 002: every edge newly proved valid in the working roadmap is added to the learning roadmap.
                     learnEdge(path[i], path[i + 1]);
                 }
                 else
                 {
-                    // An invalid edge is removed for good (in this scene), so the next search finds another candidate
-                    // path. Edges checked valid before the failing one stay checked and are already learned.
-                    boost::remove_edge(e.first, graph_);
+                    // Invalid in this scene only: the edge stays (a moving obstacle may leave it free again), the
+                    // next search avoids it. Edges checked valid before the failing one stay checked and learned.
+                    graph_[e.first].invalidIn = epoch_;
+                    graph_[e.first].validIn = 0;
                     return false;
                 }
             }
             return true;
+        }
+
+        bool DualRoadmap::motionValid(Vertex a, Vertex b)
+        {
+            auto e = boost::edge(a, b, graph_);
+            if (e.second)
+            {
+                if (knownValid(e.first))
+                    return true;
+                if (knownInvalid(e.first))
+                    return false;
+            }
+            else
+            {
+                e = boost::add_edge(a, b, graph_);
+                graph_[e.first].weight = si_->distance(graph_[a].state, graph_[b].state);
+            }
+            ++work_.motionChecks;
+            if (si_->checkMotion(graph_[a].state, graph_[b].state))
+            {
+                graph_[e.first].validIn = epoch_;
+                graph_[e.first].invalidIn = 0;
+                learnEdge(a, b);
+                return true;
+            }
+            graph_[e.first].invalidIn = epoch_;
+            graph_[e.first].validIn = 0;
+            return false;
+        }
+
+        std::vector<DualRoadmap::Vertex> DualRoadmap::shortcut(const std::vector<Vertex> &path,
+                                                               const ob::PlannerTerminationCondition &ptc)
+        {
+            std::vector<Vertex> out{path.front()};
+            std::size_t i = 0;
+            while (i + 1 < path.size())
+            {
+                std::size_t next = i + 1;
+                // the far end first, then halfway, ...: O(log n) checks per kept vertex; each proved (or refuted)
+                // shortcut is recorded in the roadmap, so the next query's search takes it without a check
+                for (std::size_t step = path.size() - 1 - i; step > 1 && !ptc; step /= 2)
+                    if (motionValid(path[i], path[i + step]))
+                    {
+                        next = i + step;
+                        break;
+                    }
+                out.push_back(path[next]);
+                i = next;
+            }
+            return out;
         }
 
         long DualRoadmap::learnVertex(Vertex v)
@@ -396,6 +586,12 @@ namespace michi
                 learnEdges_.emplace_back(la, lb);
                 learningEdgeCountAtomic_ = learnEdges_.size();
             }
+            auto e = boost::edge(a, b, graph_);
+            if (e.second && !graph_[e.first].learned)
+            {
+                graph_[e.first].learned = true;
+                ++learnedWorkingEdges_;
+            }
         }
 
         ob::PlannerStatus DualRoadmap::solve(const ob::PlannerTerminationCondition &ptc)
@@ -408,32 +604,69 @@ namespace michi
                 return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
             }
 
+            work_ = Work{};
             if (sceneChanged())
             {
-                rebuildWorking(ptc);
-                OMPL_DEBUG("%s: scene changed, working roadmap seeded with %zu learning edges", getName().c_str(),
-                           seeded_);
+                // the change joins the history (its region, or "everything"); records older than the history are
+                // stale, newer ones are carried over where no later change touched them (knownValid())
+                {
+                    std::lock_guard<std::mutex> lock(regionMutex_);
+                    history_.push_back(haveRegion_ ? pendingRegion_ : ChangeRegion());
+                    haveRegion_ = false;
+                    pendingRegion_ = nullptr;
+                }
+                if (history_.size() > 32)
+                    history_.pop_front();
+                ++epoch_;
+                // The ablation (no learning) and lazy_seeding = 0 start from an empty working roadmap at every
+                // change; otherwise the roadmap is kept and re-checked lazily where candidate paths go: no work
+                // proportional to its size, none away from the query.
+                if (!useLearning_ || !lazySeeding_)
+                    freeWorking();
+                seeded_ = learnedWorkingEdges_;
+                OMPL_DEBUG("%s: scene changed, %zu learning edges in the working roadmap", getName().c_str(), seeded_);
             }
-            // every solve() is a query of its own: start and goal states are taken afresh (in the same scene the
-            // working roadmap, with the previous queries' vertices, is kept)
+            // every solve() is a query of its own: start and goal states are taken afresh (the working roadmap,
+            // with the previous queries' vertices, is kept)
             startVertices_.clear();
             goalVertices_.clear();
             pis_.restart();
 
+            std::vector<ob::State *> starts;
             while (const ob::State *st = pis_.nextStart())
-                startVertices_.push_back(addWorkingVertex(si_->cloneState(st), -1));
-            if (startVertices_.empty())
+                starts.push_back(si_->cloneState(st));
+            const auto freeStarts = [&]
+            {
+                for (auto *st : starts)
+                    si_->freeState(st);
+            };
+            if (starts.empty())
             {
                 OMPL_ERROR("%s: There are no valid initial states!", getName().c_str());
                 return ob::PlannerStatus::INVALID_START;
             }
-            for (Vertex v : startVertices_)
-                connectLazily(v);
             if (goal->maxSampleCount() == 0 || !goal->couldSample())
             {
+                freeStarts();
                 OMPL_ERROR("%s: Insufficient states in sampleable goal region", getName().c_str());
                 return ob::PlannerStatus::INVALID_GOAL;
             }
+            if (boost::num_vertices(graph_) == 0)
+            {
+                // an empty working roadmap: seeded from the learning roadmap near the query (a goal sample, valid
+                // or not, only orders the seeds)
+                std::vector<const ob::State *> near(starts.begin(), starts.end());
+                ob::State *g = si_->allocState();
+                goal->sampleGoal(g);
+                near.push_back(g);
+                seedWorking(near, ptc);
+                si_->freeState(g);
+            }
+            for (auto *st : starts)
+                startVertices_.push_back(rememberQueryVertex(addQueryVertex(st)));
+            freeStarts();
+            for (Vertex v : startVertices_)
+                connectLazily(v);
 
             ob::State *sample = si_->allocState();
             std::vector<Vertex> path;
@@ -449,7 +682,7 @@ namespace michi
                     const ob::State *g = goalVertices_.empty() ? pis_.nextGoal(ptc) : pis_.nextGoal();
                     if (g != nullptr)
                     {
-                        const Vertex v = addWorkingVertex(si_->cloneState(g), -1);
+                        const Vertex v = rememberQueryVertex(addQueryVertex(g));
                         goalVertices_.push_back(v);
                         connectLazily(v);
                     }
@@ -463,6 +696,7 @@ namespace michi
                     // search, check the edges of the candidate path lazily, repeat until one holds or none is left
                     while (!ptc)
                     {
+                        ++work_.searches;
                         path = shortestPath(s, goalVertices_);
                         if (path.empty())
                             break;
@@ -475,32 +709,34 @@ namespace michi
                 }
                 if (solved || ptc)
                     break;
+                if (boost::num_vertices(graph_) >= maxWorkingVertices_)
+                    break;  // full: no path in this scene now (setMaxWorkingVertices)
                 // expand: a batch of uniform valid samples, connected lazily
                 // A batch rather than one sample per round: each round repeats the A* search over the whole roadmap,
                 // which would otherwise dominate once the roadmap is large.
                 for (unsigned int i = 0; i < batchSize_ && !ptc; ++i)
                 {
                     sampler_->sampleUniform(sample);
+                    ++work_.samples;
+                    ++work_.stateChecks;
                     if (!si_->isValid(sample))
                         continue;
-                    connectLazily(addWorkingVertex(si_->cloneState(sample), -1));
+                    const Vertex v = addWorkingVertex(si_->cloneState(sample), -1);
+                    graph_[v].validIn = epoch_;
+                    connectLazily(v);
                 }
             }
             si_->freeState(sample);
             if (!solved)
                 return ob::PlannerStatus::TIMEOUT;
 
+            // Paper 002: found paths are smoothed (redundant parts removed) before they are executed. Every shortcut
+            // is a motion checked by the motion validator, so the result stays valid.
+            if (smooth_ && path.size() > 2)
+                path = shortcut(path, ptc);
             auto result = std::make_shared<og::PathGeometric>(si_);
             for (Vertex v : path)
                 result->append(graph_[v].state);
-            // Paper 002: found paths are smoothed (redundant parts removed) before they are executed. The simplifier's
-            // motions are checked by the motion validator, so the result stays valid.
-            if (smooth_ && result->getStateCount() > 2)
-            {
-                og::PathSimplifier simplifier(si_, pdef_->getGoal());
-                simplifier.reduceVertices(*result);
-                simplifier.shortcutPath(*result);
-            }
             pdef_->addSolutionPath(result, false, 0., getName());
             return ob::PlannerStatus::EXACT_SOLUTION;
         }

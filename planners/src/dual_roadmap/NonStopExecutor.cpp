@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <time.h>
+
 namespace michi
 {
     namespace planners
@@ -14,6 +16,15 @@ namespace michi
             // Tolerance on arc lengths: positions along the path are sums of distances, so comparisons with waypoint
             // arcs or the path's end must not depend on the last bits.
             const double EPS = 1e-9;
+
+            /** CPU seconds the calling thread has used (POSIX thread CPU clock): a planner's cost that load from
+                other processes on the machine does not inflate. */
+            double threadCpuSeconds()
+            {
+                timespec ts{};
+                clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+                return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+            }
         }  // namespace
 
         NonStopExecutor::NonStopExecutor(NonStopHooks hooks, NonStopSettings settings)
@@ -26,8 +37,8 @@ namespace michi
                     "clearance hooks are required");
             if (!(settings_.speed > 0.) || !(settings_.deceleration > 0.))
                 throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive");
-            if (!(settings_.planningDelay >= 0.))
-                throw std::invalid_argument("NonStopExecutor: planningDelay must not be negative");
+            if (!(settings_.planningDelay >= 0.) || !(settings_.cpuTimeScale >= 0.))
+                throw std::invalid_argument("NonStopExecutor: planningDelay and cpuTimeScale must not be negative");
             // Paper 002, Fig. 1: the planning thread is the executor's own; the caller's thread is the execution
             // thread. Started last, once every member it reads is set.
             thread_ = std::thread(
@@ -132,7 +143,9 @@ namespace michi
                 Reply reply;
                 reply.id = query.id;
                 const auto begin = std::chrono::steady_clock::now();
+                const double cpuBegin = threadCpuSeconds();
                 reply.found = hooks_.plan(query.from, query.goal, query.snapshot, cancel_, reply.path);
+                reply.cpuSeconds = threadCpuSeconds() - cpuBegin;
                 reply.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 
                 lock.lock();
@@ -401,8 +414,9 @@ namespace michi
                 if (reply.id != activeQuery_)
                     continue;  // a cancelled query's answer
                 // planningDelay charges simulated time for planning, so results do not depend on how fast this machine
-                // plans.
-                if (time_ < activeSentAt_ + settings_.planningDelay - EPS)
+                // plans; cpuTimeScale adds what the planner really spent, so a slow planner costs the robot time.
+                const double due = activeSentAt_ + settings_.planningDelay + settings_.cpuTimeScale * reply.cpuSeconds;
+                if (time_ < due - EPS)
                 {
                     // not yet due on the simulated clock: keep it for a later step
                     std::lock_guard<std::mutex> lock(mutex_);
@@ -427,6 +441,7 @@ namespace michi
                     continue;
                 }
                 stats_.latencies.push_back(reply.seconds);
+                stats_.cpuLatencies.push_back(reply.cpuSeconds);
                 onPathFound(reply);
             }
         }

@@ -10,7 +10,9 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <deque>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <utility>
@@ -26,12 +28,18 @@ namespace michi
            A PRM-like planner with two roadmaps, made for replanning while the world changes. The
            <em>learning roadmap</em> keeps every local path (edge) that was ever found collision-free, across
            queries and scene changes (and across runs: saveLearningRoadmap() / loadLearningRoadmap()). The
-           <em>working roadmap</em> belongs to the current scene. When the scene changes, the working roadmap is
-           cleared and seeded with randomly chosen learning-roadmap edges that are still valid (both states
-           re-checked at once, the motion lazily or at once: lazy_seeding); then start and goal are connected and the
-           roadmap is expanded by uniform samples, with edges checked lazily (only those on a candidate shortest path,
-           as LazyPRM does). Edges that the search proved valid are added to the learning roadmap. The path found is
-           smoothed (redundant vertices removed, shortcuts).
+           <em>working roadmap</em> belongs to the current scene. An empty working roadmap (the first query, after
+           clear() or loadLearningRoadmap()) is seeded with the learning-roadmap edges nearest the query (seed_edges
+           of them). When the scene changes, nothing is rebuilt: every vertex and edge of the working roadmap becomes
+           "unknown" (a scene epoch is incremented, no work per vertex) and is re-checked lazily, only where a
+           candidate shortest path goes, so the work of a query after a change is local to the query and to the
+           part of its path the change touched; an owner that knows where the scene changed says so
+           (notifySceneChanged(ChangeRegion)) and what was proved elsewhere stays known. With lazy_seeding = 0 the
+           working roadmap is instead rebuilt at every change from learning edges checked at once; the ablation
+           (use_learning = 0) rebuilds it empty. Start and goal are
+           connected to their nearest vertices and the roadmap is expanded by uniform samples only when no candidate
+           path is left, with edges checked lazily (as LazyPRM does). Edges that the search proved valid are added to
+           the learning roadmap. The path found is smoothed (redundant vertices removed, shortcuts).
 
            How the planner learns that the scene changed (it only has \e si): either the owner calls
            notifySceneChanged(), or it installs a change counter with setSceneChangeCounter() (for michi's
@@ -63,8 +71,17 @@ namespace michi
                 edges. */
             void getPlannerData(ompl::base::PlannerData &data) const override;
 
-            /** \brief The scene changed: the next solve() rebuilds the working roadmap. Thread-safe. */
+            /** \brief The scene changed: nothing the working roadmap proved before is trusted in the next solve().
+                Thread-safe. */
             void notifySceneChanged();
+            /** \brief Whether a scene change may have changed the validity of the motion from \e a to \e b (a == b:
+                of the state a). Conservative: true when unsure. */
+            using ChangeRegion = std::function<bool(const ompl::base::State *a, const ompl::base::State *b)>;
+            /** \brief The scene changed only where \e affects says, since the scene of the last solve(): what the
+                working roadmap proved valid or invalid elsewhere stays known (the change is "local"), the rest is
+                re-checked lazily. Thread-safe; the next solve() takes it as the change it detects (with a change
+                counter, the counter must also have moved). An empty function: the whole scene changed. */
+            void notifySceneChanged(ChangeRegion affects);
             /** \brief A function returning a number that changes whenever the scene changes; solve() compares it
                 with the value of its previous solve(). An empty function: every solve() is a new scene. */
             void setSceneChangeCounter(std::function<std::uint64_t()> counter);
@@ -88,10 +105,24 @@ namespace michi
             }
             std::size_t workingVertexCount() const;
             std::size_t workingEdgeCount() const;
-            /** \brief Learning edges put into the working roadmap at the last scene change. */
+            /** \brief Learning edges the working roadmap held for the current scene when it began: seeded into an
+                empty or rebuilt working roadmap, or kept from the previous scene (to be re-checked lazily). */
             std::size_t seededEdgeCount() const
             {
                 return seeded_;
+            }
+            /** \brief What the last solve() did, in counts (not time): a test or a profile can compare planners'
+                work without a clock. */
+            struct Work
+            {
+                std::uint64_t stateChecks{0};   ///< isValid() calls (seeding, lazy vertex checks, samples)
+                std::uint64_t motionChecks{0};  ///< checkMotion() calls (seeding, lazy edge checks)
+                std::uint64_t samples{0};       ///< uniform samples drawn to expand the roadmap
+                std::uint64_t searches{0};      ///< A* searches
+            };
+            const Work &lastWork() const
+            {
+                return work_;
             }
 
             /** \brief Use the learning roadmap (seed from it, add to it); false is the ablation: a plain lazy
@@ -104,7 +135,7 @@ namespace michi
             {
                 return useLearning_;
             }
-            /** \brief Learning edges tried when the working roadmap is seeded (chosen at random). */
+            /** \brief Learning edges put into an empty working roadmap: those nearest the query's start and goal. */
             void setSeedEdges(unsigned int n)
             {
                 seedEdges_ = n;
@@ -149,9 +180,9 @@ namespace michi
             {
                 return smooth_;
             }
-            /** \brief Seed the working roadmap with learning edges whose two states are valid in the new scene, and
-                check their motions lazily (only on a candidate path, like the new edges); false: check every seeded
-                motion at once, so the working roadmap holds only local paths proved valid. */
+            /** \brief true: seed and keep the working roadmap lazily (states and motions re-checked only on a
+                candidate path, also after a scene change); false: rebuild it at every scene change from learning
+                edges whose states and motion are checked at once, so it holds only local paths proved valid. */
             void setLazySeeding(bool lazy)
             {
                 lazySeeding_ = lazy;
@@ -170,29 +201,82 @@ namespace michi
                 return maxLearningEdges_;
             }
 
+            /** \brief The working roadmap takes no more uniform samples beyond this many vertices: a query that
+                finds no path in it then fails (the executor asks again later, when the moving obstacles have moved)
+                instead of filling the roadmap, and every later search, with samples. */
+            void setMaxWorkingVertices(unsigned int n)
+            {
+                maxWorkingVertices_ = n;
+            }
+            unsigned int getMaxWorkingVertices() const
+            {
+                return maxWorkingVertices_;
+            }
+
+            /** \brief Weight factor, in the search, of an edge not (yet) proved valid in the current scene: > 1
+                makes the search prefer motions that need no check, so after a local change a path goes round
+                what must be re-checked (fewer checks, possibly longer paths); 1: plain shortest paths. */
+            void setUnknownEdgePenalty(double f)
+            {
+                unknownPenalty_ = f;
+            }
+            double getUnknownEdgePenalty() const
+            {
+                return unknownPenalty_;
+            }
+
         private:
+            // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
+            // at once, without touching the roadmap.
             struct VertexProperties
             {
                 ompl::base::State *state{nullptr};
-                long learnId{-1};  ///< index in the learning roadmap, -1 when not (yet) there
+                long learnId{-1};            ///< index in the learning roadmap, -1 when not (yet) there
+                std::uint64_t validIn{0};    ///< epoch in which the state was proved valid
+                std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
             };
             struct EdgeProperties
             {
                 double weight{0.};
-                bool checked{false};  ///< proved valid in the current scene
+                std::uint64_t validIn{0};    ///< epoch in which the motion was proved valid
+                std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
+                bool learned{false};         ///< in the learning roadmap (proved valid in some scene)
             };
             using Graph =
-                boost::adjacency_list<boost::setS, boost::vecS, boost::undirectedS, VertexProperties, EdgeProperties>;
+                boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, VertexProperties, EdgeProperties>;
             using Vertex = Graph::vertex_descriptor;
 
             void freeWorking();
-            void rebuildWorking(const ompl::base::PlannerTerminationCondition &ptc);
+            /** \brief Put the learning edges nearest \e near (the query's states) into the empty working roadmap. */
+            void seedWorking(const std::vector<const ompl::base::State *> &near,
+                             const ompl::base::PlannerTerminationCondition &ptc);
             Vertex addWorkingVertex(ompl::base::State *state, long learnId);
+            /** \brief The edge a - b, added unless it exists (second: added). */
+            std::pair<Graph::edge_descriptor, bool> addEdgeOnce(Vertex a, Vertex b);
+            /** \brief A start or goal: the vertex of a recent query's at the same state, else a new one; valid in
+                this scene. */
+            Vertex addQueryVertex(const ompl::base::State *state);
+            /** \brief \e v joins the recent query vertices (at most 8) that addQueryVertex() reuses. */
+            Vertex rememberQueryVertex(Vertex v);
+            /** \brief No change since epoch \e since (> 0) affects the motion \e a -> \e b (a == b: the state). */
+            bool unaffectedSince(std::uint64_t since, const ompl::base::State *a, const ompl::base::State *b) const;
+            bool knownValid(Vertex v);
+            bool knownInvalid(Vertex v);
+            bool knownValid(const Graph::edge_descriptor &e);
+            bool knownInvalid(const Graph::edge_descriptor &e);
+            /** \brief Motion \e a -> \e b valid in this scene, from the roadmap's records or checked (and recorded
+                as an edge: a proved shortcut is a local path like any other). */
+            bool motionValid(Vertex a, Vertex b);
+            /** \brief Redundant vertices removed (paper 002: found paths are smoothed): from each kept vertex, the
+                farthest later one reachable by a valid straight motion among a halving sequence of candidates. */
+            std::vector<Vertex> shortcut(const std::vector<Vertex> &path,
+                                         const ompl::base::PlannerTerminationCondition &ptc);
             void connectLazily(Vertex v);
             bool sceneChanged();
             /** \brief A* from start to any goal vertex; empty when none is reachable. */
-            std::vector<Vertex> shortestPath(Vertex start, const std::vector<Vertex> &goals) const;
-            /** \brief Check the unchecked edges of \e path; removes the first invalid one. */
+            std::vector<Vertex> shortestPath(Vertex start, const std::vector<Vertex> &goals);
+            /** \brief Check the states and motions of \e path not yet proved valid in this scene; every invalid state
+                and the first invalid motion are marked so (impassable for this scene's searches). */
             bool validatePath(const std::vector<Vertex> &path, const ompl::base::PlannerTerminationCondition &ptc);
             long learnVertex(Vertex v);
             void learnEdge(Vertex a, Vertex b);
@@ -201,8 +285,9 @@ namespace michi
             std::shared_ptr<ompl::NearestNeighbors<Vertex>> nn_;
             std::vector<Vertex> startVertices_;
             std::vector<Vertex> goalVertices_;
+            std::vector<Vertex>
+                queryHistory_;  ///< start and goal vertices of recent queries, reused for the same state
             ompl::base::StateSamplerPtr sampler_;
-            ompl::RNG rng_;
 
             std::vector<ompl::base::State *> learnStates_;
             std::vector<std::pair<std::size_t, std::size_t>> learnEdges_;
@@ -213,6 +298,20 @@ namespace michi
             bool haveCount_{false};
             std::atomic<bool> changed_{true};
             std::size_t seeded_{0};
+            std::uint64_t epoch_{1};  ///< the current scene
+            /** changes that led to the last epochs (oldest first; the last one led to epoch_); an empty region: the
+                whole scene changed */
+            std::deque<ChangeRegion> history_;
+            std::mutex regionMutex_;
+            bool haveRegion_{false};  ///< a region was given for the change not yet taken
+            ChangeRegion pendingRegion_;
+            // A* without an O(V) initialisation per search: a vertex's entries count only when stamped this search
+            std::vector<std::uint64_t> stamp_, closed_;
+            std::vector<double> cost_;
+            std::vector<Vertex> pred_;
+            std::uint64_t search_{0};
+            std::size_t learnedWorkingEdges_{0};  ///< working edges that are in the learning roadmap
+            Work work_;
             std::atomic<std::size_t> learningEdgeCountAtomic_{0};  ///< for the progress property (other thread)
 
             bool useLearning_{true};
@@ -223,6 +322,8 @@ namespace michi
             bool smooth_{true};
             bool lazySeeding_{true};
             unsigned int maxLearningEdges_{50000};
+            unsigned int maxWorkingVertices_{2000};
+            double unknownPenalty_{1.5};
         };
     }  // namespace planners
 }  // namespace michi

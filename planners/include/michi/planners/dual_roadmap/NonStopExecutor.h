@@ -60,6 +60,12 @@ namespace michi
                 cancel never interrupts a planner halfway, at a wall-clock dependent point: with planningDelay > 0
                 and a planner whose work does not depend on wall time, runs are reproducible. */
             bool synchronous{false};
+            /** \brief Simulated seconds charged per second of CPU time the plan hook really took on the planning thread
+                (its thread CPU clock, so other processes on the machine do not count); 0: none. The answer is
+                taken only once the simulated clock has advanced planningDelay + this x that CPU time past the Query.
+                With synchronous, a simulation whose outcomes follow from the planner's real cost, reproducible up
+                to that time. */
+            double cpuTimeScale{0.};
         };
 
         /** \brief Non-stop planning and execution (paper 002, Fig. 1): a planning thread and an execution thread
@@ -120,6 +126,8 @@ namespace michi
                 unsigned int deformations{0};
                 unsigned int stops{0};          ///< times the robot came to a halt waiting for a path
                 std::vector<double> latencies;  ///< wall-clock seconds from Query to Path found
+                /** planning-thread CPU seconds of the same queries (the plan hook's, on its thread CPU clock) */
+                std::vector<double> cpuLatencies;
             };
 
             NonStopExecutor(NonStopHooks hooks, NonStopSettings settings);
@@ -186,6 +194,7 @@ namespace michi
                 bool found{false};
                 ConfigurationPath path;
                 double seconds{0.};
+                double cpuSeconds{0.};  ///< the planning thread's CPU time for this query
             };
 
             void planningThread();
