@@ -362,8 +362,12 @@ namespace michi
                 const int first = begin_[b];
                 const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, r + first,
                                         begin_[b + 1] - first};
+                // the body's bounding sphere against the obstacle's own shape first: a large obstacle (a table top)
+                // has a bounding sphere that reaches every body, its shape reaches few
+                const float bound[4] = {s.bodyCentre[b].x(), s.bodyCentre[b].y(), s.bodyCentre[b].z(), s.bodyRadius[b]};
+                const SphereBatch whole{bound, bound + 1, bound + 2, bound + 3, 1};
                 for (int o : s.candidates)
-                    if (obs.hits(o, batch))
+                    if (obs.hits(o, whole) && obs.hits(o, batch))
                     {
                         if (why != nullptr)
                             *why = bodies_->model()->links()[bodyLink_[b]].name + " touches obstacle '" + obs.name(o) +
