@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <thread>
 #include <tuple>
 
 namespace michi
@@ -195,53 +196,81 @@ namespace michi
             if (pairTables_)
                 return;
             auto tables = std::make_shared<std::vector<std::shared_ptr<const SelfPairTable>>>(selfPairs_.size());
-            std::vector<double> values(vars.size(), 0.), obstacle, self;
-            std::vector<char> wantBodies(bodies_->bodies().size(), 0), wantPairs(bodies_->selfCheckPairs().size(), 0);
+            // what each table needs; the tables are then built in parallel (FCL distances, thread-safe)
+            struct Job
+            {
+                std::size_t k;
+                std::vector<int> on;  ///< group indices of the values on the path
+                std::vector<double> lo, hi, closing;
+                std::vector<char> wrap;
+            };
+            std::vector<Job> jobs;
             for (std::size_t k = 0; k < selfPairs_.size(); ++k)
             {
                 const auto &p = selfPairs_[k];
                 if (static_[p.first] && static_[p.second])
                     continue;
                 const std::set<int> a = rootJoints(bodyLink_[p.first]), b = rootJoints(bodyLink_[p.second]);
-                std::vector<int> on;  // group indices of the values on the path
+                Job job;
+                job.k = k;
                 for (const std::set<int> *one : {&a, &b})
                     for (int j : *one)
                         if ((one == &a ? b : a).count(j) == 0 && model.joints()[j].variable >= 0)
                         {
                             const auto it = std::find(vars.begin(), vars.end(), model.joints()[j].variable);
                             if (it != vars.end())
-                                on.push_back(static_cast<int>(it - vars.begin()));
+                                job.on.push_back(static_cast<int>(it - vars.begin()));
                         }
-                std::sort(on.begin(), on.end());
-                on.erase(std::unique(on.begin(), on.end()), on.end());
-                if (on.empty() || on.size() > 2)
+                std::sort(job.on.begin(), job.on.end());
+                job.on.erase(std::unique(job.on.begin(), job.on.end()), job.on.end());
+                if (job.on.empty() || job.on.size() > 2)
                     continue;
-                std::vector<double> lo, hi, closing;
-                std::vector<char> wrap;
-                for (int v : on)
+                for (int v : job.on)
                 {
                     const RobotJoint &joint = model.variableJoint(vars[v]);
                     const bool continuous = joint.type == RobotJoint::Type::CONTINUOUS;
-                    lo.push_back(continuous ? -M_PI : joint.lower);
-                    hi.push_back(continuous ? M_PI : joint.upper);
-                    wrap.push_back(continuous ? 1 : 0);
+                    job.lo.push_back(continuous ? -M_PI : joint.lower);
+                    job.hi.push_back(continuous ? M_PI : joint.upper);
+                    job.wrap.push_back(continuous ? 1 : 0);
                     // the two bodies close in at most as fast as both move
-                    closing.push_back(static_cast<double>(bodyCoefficients_(p.first, v)) +
-                                      static_cast<double>(bodyCoefficients_(p.second, v)));
+                    job.closing.push_back(static_cast<double>(bodyCoefficients_(p.first, v)) +
+                                          static_cast<double>(bodyCoefficients_(p.second, v)));
                 }
-                const std::size_t pairIndex = static_cast<std::size_t>(selfPairIndex_[k]);
-                auto distance = [&](const double *at)
-                {
-                    for (std::size_t d = 0; d < on.size(); ++d)
-                        values[on[d]] = at[d];
-                    wantPairs.assign(wantPairs.size(), 0);
-                    wantPairs[pairIndex] = 1;
-                    exact_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
-                    return self[pairIndex];
-                };
-                (*tables)[k] = std::make_shared<SelfPairTable>(
-                    on, lo, hi, wrap, closing, on.size() == 1 ? TABLE_CELLS_1D : TABLE_CELLS_2D, distance);
+                jobs.push_back(std::move(job));
             }
+            std::atomic<std::size_t> next{0};
+            auto work = [&]
+            {
+                std::vector<double> values(vars.size(), 0.), obstacle, self;
+                std::vector<char> wantBodies(bodies_->bodies().size(), 0),
+                    wantPairs(bodies_->selfCheckPairs().size(), 0);
+                for (std::size_t i = next++; i < jobs.size(); i = next++)
+                {
+                    const Job &job = jobs[i];
+                    const std::size_t pairIndex = static_cast<std::size_t>(selfPairIndex_[job.k]);
+                    auto distance = [&](const double *at)
+                    {
+                        for (std::size_t d = 0; d < job.on.size(); ++d)
+                            values[job.on[d]] = at[d];
+                        wantPairs.assign(wantPairs.size(), 0);
+                        wantPairs[pairIndex] = 1;
+                        exact_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
+                        return self[pairIndex];
+                    };
+                    (*tables)[job.k] =
+                        std::make_shared<SelfPairTable>(job.on, job.lo, job.hi, job.wrap, job.closing,
+                                                        job.on.size() == 1 ? TABLE_CELLS_1D : TABLE_CELLS_2D, distance);
+                }
+            };
+            const std::size_t helpers =
+                std::min<std::size_t>(jobs.size(), std::max(1u, std::thread::hardware_concurrency())) -
+                (jobs.empty() ? 0 : 1);
+            std::vector<std::thread> threads;
+            for (std::size_t t = 0; t < helpers; ++t)
+                threads.emplace_back(work);
+            work();
+            for (auto &t : threads)
+                t.join();
             pairTables_ = tables;
             cache[key] = tables;
         }
