@@ -153,6 +153,17 @@ TEST_F(ProblemFiles, ErrorsNameFileAndKey)
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {motion_validator: exact}\n",
          "collision.motion_validator"},
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {max_step: 0}\n", "collision.max_step"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {checker: spheres, spheres: {per_link: "
+         "0}}\n",
+         "collision.spheres.per_link"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {checker: spheres, spheres: {urdf: "
+         "no.urdf}}\n",
+         "collision.spheres.urdf"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {checker: spheres, spheres: {urdf: "
+         "arm.urdf}}\n",
+         "collision.spheres.urdf"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {spheres: {budget: 3}}\n",
+         "collision.spheres.budget"},
         {"robot: {type: se2, footprint: [[0, 0], [1, 0]], bounds: {x: [0, 1], y: [0, 1]}}\nstart: [0, 0, 0]\n"
          "goal: [1, 1, 0]\n",
          "robot.footprint"},
@@ -167,6 +178,23 @@ TEST_F(ProblemFiles, ErrorsNameFileAndKey)
         EXPECT_NE(what.find(file), std::string::npos) << "case " << i << ": " << what;
         EXPECT_NE(what.find(cases[i].key), std::string::npos) << "case " << i << ": " << what;
     }
+}
+
+TEST_F(ProblemFiles, SphereBudgetIsTheProblems)
+{
+    // collision.spheres.per_link sets the sphere model's budget: one sphere per link, or many
+    std::vector<std::size_t> counts;
+    for (int perLink : {1, 8})
+    {
+        const auto p = michi::tools::loadProblem(
+            problem("collision: {checker: spheres, spheres: {per_link: " + std::to_string(perLink) + "}}\n"));
+        auto ctx = michi::tools::makePlanningContext(p);
+        ASSERT_TRUE(ctx.spheres);
+        counts.push_back(ctx.spheres->sphereCount());
+    }
+    EXPECT_EQ(counts[0], 2u);  // two links with geometry
+    EXPECT_GT(counts[1], counts[0]);
+    EXPECT_LE(counts[1], 16u);
 }
 
 TEST_F(ProblemFiles, MotionValidatorIsChosenByTheProblem)

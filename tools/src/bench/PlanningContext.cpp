@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <tuple>
 #include <sstream>
 
 namespace ob = ompl::base;
@@ -125,17 +126,33 @@ namespace michi
                     if (!group)
                         throw ProblemError(problem.file, "collision.checker",
                                            "the sphere checker is for arms (a robot.urdf), not SE2 robots");
-                    // the model depends on the robot only: made once per robot (a few ms per link)
+                    // the model depends on the robot and collision.spheres only: made once (a few ms per link)
                     static std::mutex mutex;
-                    static std::map<const validity::RobotModel *, std::weak_ptr<const validity::SphereModel>> models;
+                    static std::map<std::tuple<const validity::RobotModel *, int, std::string>,
+                                    std::weak_ptr<const validity::SphereModel>>
+                        models;
                     validity::SphereModelPtr model;
                     {
                         std::lock_guard<std::mutex> lock(mutex);
-                        model = models[group->model().get()].lock();
+                        auto &cached =
+                            models[{group->model().get(), problem.spheres.perLink, problem.spheres.spherizedUrdf}];
+                        model = cached.lock();
                         if (!model)
                         {
-                            model = validity::SphereModel::enclose(*group->model());
-                            models[group->model().get()] = model;
+                            validity::SphereModelSettings settings;
+                            settings.spheresPerLink = problem.spheres.perLink;
+                            try
+                            {
+                                model = problem.spheres.spherizedUrdf.empty()
+                                            ? validity::SphereModel::enclose(*group->model(), settings)
+                                            : validity::SphereModel::fromSpherizedUrdf(
+                                                  *group->model(), problem.spheres.spherizedUrdf, settings);
+                            }
+                            catch (const validity::UrdfError &e)
+                            {
+                                throw ProblemError(problem.file, "collision.spheres.urdf", e.what());
+                            }
+                            cached = model;
                         }
                     }
                     ctx.spheres =

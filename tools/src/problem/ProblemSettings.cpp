@@ -213,9 +213,23 @@ namespace michi
                         readJMapSettings(r, kv.second, key, problem.jmap);
                     else if (k == "grid")
                         readGridSettings(r, kv.second, key, problem.grid);
+                    else if (k == "spheres")
+                    {
+                        if (!kv.second.IsMap())
+                            r.fail(key, "expected a mapping (per_link, urdf)");
+                        r.keys(kv.second, key, {"per_link", "urdf"});
+                        if (kv.second["per_link"])
+                        {
+                            problem.spheres.perLink = r.count(kv.second["per_link"], key + ".per_link");
+                            if (problem.spheres.perLink < 1 || problem.spheres.perLink > 1024)
+                                r.fail(key + ".per_link", "expected a number of spheres per link in 1..1024");
+                        }
+                        if (kv.second["urdf"])
+                            problem.spheres.spherizedUrdf = r.path(kv.second["urdf"], key + ".urdf");
+                    }
                     else
                         r.fail(key,
-                               "unknown key (expected checker, jmap, grid, motion_validator, max_step, "
+                               "unknown key (expected checker, jmap, grid, spheres, motion_validator, max_step, "
                                "valid_segment_fraction)");
                 }
             }

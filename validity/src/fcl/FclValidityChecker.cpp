@@ -260,6 +260,22 @@ namespace michi
             return false;
         }
 
+        bool FclValidityChecker::bodyCollides(const double *values, std::size_t body) const
+        {
+            ++queries_;
+            const auto lease = pool_->acquire(values);
+            auto lock = scene_->lockShared();
+            for (const auto &object : lease.objects().at(body))
+            {
+                CollisionData data;
+                data.query = object.get();
+                scene_->manager().collide(object.get(), &data, collisionCallback);
+                if (data.done)
+                    return true;
+            }
+            return false;
+        }
+
         double FclValidityChecker::clearanceConfiguration(const double *values) const
         {
             return proximity(values, false).distance;

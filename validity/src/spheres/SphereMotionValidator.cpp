@@ -1,5 +1,6 @@
 #include <michi/validity/spheres/SphereMotionValidator.h>
 #include <michi/validity/MotionCount.h>
+#include <michi/validity/fcl/WorkspaceMotionValidator.h>
 
 #include <ompl/base/SpaceInformation.h>
 
@@ -13,6 +14,8 @@ namespace michi
                                                      SphereValidityCheckerPtr checker, double minFraction)
             : ompl::base::MotionValidator(si), checker_(std::move(checker)), minFraction_(minFraction)
         {
+            if (checker_->exact())
+                exactMotions_ = std::make_shared<WorkspaceMotionValidator>(si, checker_->exact(), 0.001);
             const auto &bodies = *checker_->bodies();
             for (int v : bodies.variables())
                 continuous_.push_back(bodies.model()->variableJoint(v).type == RobotJoint::Type::CONTINUOUS);
@@ -69,7 +72,31 @@ namespace michi
                     certified = p.t1;
                     continue;
                 }
-                if (p.t1 - p.t0 < minFraction_ || !checker_->isValidConfiguration(mid.data()))
+                if (!checker_->isValidConfiguration(mid.data()))
+                {
+                    ok = false;
+                    break;
+                }
+                // a state free for the real geometry that the spheres cannot show free (a hand at its grasp):
+                // halving cannot help. FCL decides this piece as michi's FCL checker checks motions (no point of
+                // the robot moves more than 1 cm between checks): FCL's exact walk took 8 ms a motion here
+                if (exactMotions_ && !checker_->spheresFree(mid.data()))
+                {
+                    ompl::base::State *from = si_->allocState(), *to = si_->allocState();
+                    space->interpolate(s1, s2, p.t0, from);
+                    space->interpolate(s1, s2, p.t1, to);
+                    const bool free = exactMotions_->checkMotion(from, to);
+                    si_->freeState(from);
+                    si_->freeState(to);
+                    if (!free)
+                    {
+                        ok = false;
+                        break;
+                    }
+                    certified = p.t1;
+                    continue;
+                }
+                if (p.t1 - p.t0 < minFraction_)
                 {
                     ok = false;
                     break;

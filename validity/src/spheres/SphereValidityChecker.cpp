@@ -354,7 +354,8 @@ namespace michi
         }
 
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
-                                             const float *bodyInflation, const float *valueSpan, std::string *why) const
+                                             const float *bodyInflation, const float *valueSpan, bool useExact,
+                                             std::string *why) const
         {
             const std::size_t nb = bodyLink_.size();
             const float *r = radius_.data();
@@ -395,14 +396,23 @@ namespace michi
                 // has a bounding sphere that reaches every body, its shape reaches few
                 const float bound[4] = {s.bodyCentre[b].x(), s.bodyCentre[b].y(), s.bodyCentre[b].z(), s.bodyRadius[b]};
                 const SphereBatch whole{bound, bound + 1, bound + 2, bound + 3, 1};
+                int hit = -1;
                 for (int o : s.candidates)
                     if (obs.hits(o, whole) && obs.hits(o, batch))
                     {
-                        if (why != nullptr)
-                            *why = bodies_->model()->links()[bodyLink_[b]].name + " touches obstacle '" + obs.name(o) +
-                                   "'";
-                        return true;
+                        hit = o;
+                        break;
                     }
+                if (hit < 0)
+                    continue;
+                // the spheres stand out of the link's surface: near an obstacle (a grasp) the real geometry
+                // decides, so a state is never judged in collision when it is not
+                if (useExact && exact_ && inflation == nullptr &&
+                    !exact_->bodyCollides(values, static_cast<std::size_t>(robotBody_[b])))
+                    continue;
+                if (why != nullptr)
+                    *why = bodies_->model()->links()[bodyLink_[b]].name + " touches obstacle '" + obs.name(hit) + "'";
+                return true;
             }
             using MapC = Eigen::Map<const Eigen::ArrayXf>;
             for (std::size_t k = 0; k < selfPairs_.size(); ++k)
@@ -433,7 +443,7 @@ namespace michi
                               .any();
                 if (!hit)
                     continue;
-                if (exact_ && inflation == nullptr)
+                if (useExact && exact_ && inflation == nullptr)
                 {
                     // the spheres of two links overlap: their real geometry decides (a boolean query)
                     if (!exact_->pairCollides(values, static_cast<std::size_t>(selfPairIndex_[k])))
@@ -460,7 +470,14 @@ namespace michi
         {
             thread_local Scratch s;
             place(values, s);
-            return !collides(s, values, inflation, bodyInflation, valueSpan, nullptr);
+            return !collides(s, values, inflation, bodyInflation, valueSpan, true, nullptr);
+        }
+
+        bool SphereValidityChecker::spheresFree(const double *values) const
+        {
+            thread_local Scratch s;
+            place(values, s);
+            return !collides(s, values, nullptr, nullptr, nullptr, false, nullptr);
         }
 
         std::string SphereValidityChecker::describeCollision(const double *values) const
@@ -468,7 +485,7 @@ namespace michi
             Scratch s;
             place(values, s);
             std::string why;
-            collides(s, values, nullptr, nullptr, nullptr, &why);
+            collides(s, values, nullptr, nullptr, nullptr, true, &why);
             return why;
         }
 

@@ -133,9 +133,17 @@ namespace michi
             std::string motionValidator{"workspace"};
             double maxStep{0.01};  ///< metres, for "workspace"
             /** \brief The state validity checker: "fcl" (validity::FclValidityChecker, the default), "jmap"
-                (validity::JMapValidityChecker over the first two planned joints, paper 000) or "grid"
-                (validity::GridValidityChecker, SE2 robots: docs/checking.md). */
+                (validity::JMapValidityChecker over the first two planned joints, paper 000), "grid"
+                (validity::GridValidityChecker, SE2 robots) or "spheres" (validity::SphereValidityChecker, arms):
+                docs/checking.md. */
             std::string checker{"fcl"};
+            /** \brief For checker "spheres" (collision.spheres): the sphere model's budget per link, and a
+                spherized URDF to start from (empty: spheres made from the robot's own geometry). */
+            struct SphereSettings
+            {
+                int perLink{24};
+                std::string spherizedUrdf;
+            } spheres;
             validity::JMapCheckerSettings jmap;  ///< for checker "jmap" (collision.jmap)
             /** \brief For checker "grid" (collision.grid); a map scene (scene.map, scene.movingai) sets its
                 mapResolution and origin so that table cells align with the map's. */

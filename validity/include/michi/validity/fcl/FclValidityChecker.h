@@ -60,6 +60,8 @@ namespace michi
             /** \brief Do the two bodies of self-check pair \e pair (selfCheckPairs() order) touch? A boolean FCL
                 query on their real geometry, cheaper than a distance. */
             bool pairCollides(const double *values, std::size_t pair) const;
+            /** \brief Does body \e body (bodies() order) touch the scene? A boolean FCL query of that body only. */
+            bool bodyCollides(const double *values, std::size_t body) const;
             /** \brief "link3 touches obstacle 'wall'" or "link1 touches link4"; empty when valid. */
             std::string describeCollision(const double *values) const;
 

@@ -17,8 +17,12 @@ namespace michi
             holds for any configuration); if the grown spheres are free, no configuration of the piece can touch
             anything. Otherwise the piece is halved, until a middle is in collision (the motion is rejected) or the
             pieces get shorter than \e minFraction of the motion (rejected too: the motion grazes an obstacle).
-            A motion it accepts is free for the enclosing spheres, hence for the real geometry. Interpolation is
-            the state space's; continuous joints are measured the short way round, as the space interpolates. */
+            A motion it accepts is free for the enclosing spheres, hence for the real geometry. Where the spheres
+            touch something the real geometry does not (a hand at its grasp, a link a few millimetres from
+            another), halving cannot help: when the checker has an FCL checker, such a piece is decided by
+            WorkspaceMotionValidator on the real geometry (checks at most 1 cm of robot motion apart, as the FCL
+            checker's default motions): only those pieces are not certified. Interpolation is the state space's;
+            continuous joints are measured the short way round, as the space interpolates. */
         class SphereMotionValidator : public ompl::base::MotionValidator
         {
         public:
@@ -38,6 +42,7 @@ namespace michi
         private:
             bool check(const ompl::base::State *s1, const ompl::base::State *s2, double &certified) const;
             SphereValidityCheckerPtr checker_;
+            std::shared_ptr<ompl::base::MotionValidator> exactMotions_;  ///< on the real geometry, or null
             double minFraction_;
             std::vector<char> continuous_;  ///< per group value: a continuous joint (wraps)
             mutable std::atomic<std::uint64_t> checks_{0};

@@ -38,7 +38,9 @@ namespace michi
             /** \param exactSelf when given (an FCL checker of the same bodies): self pairs whose relative pose
                 depends on one or two joint values (a wrist, which sits close by construction) are decided by
                 tables built once with FCL on the real geometry (certified over each cell); in a state check, other
-                pairs whose spheres overlap are decided by an FCL collision query between the two links. */
+                pairs whose spheres overlap are decided by an FCL collision query between the two links, and a link
+                whose spheres touch an obstacle by an FCL query of that link against the scene, so that states are
+                exact (no state is judged in collision that is not). */
             SphereValidityChecker(const ompl::base::SpaceInformationPtr &si,
                                   std::shared_ptr<const RobotGroupBodies> bodies, SphereModelPtr spheres,
                                   ScenePtr scene, FclValidityCheckerPtr exactSelf = nullptr);
@@ -57,6 +59,15 @@ namespace michi
                 and may be null. */
             bool isFreeInflated(const double *values, const float *inflation, const float *bodyInflation,
                                 const float *valueSpan) const;
+            /** \brief The spheres (and self-pair tables) alone, without asking FCL: true means free for the
+                spheres, hence for the real geometry; false may be a state whose real geometry is free (a grasp:
+                the hand's spheres stand out of its surface). */
+            bool spheresFree(const double *values) const;
+            /** \brief The FCL checker of the same bodies given at construction (may be null). */
+            const FclValidityCheckerPtr &exact() const
+            {
+                return exact_;
+            }
             /** \brief Self pairs decided by a table over one or two joint values (see selfPairTables). */
             std::size_t tabulatedPairs() const;
             /** \brief "panda_hand touches obstacle 'can'" or "link1 touches link4" (spheres); empty when valid. */
@@ -103,7 +114,7 @@ namespace michi
             /** Place every sphere for \e values into \e s (world centres). */
             void place(const double *values, Scratch &s) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *bodyInflation,
-                          const float *valueSpan, std::string *why) const;
+                          const float *valueSpan, bool useExact, std::string *why) const;
             void makeSelfPairTables();
             const SphereObstacles &obstacles() const;
 
