@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -90,7 +91,21 @@ namespace michi
             for (const auto &p : footprint)
                 circumradius_ = std::max(circumradius_, p.norm());
             makeStamps(footprint, tolerance);
+            tolerance_ = tolerance;
+            // a convex footprint is one piece (its hull, with as many corners); any other is its triangles
+            const auto hull = convexHull(footprint);
+            if (hull.size() == footprint.size() && hull.size() <= 16)
+                pieces_.push_back(hull);
+            else
+                for (const auto &t : triangulatePolygon(footprint))
+                    pieces_.push_back({footprint[t[0]], footprint[t[1]], footprint[t[2]]});
             wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
+            occupiedBits_.assign(wordsPerRow_ * grid_.height, 0);
+            for (int j = 0; j < grid_.height; ++j)
+                for (int i = 0; i < grid_.width; ++i)
+                    if (grid_.cells[static_cast<std::size_t>(j) * grid_.width + i])
+                        occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] |= std::uint64_t{1}
+                                                                                                << (i & 63);
             bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
             blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
             const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
@@ -142,6 +157,76 @@ namespace michi
                     blockAllInvalid_[b >> 6] =
                         allInvalid ? (blockAllInvalid_[b >> 6] | bit) : (blockAllInvalid_[b >> 6] & ~bit);
                 }
+        }
+
+        bool HeadingTable::freePose(double x, double y, double yaw, double margin) const
+        {
+            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(yaw) || !(margin >= 0.))
+                return false;
+            // in cell units: cell (i, j) is the square [i, i + 1] x [j, j + 1]; growing the footprint by m is
+            // growing each cell by m, so a piece meets the grown cell (i, j) when its x range over the rows
+            // band [j - m, j + 1 + m] meets [i - m, i + 1 + m] (exact for a convex piece)
+            const double inv = inverseResolution_;
+            const double m = (margin + tolerance_) * inv + 1e-9;
+            const double c = std::cos(yaw), s = std::sin(yaw);
+            const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
+            double u[16], v[16];
+            for (const auto &piece : pieces_)
+            {
+                const std::size_t n = std::min<std::size_t>(piece.size(), 16);
+                double vmin = std::numeric_limits<double>::infinity(), vmax = -vmin;
+                double umin = vmin, umax = vmax;
+                for (std::size_t p = 0; p < n; ++p)
+                {
+                    u[p] = ox + (c * piece[p].x() - s * piece[p].y()) * inv;
+                    v[p] = oy + (s * piece[p].x() + c * piece[p].y()) * inv;
+                    vmin = std::min(vmin, v[p]);
+                    vmax = std::max(vmax, v[p]);
+                    umin = std::min(umin, u[p]);
+                    umax = std::max(umax, u[p]);
+                }
+                // cells beyond the grid may hold obstacles the grid does not know: not free
+                if (umin - m < 0. || vmin - m < 0. || umax + m >= grid_.width || vmax + m >= grid_.height)
+                    return false;
+                const int j0 = static_cast<int>(std::ceil(vmin - m - 1.)), j1 = static_cast<int>(std::floor(vmax + m));
+                for (int j = std::max(0, j0); j <= j1; ++j)
+                {
+                    const double lo = j - m, hi = j + 1. + m;
+                    double xa = std::numeric_limits<double>::infinity(), xb = -xa;
+                    for (std::size_t p = 0; p < n; ++p)
+                    {
+                        if (v[p] >= lo && v[p] <= hi)
+                        {
+                            xa = std::min(xa, u[p]);
+                            xb = std::max(xb, u[p]);
+                        }
+                        const std::size_t q = (p + 1) % n;
+                        for (double y0 : {lo, hi})
+                            if ((v[p] - y0) * (v[q] - y0) < 0.)
+                            {
+                                const double xc = u[p] + (u[q] - u[p]) * (y0 - v[p]) / (v[q] - v[p]);
+                                xa = std::min(xa, xc);
+                                xb = std::max(xb, xc);
+                            }
+                    }
+                    if (!(xa <= xb))
+                        continue;
+                    const int i0 = std::max(0, static_cast<int>(std::ceil(xa - m - 1.)));
+                    const int i1 = std::min(grid_.width - 1, static_cast<int>(std::floor(xb + m)));
+                    const std::uint64_t *row = occupiedBits_.data() + static_cast<std::size_t>(j) * wordsPerRow_;
+                    for (int w = i0 >> 6; w <= i1 >> 6; ++w)
+                    {
+                        std::uint64_t mask = ~std::uint64_t{0};
+                        if (w == i0 >> 6)
+                            mask &= ~std::uint64_t{0} << (i0 & 63);
+                        if (w == i1 >> 6 && (i1 & 63) != 63)
+                            mask &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
+                        if (row[w] & mask)
+                            return false;
+                    }
+                }
+            }
+            return true;
         }
 
         int HeadingTable::headingBin(double yaw) const
@@ -305,6 +390,9 @@ namespace michi
                 if ((cell != 0) == occupied)
                     continue;
                 cell = occupied ? 1 : 0;
+                std::uint64_t &bits = occupiedBits_[static_cast<std::size_t>(c.second) * wordsPerRow_ + (c.first >> 6)];
+                const std::uint64_t bit = std::uint64_t{1} << (c.first & 63);
+                bits = occupied ? (bits | bit) : (bits & ~bit);
                 changed.i0 = std::min(changed.i0, c.first);
                 changed.i1 = std::max(changed.i1, c.first);
                 changed.j0 = std::min(changed.j0, c.second);
@@ -349,7 +437,7 @@ namespace michi
         std::size_t HeadingTable::bytes() const
         {
             return (bits_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cellAllValid_.size() +
-                    cellAllInvalid_.size()) *
+                    cellAllInvalid_.size() + occupiedBits_.size()) *
                        sizeof(std::uint64_t) +
                    grid_.cells.size();
         }

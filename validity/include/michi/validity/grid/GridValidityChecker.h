@@ -40,12 +40,14 @@ namespace michi
 
             isValid() is one bit of the table: the cell of (x, y) and the heading bin of the yaw. The table is
             conservative: a state it calls valid is free for FCL at every pose of its cell and heading bin, so
-            it never lets a collision through; near obstacles it calls some free states invalid (the footprint is
-            grown by half a table cell and swept over half a heading bin). States outside the grid are invalid.
+            it never lets a collision through. Where the entry is invalid (near obstacles: the footprint is grown
+            by the cell and swept over the heading bin), the footprint at the state's own pose is tested exactly
+            against the occupied cells (HeadingTable::freePose), so the checker is exact on the grid: a narrow
+            door the table closes stays open for the poses that fit. States outside the grid are invalid.
 
             clearance() is a lower bound of the distance from the footprint to the obstacles, from the distance
-            transform at points of the footprint's outline (table cells apart), less the cells' sizes; 0 for
-            invalid states.
+            transform at points of the footprint's outline (table cells apart), less the cells' sizes; 0 where
+            the table entry is invalid.
 
             The grid covers \e bounds (x min, x max, y min, y max) grown by the footprint's circumradius, so every
             obstacle a valid state could touch is in it. States are SE(2) (read as x, y, yaw through
@@ -62,10 +64,12 @@ namespace michi
             bool isValid(const ompl::base::State *state, double &dist) const override;
             double clearance(const ompl::base::State *state) const override;
 
-            /** \brief The same on a pose. */
+            /** \brief The same on a pose: the table's entry when it is valid (most queries), else the exact test
+                of the footprint at this pose against the occupied cells (HeadingTable::freePose), so that poses
+                near obstacles that the entry's other poses would hit are not refused. */
             bool isValidPose(double x, double y, double yaw) const
             {
-                return table_->validPose(x, y, yaw);
+                return table_->validPose(x, y, yaw) || table_->freePose(x, y, yaw);
             }
             double clearancePose(double x, double y, double yaw) const;
 
