@@ -75,8 +75,12 @@ TEST(GridChecker, NeverValidWhereFclIsInvalidOnEveryBundledMapProblem)
         EXPECT_EQ(r.unsafeMotions, 0u);
         EXPECT_GT(r.referenceValid, 0u);
         EXPECT_GT(r.motionsValid, 0u);  // the motion check was exercised
-        if (name.find("movingai") != std::string::npos)
-            EXPECT_LT(r.falseInvalidFraction(), 0.1);  // a robot smaller than the map's cells
+        if (name.find("movingai") != std::string::npos || name.find("ros_") != std::string::npos)
+        {
+            // exact on a map's grid: where the table refuses, the pose itself is tested (and the table's "blocked
+            // at every pose" entries are right), so no state FCL calls free is refused
+            EXPECT_EQ(r.falseInvalidFraction(), 0.);
+        }
     }
 }
 

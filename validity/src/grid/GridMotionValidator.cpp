@@ -127,7 +127,7 @@ namespace michi
                         for (int a = 0; a < 3; ++a)
                             if (idx[a] != end[a])
                                 uNext = std::min(uNext, tMax[a]);
-                        free = exactSpan(piece, std::min(1., u), uNext);
+                        free = checker_->exact() && exactSpan(piece, std::min(1., u), uNext);
                     }
                     if (!free)
                     {

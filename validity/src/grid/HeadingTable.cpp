@@ -99,6 +99,17 @@ namespace michi
             else
                 for (const auto &t : triangulatePolygon(footprint))
                     pieces_.push_back({footprint[t[0]], footprint[t[1]], footprint[t[2]]});
+            for (const auto &piece : pieces_)
+            {
+                // a convex piece holds the origin when the origin is on the inner side of (or on) every edge
+                bool inside = true;
+                for (std::size_t e = 0; e < piece.size() && inside; ++e)
+                {
+                    const Eigen::Vector2d &a = piece[e], &b = piece[(e + 1) % piece.size()];
+                    inside = cross(a, b, Eigen::Vector2d::Zero()) >= 0.;
+                }
+                originInside_ = originInside_ || inside;
+            }
             wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
             occupiedBits_.assign(wordsPerRow_ * grid_.height, 0);
             for (int j = 0; j < grid_.height; ++j)
@@ -107,6 +118,9 @@ namespace michi
                         occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] |= std::uint64_t{1}
                                                                                                 << (i & 63);
             bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
+            makeCoreStamps();
+            if (!coreStamps_.empty())
+                blockedBits_.assign(bits_.size(), 0);
             blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
             const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
             blockAllValid_.assign(blocks / 64 + 1, 0);
@@ -167,6 +181,17 @@ namespace michi
             // growing each cell by m, so a piece meets the grown cell (i, j) when its x range over the rows
             // band [j - m, j + 1 + m] meets [i - m, i + 1 + m] (exact for a convex piece)
             const double inv = inverseResolution_;
+            // most poses the table refuses lie inside an obstacle: their cell is occupied, and the footprint,
+            // holding the origin, meets it (one bit, before any trigonometry)
+            if (originInside_)
+            {
+                const double fx = (x - grid_.origin.x()) * inv, fy = (y - grid_.origin.y()) * inv;
+                if (fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height &&
+                    occupied(static_cast<int>(fx), static_cast<int>(fy)))
+                    return false;
+            }
+            if (certainlyBlocked(x, y, yaw))
+                return false;
             const double m = (margin + tolerance_) * inv + 1e-9;
             const double c = std::cos(yaw), s = std::sin(yaw);
             const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
@@ -227,6 +252,68 @@ namespace michi
                 }
             }
             return true;
+        }
+
+        bool HeadingTable::certainlyBlocked(double x, double y, double yaw) const
+        {
+            if (blockedBits_.empty())
+                return false;
+            const double fx = (x - grid_.origin.x()) * inverseResolution_;
+            const double fy = (y - grid_.origin.y()) * inverseResolution_;
+            if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height))
+                return false;
+            const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+            const int k = headingBin(yaw);
+            const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+            return (blockedBits_[word] >> (i & 63)) & 1u;
+        }
+
+        void HeadingTable::makeCoreStamps()
+        {
+            coreStamps_.clear();
+            if (pieces_.size() != 1)
+                return;  // not convex: no core (freePose decides)
+            const std::vector<Eigen::Vector2d> &hull = pieces_[0];
+            const double r = grid_.resolution;
+            // the same yaw samples as makeStamps; every yaw of the bin is within half a spacing of one, where a
+            // point of the footprint moves at most sweep
+            const int samples = std::max(1, static_cast<int>(std::ceil(step_ * circumradius_ / (0.1 * r))));
+            const double sweep = circumradius_ * (step_ / samples) / 2. + tolerance_ + 1e-9 * (1. + circumradius_);
+            // entry (i, j) holds positions u in [0, r)^2 of its cell; cell (i + dx, j + dy) minus u spans the
+            // square [(dx - 1) r, (dx + 1) r] x [(dy - 1) r, (dy + 1) r]: inside the footprint (grown by sweep) at
+            // every sample yaw, the footprint covers that cell whole from every pose of the entry
+            const int n = static_cast<int>(std::ceil(circumradius_ / r)) + 1;
+            coreStamps_.resize(headings_);
+            for (int k = 0; k < headings_; ++k)
+            {
+                auto &stamp = coreStamps_[k];
+                for (int dy = -n; dy <= n; ++dy)
+                    for (int dx = -n; dx <= n; ++dx)
+                    {
+                        bool inside = true;
+                        for (int s = 0; s < samples && inside; ++s)
+                        {
+                            const double yaw = k * step_ - step_ / 2. + (s + 0.5) * step_ / samples;
+                            const Eigen::Rotation2Dd back(-yaw);  // the square in the footprint's frame
+                            for (int c = 0; c < 4 && inside; ++c)
+                            {
+                                const Eigen::Vector2d corner(
+                                    (dx + ((c & 1) ? 1. : -1.)) * r + ((c & 1) ? sweep : -sweep),
+                                    (dy + ((c & 2) ? 1. : -1.)) * r + ((c & 2) ? sweep : -sweep));
+                                const Eigen::Vector2d q = back * corner;
+                                // strictly inside every edge of the counter-clockwise hull
+                                for (std::size_t e = 0; e < hull.size() && inside; ++e)
+                                    inside = cross(hull[e], hull[(e + 1) % hull.size()], q) > 0.;
+                            }
+                        }
+                        if (!inside)
+                            continue;
+                        if (!stamp.empty() && stamp.back().dy == dy && stamp.back().x1 == dx - 1)
+                            stamp.back().x1 = dx;
+                        else
+                            stamp.push_back(GridSpan{dy, dx, dx});
+                    }
+            }
         }
 
         int HeadingTable::headingBin(double yaw) const
@@ -361,6 +448,36 @@ namespace michi
                         else
                             row[i >> 6] |= bit;
                     }
+                    if (blockedBits_.empty())
+                        continue;
+                    // the same with the core stamp: an occupied cell in it blocks every pose of the entry
+                    std::fill(blocked.begin(), blocked.end(), 0);
+                    for (const auto &span : coreStamps_[k])
+                    {
+                        const int jj = j + span.dy;
+                        if (jj < r0 || jj > r1)
+                            continue;
+                        const std::int32_t *p = prefix.data() + static_cast<std::size_t>(jj - r0) * (w + 1);
+                        if (p[w] == 0)
+                            continue;
+                        for (int t = 0; t < n; ++t)
+                        {
+                            const int i = box.i0 + t;
+                            const int a = std::min(w, std::max(0, i + span.x0));
+                            const int b = std::min(w, std::max(0, i + span.x1 + 1));
+                            blocked[t] |= static_cast<std::uint8_t>(p[b] > p[a]);
+                        }
+                    }
+                    std::uint64_t *core = blockedBits_.data() + (static_cast<std::size_t>(k) * h + j) * wordsPerRow_;
+                    for (int t = 0; t < n; ++t)
+                    {
+                        const int i = box.i0 + t;
+                        const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+                        if (blocked[t])
+                            core[i >> 6] |= bit;
+                        else
+                            core[i >> 6] &= ~bit;
+                    }
                 }
             summarise(box);
         }
@@ -437,7 +554,7 @@ namespace michi
         std::size_t HeadingTable::bytes() const
         {
             return (bits_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cellAllValid_.size() +
-                    cellAllInvalid_.size() + occupiedBits_.size()) *
+                    cellAllInvalid_.size() + occupiedBits_.size() + blockedBits_.size()) *
                        sizeof(std::uint64_t) +
                    grid_.cells.size();
         }

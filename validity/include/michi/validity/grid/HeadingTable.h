@@ -166,6 +166,11 @@ namespace michi
 
         private:
             void makeStamps(const std::vector<Eigen::Vector2d> &footprint, double tolerance);
+            /** \brief coreStamps_ of a convex footprint: the cells the footprint covers whole at every pose of an
+                entry (every position in the cell, every yaw in the bin). */
+            void makeCoreStamps();
+            /** \brief Is entry (cell of x, y; bin of yaw) known to collide at every pose (blockedBits_)? */
+            bool certainlyBlocked(double x, double y, double yaw) const;
             void computeRegion(const CellBox &box);
             /** \brief Recompute the block summaries of the blocks meeting \e box. */
             void summarise(const CellBox &box);
@@ -179,6 +184,10 @@ namespace michi
             double circumradius_{0.};
             std::size_t wordsPerRow_{0};
             std::vector<std::uint64_t> bits_;
+            /** like bits_: 1 where an occupied cell lies in the entry's core stamp, so every pose of the entry
+                collides and freePose() need not look (empty when the footprint is not convex) */
+            std::vector<std::uint64_t> blockedBits_;
+            std::vector<std::vector<GridSpan>> coreStamps_;
             std::size_t blocksPerRow_{0};
             std::vector<std::uint64_t> blockAllValid_;    ///< per 8 x 8 block: every entry valid
             std::vector<std::uint64_t> blockAllInvalid_;  ///< per 8 x 8 block: every entry invalid
@@ -188,6 +197,8 @@ namespace michi
             /** convex pieces of the footprint (its hull when it is convex, else triangles), for freePose() */
             std::vector<std::vector<Eigen::Vector2d>> pieces_;
             double tolerance_{0.};
+            /** the robot's origin lies in its footprint: a pose in an occupied cell collides (freePose's shortcut) */
+            bool originInside_{false};
             std::vector<std::vector<GridSpan>> stamps_;
             int reach_[4]{0, 0, 0, 0};  ///< min dx, max dx, min dy, max dy over all stamps
         };
