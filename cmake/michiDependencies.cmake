@@ -7,6 +7,7 @@ find_package(assimp REQUIRED)                # target: assimp::assimp
 find_package(yaml-cpp REQUIRED)              # target: yaml-cpp
 find_package(Boost 1.71 REQUIRED COMPONENTS filesystem)
 find_package(Threads REQUIRED)
+find_package(PNG REQUIRED)                   # target: PNG::PNG (map images, validity/scene)
 
 if(NOT TARGET michi_urdfdom)
     add_library(michi_urdfdom INTERFACE)

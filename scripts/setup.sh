@@ -10,6 +10,7 @@ PACKAGES=(
     libboost-dev libboost-graph-dev libboost-filesystem-dev libboost-program-options-dev libboost-serialization-dev
     libboost-system-dev
     libyaml-cpp-dev
+    libpng-dev
     libassimp-dev
     libgtest-dev libgmock-dev
     libbenchmark-dev

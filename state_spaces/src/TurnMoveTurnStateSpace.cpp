@@ -52,7 +52,8 @@ namespace michi
             }
             // Paper 003's robot only turns in place and moves straight: turn to face the target, move, turn to the goal
             // heading.
-            const double ahead = std::atan2(dy, dx);
+            // atan2 gives pi for a drive towards -x, which OMPL's SO2 bounds [-pi, pi) refuse: wrap it to -pi
+            const double ahead = wrapAngle(std::atan2(dy, dx));
             m.heading = ahead;
             m.turn1 = turnBetween(yaw1, ahead);
             m.turn2 = turnBetween(ahead, yaw2);

@@ -74,6 +74,21 @@ TEST(TurnMoveTurnStateSpace, InterpolationTurnsDrivesTurns)
     }
 }
 
+TEST(TurnMoveTurnStateSpace, DrivingTowardsMinusXStaysWithinTheYawBounds)
+{
+    // atan2 gives +pi for a drive towards -x, outside OMPL's SO2 bounds [-pi, pi): the drive's heading is -pi
+    for (bool backward : {false, true})
+    {
+        auto space = makeTurnMoveTurnStateSpace(-10, 10, -10, 10, 0.5, backward);
+        auto a = pose(space, 1, 0, PI / 2), b = pose(space, -1, 0, PI / 2), s = pose(space, 0, 0, 0);
+        for (double t : {0.1, 0.25, 0.5, 0.75, 0.9})
+        {
+            space->interpolate(a.get(), b.get(), t, s.get());
+            EXPECT_TRUE(space->satisfiesBounds(s.get())) << backward << " " << t << ": yaw " << s->getYaw();
+        }
+    }
+}
+
 TEST(TurnMoveTurnStateSpace, PassesOmplSanityChecks)
 {
     ompl::RNG::setSeed(3);

@@ -304,6 +304,15 @@ namespace michi
                     auto ctx = makePlanningContext(problem, 0);
                     auto si = ctx.setup->getSpaceInformation();
                     auto planner = std::make_shared<planners::HeadingLattice>(si);
+                    // the problem's other settings of the planner (heuristic_weight, connection_cells), as bench
+                    // would set them; cell_size and angle_step are the rows of the table
+                    for (const auto &spec : problem.planners)
+                        if (spec.name == "michi::HeadingLattice")
+                            for (const auto &kv : spec.params)
+                                if (kv.first != "cell_size" && kv.first != "angle_step" &&
+                                    !planner->params().setParam(kv.first, kv.second))
+                                    throw ProblemError(problem.file, "planners",
+                                                       "michi::HeadingLattice refuses " + kv.first + " = " + kv.second);
                     planner->setCellSize(cell);
                     planner->setAngleStep(angle);
                     ctx.setup->setPlanner(planner);

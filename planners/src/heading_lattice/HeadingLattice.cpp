@@ -40,6 +40,8 @@ namespace michi
                                  "0.05:0.01:1.58");
             declareParam<double>("connection_cells", this, &HeadingLattice::setConnectionCells,
                                  &HeadingLattice::getConnectionCells, "0.5:0.5:10.");
+            declareParam<double>("heuristic_weight", this, &HeadingLattice::setHeuristicWeight,
+                                 &HeadingLattice::getHeuristicWeight, "1.:0.05:3.");
         }
 
         HeadingLattice::~HeadingLattice()
@@ -66,6 +68,13 @@ namespace michi
             if (!(cells > 0.) || !std::isfinite(cells))
                 throw ompl::Exception(getName(), "connection_cells must be positive");
             connectionCells_ = cells;
+        }
+
+        void HeadingLattice::setHeuristicWeight(double weight)
+        {
+            if (!(weight >= 1.) || !std::isfinite(weight))
+                throw ompl::Exception(getName(), "heuristic_weight must be at least 1");
+            heuristicWeight_ = weight;
         }
 
         double HeadingLattice::getHeadingStep() const
@@ -120,12 +129,16 @@ namespace michi
             if (scratch_ != nullptr)
                 si_->freeState(scratch_);
             scratch_ = nullptr;
-            for (auto *v : {&nodeState_, &edgeState_, &hState_, &groupFree_})
+            for (auto *v : {&hState_, &groupFree_})
                 std::vector<std::uint8_t>().swap(*v);
-            std::vector<float>().swap(g_);
+            nodeState_.release();
+            edgeState_.release();
+            g_.release();
+            parent_.release();
+            stamp_.release();
+            nodeIndex_.release();
+            searchStamp_ = 0;
             std::vector<float>().swap(hDist_);
-            std::vector<std::uint32_t>().swap(parent_);
-            std::vector<std::uint32_t>().swap(stamp_);
             hOpen_.clear();
             open_.clear();
             hReady_ = false;
@@ -225,7 +238,7 @@ namespace michi
             const long i = std::lround((x - x0_) / cellSize_), j = std::lround((y - y0_) / cellSize_);
             if (i < 0 || j < 0 || i >= static_cast<long>(columns_) || j >= static_cast<long>(rows_))
                 return 0;
-            return nodeState_[(static_cast<std::size_t>(i) * rows_ + j) * headings_ + k];
+            return nodeState_.get((static_cast<std::size_t>(i) * rows_ + j) * headings_ + k);
         }
 
         std::int64_t HeadingLattice::driveNext(Vertex id) const
@@ -456,11 +469,19 @@ namespace michi
             {
                 return static_cast<std::size_t>(known(e & 3)) + static_cast<std::size_t>(known(e >> 2));
             };
-            for (std::size_t v = 0; v < nodeCount_; ++v)
-            {
-                report.nodesKnown += known(nodeState_[v]);
-                report.edgesKnown += knownEdges(edgeState_[v]);
-            }
+            // entries never written hold UNCHECKED / 0: only the pages made so far count
+            nodeState_.forEachPage(
+                [&](std::size_t first, const std::uint8_t *page)
+                {
+                    for (std::size_t v = 0; v < nodeState_.PAGE && first + v < nodeCount_; ++v)
+                        report.nodesKnown += known(page[v]);
+                });
+            edgeState_.forEachPage(
+                [&](std::size_t first, const std::uint8_t *page)
+                {
+                    for (std::size_t v = 0; v < edgeState_.PAGE && first + v < nodeCount_; ++v)
+                        report.edgesKnown += knownEdges(page[v]);
+                });
             // a node sees an obstacle within reach_ of its position (within half a cell of its group's point); its
             // drive reaches the next group, its turn stays at its position: 2.5 cells cover both
             const double margin = reach_ + 2.5 * cellSize_;
@@ -480,7 +501,10 @@ namespace michi
                         groupFree_[g] = 0;
                         for (unsigned int k = 0; k < K; ++k)
                         {
-                            std::uint8_t &n = nodeState_[g * K + k], &e = edgeState_[g * K + k];
+                            const std::size_t id = g * K + k;
+                            if (!nodeState_.touched(id) && !edgeState_.touched(id))
+                                continue;  // nothing known there
+                            std::uint8_t &n = nodeState_[id], &e = edgeState_[id];
                             report.nodesReset += known(n);
                             report.edgesReset += knownEdges(e);
                             if (known(n))
@@ -654,6 +678,7 @@ namespace michi
             checkValidity();
             if (!setup_)
                 return ob::PlannerStatus::ABORT;  // not an SE(2) space (setup() said so)
+            const WorkCounters before = work_;
             auto *goal = dynamic_cast<ob::GoalSampleableRegion *>(pdef_->getGoal().get());
             if (goal == nullptr)
             {
@@ -753,7 +778,7 @@ namespace michi
                     {
                         bool live = false;
                         for (std::size_t i = 0; i < q.nodes.size() && !live; ++i)
-                            live = q.status[i] != INVALID && nodeState_[q.nodes[i]] != INVALID;
+                            live = q.status[i] != INVALID && nodeState_.get(q.nodes[i]) != INVALID;
                         if (!live && q.attempts < 3)
                         {
                             q.radius *= 2.;
@@ -794,8 +819,15 @@ namespace michi
                 }
                 si_->freeState(s);
                 pdef_->addSolutionPath(solution, false, 0., getName());
-                OMPL_INFORM("%s: path of %zu states, length %.4f", getName().c_str(), solution->getStateCount(),
-                            solution->length());
+                OMPL_INFORM(
+                    "%s: path of %zu states, length %.4f (%llu searches, %llu expansions, %llu node and %llu "
+                    "edge checks, %llu groups of the 2-D heuristic)",
+                    getName().c_str(), solution->getStateCount(), solution->length(),
+                    static_cast<unsigned long long>(work_.searches - before.searches),
+                    static_cast<unsigned long long>(work_.expansions - before.expansions),
+                    static_cast<unsigned long long>(work_.nodeChecks - before.nodeChecks),
+                    static_cast<unsigned long long>(work_.edgeChecks - before.edgeChecks),
+                    static_cast<unsigned long long>(work_.heuristicGroups - before.heuristicGroups));
                 return ob::PlannerStatus::EXACT_SOLUTION;
             }
             return ob::PlannerStatus::TIMEOUT;
@@ -807,12 +839,18 @@ namespace michi
             {
                 nodeList_.clear();
                 nodeIndex_.assign(nodeCount_, ~0u);
-                for (Vertex v = 0; v < nodeCount_; ++v)
-                    if (nodeState_[v] == VALID)
+                // only the pages of nodeState_ made so far hold checked nodes
+                nodeState_.forEachPage(
+                    [&](std::size_t first, const std::uint8_t *page)
                     {
-                        nodeIndex_[v] = static_cast<std::uint32_t>(nodeList_.size());
-                        nodeList_.push_back(nodeOf(v));
-                    }
+                        for (std::size_t o = 0; o < nodeState_.PAGE && first + o < nodeCount_; ++o)
+                            if (page[o] == VALID)
+                            {
+                                const auto v = static_cast<Vertex>(first + o);
+                                nodeIndex_[v] = static_cast<std::uint32_t>(nodeList_.size());
+                                nodeList_.push_back(nodeOf(v));
+                            }
+                    });
                 nodeListDirty_ = false;
             }
             return nodeList_;
@@ -823,24 +861,23 @@ namespace michi
             std::vector<std::pair<unsigned int, unsigned int>> edges;
             if (!built_)
                 return edges;
-            nodes();
+            const auto &list = nodes();
             const unsigned int K = headings_;
-            for (Vertex u = 0; u < nodeCount_; ++u)
+            for (const Node &n : list)
             {
-                if (nodeState_[u] != VALID)
-                    continue;
+                const Vertex u = n.group * K + n.heading;
                 const std::int64_t next = driveNext(u);
-                if (next >= 0 && nodeState_[next] == VALID && (edgeState_[u] & 3) != INVALID)
+                if (next >= 0 && nodeState_.get(next) == VALID && (edgeState_.get(u) & 3) != INVALID)
                 {
-                    edges.emplace_back(nodeIndex_[u], nodeIndex_[next]);
+                    edges.emplace_back(nodeIndex_.get(u), nodeIndex_.get(next));
                     if (reversible_)
-                        edges.emplace_back(nodeIndex_[next], nodeIndex_[u]);
+                        edges.emplace_back(nodeIndex_.get(next), nodeIndex_.get(u));
                 }
                 const Vertex up = (u / K) * K + (u % K + 1) % K;
-                if (nodeState_[up] == VALID && (edgeState_[u] >> 2) != INVALID)
+                if (nodeState_.get(up) == VALID && (edgeState_.get(u) >> 2) != INVALID)
                 {
-                    edges.emplace_back(nodeIndex_[u], nodeIndex_[up]);
-                    edges.emplace_back(nodeIndex_[up], nodeIndex_[u]);
+                    edges.emplace_back(nodeIndex_.get(u), nodeIndex_.get(up));
+                    edges.emplace_back(nodeIndex_.get(up), nodeIndex_.get(u));
                 }
             }
             return edges;
@@ -879,9 +916,9 @@ namespace michi
                 const QueryVertex &q = queries_[o];
                 for (std::size_t i = 0; i < q.nodes.size(); ++i)
                 {
-                    if (q.status[i] == INVALID || nodeState_[q.nodes[i]] != VALID)
+                    if (q.status[i] == INVALID || nodeState_.get(q.nodes[i]) != VALID)
                         continue;
-                    const unsigned int node = index[nodeIndex_[q.nodes[i]]], self = index[lattice + o];
+                    const unsigned int node = index[nodeIndex_.get(q.nodes[i])], self = index[lattice + o];
                     data.addEdge(q.start ? self : node, q.start ? node : self, ob::PlannerDataEdge(),
                                  ob::Cost(q.costs[i]));
                 }

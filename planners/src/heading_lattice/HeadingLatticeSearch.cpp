@@ -38,10 +38,52 @@ namespace michi
             hReady_ = false;
         }
 
+        float HeadingLattice::groupToStart(std::uint32_t g) const
+        {
+            const double x = x0_ + static_cast<double>(g / rows_) * cellSize_;
+            const double y = y0_ + static_cast<double>(g % rows_) * cellSize_;
+            double d = INF;
+            for (std::size_t i = 0; i + 1 < hStarts_.size(); i += 2)
+            {
+                const double dx = x - hStarts_[i], dy = y - hStarts_[i + 1];
+                d = std::min(d, dx * dx + dy * dy);  // squared; std::hypot is slow and overflow cannot happen here
+            }
+            d = std::sqrt(d);
+            // rounded down a little, so that float rounding cannot make it exceed a path of steps
+            return d == INF ? 0.f : static_cast<float>(d * (1. - 1e-6));
+        }
+
+        void HeadingLattice::aimHeuristic()
+        {
+            std::vector<double> starts;
+            for (const auto &q : queries_)
+                if (q.start)
+                {
+                    const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
+                    starts.insert(starts.end(), {s->getX(), s->getY()});
+                }
+            if (starts == hStarts_)
+                return;
+            hStarts_ = starts;
+            // the open groups' priorities follow the new starts; closed groups keep their exact distances (an
+            // entry of a group reached twice is recomputed twice; the second is skipped as closed when popped)
+            for (auto &e : hOpen_)
+                e.first = hDist_[e.second] + groupToStart(e.second);
+            std::make_heap(hOpen_.begin(), hOpen_.end(),
+                           [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
+                           {
+                               return a.first > b.first || (a.first == b.first && a.second > b.second);
+                           });
+        }
+
         double HeadingLattice::groupDistance(std::uint32_t g, const ob::PlannerTerminationCondition &ptc, bool &stopped)
         {
-            // a resumable Dijkstra over the groups (8-connected, steps of c and c sqrt 2) from the groups joined to
-            // a goal, through groups with at least one free node (checked here, cached for the search)
+            // a resumable search over the groups (8-connected, steps of c and c sqrt 2) from the groups joined to
+            // a goal, through groups with at least one free node (checked here, cached for the search). It is A*
+            // directed at the starts (Silver's reverse resumable A*): the straight line to the start is a
+            // consistent heuristic, so a group is closed with its exact distance, and the groups near the line
+            // from the goal to the start (those the lattice search asks for) close long before the rest of the
+            // map would in a plain Dijkstra
             const unsigned int K = headings_;
             auto isFree = [&](std::uint32_t group)
             {
@@ -75,8 +117,8 @@ namespace michi
                 const auto top = hOpen_.back();
                 hOpen_.pop_back();
                 const std::uint32_t u = top.second;
-                if (hState_[u] == 2 || top.first > hDist_[u])
-                    continue;
+                if (hState_[u] == 2 || top.first > hDist_[u] + groupToStart(u))
+                    continue;  // closed, or a better way to it was found after this entry
                 hState_[u] = 2;
                 ++work_.heuristicGroups;
                 const long i = u / rows_, j = u % rows_;
@@ -96,7 +138,7 @@ namespace michi
                         {
                             hDist_[w] = d;
                             hState_[w] = 1;
-                            hOpen_.emplace_back(d, w);
+                            hOpen_.emplace_back(d + groupToStart(w), w);
                             std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
                         }
                     }
@@ -113,11 +155,15 @@ namespace michi
             double euclid = INF;
             // drives and the join to a goal cost at least the straight-line distance (turns: see build())
             for (std::size_t i = 0; i + 2 < hGoals_.size(); i += 3)
-                euclid = std::min(euclid, std::hypot(x - hGoals_[i], y - hGoals_[i + 1]));
+            {
+                const double dx = x - hGoals_[i], dy = y - hGoals_[i + 1];
+                euclid = std::min(euclid, dx * dx + dy * dy);  // squared (std::hypot is slow)
+            }
+            euclid = std::sqrt(euclid);
             const double grid = groupDistance(v / headings_, ptc, stopped);
             if (grid == INF)
                 return INF;
-            return std::max({0., euclidWeight_ * euclid, grid / OCTILE_EXCESS - cellSize_});
+            return heuristicWeight_ * std::max({0., euclidWeight_ * euclid, grid / OCTILE_EXCESS - cellSize_});
         }
 
         void HeadingLattice::rebuildGoalLinks()
@@ -140,9 +186,19 @@ namespace michi
                     goals.insert(goals.end(), {s->getX(), s->getY(), q.radius});
                 }
             if (hReady_ && goals == hGoals_)
-                return;  // kept: the same goals on the same map
+            {
+                aimHeuristic();  // kept: the same goals on the same map, maybe another start
+                return;
+            }
             resetHeuristic();
             hGoals_ = goals;
+            hStarts_.clear();
+            for (const auto &q : queries_)
+                if (q.start)
+                {
+                    const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
+                    hStarts_.insert(hStarts_.end(), {s->getX(), s->getY()});
+                }
             auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
             {
                 return a.first > b.first || (a.first == b.first && a.second > b.second);
@@ -156,7 +212,7 @@ namespace michi
                         {
                             hDist_[g] = 0.f;
                             hState_[g] = 1;
-                            hOpen_.emplace_back(0.f, g);
+                            hOpen_.emplace_back(groupToStart(g), g);
                             std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
                         }
                     }
@@ -243,15 +299,12 @@ namespace michi
             stopped = false;
             ++work_.searches;
             const std::size_t n = static_cast<std::size_t>(nodeCount_) + queries_.size();
-            if (g_.size() < n)
+            if (g_.size() < n || ++searchStamp_ == 0)
             {
-                g_.resize(n);
-                parent_.resize(n);
-                stamp_.resize(n, 0);
-            }
-            if (++searchStamp_ == 0)
-            {
-                std::fill(stamp_.begin(), stamp_.end(), 0);
+                // room for a few more query vertices, so that new queries on the kept lattice keep the pages
+                g_.assign(n + 64, 0.f);
+                parent_.assign(n + 64, 0);
+                stamp_.assign(n + 64, 0);
                 searchStamp_ = 1;
             }
             open_.clear();
@@ -327,18 +380,18 @@ namespace michi
                     const unsigned int k = u % K;
                     const double length = geometry_[k].length;
                     const std::int64_t next = driveNext(u);
-                    if (next >= 0 && (edgeState_[u] & 3) != INVALID && nodeValid(static_cast<Vertex>(next)))
+                    if (next >= 0 && (edgeState_.get(u) & 3) != INVALID && nodeValid(static_cast<Vertex>(next)))
                         relax(u, static_cast<Vertex>(next), length);
                     if (reversible_ && !stopped)
                     {
                         const std::int64_t prev = drivePrev(u);
-                        if (prev >= 0 && (edgeState_[prev] & 3) != INVALID && nodeValid(static_cast<Vertex>(prev)))
+                        if (prev >= 0 && (edgeState_.get(prev) & 3) != INVALID && nodeValid(static_cast<Vertex>(prev)))
                             relax(u, static_cast<Vertex>(prev), length);
                     }
                     const Vertex up = group * K + (k + 1) % K, down = group * K + (k + K - 1) % K;
-                    if (!stopped && (edgeState_[u] >> 2) != INVALID && nodeValid(up))
+                    if (!stopped && (edgeState_.get(u) >> 2) != INVALID && nodeValid(up))
                         relax(u, up, turnCost_);
-                    if (!stopped && (edgeState_[down] >> 2) != INVALID && nodeValid(down))
+                    if (!stopped && (edgeState_.get(down) >> 2) != INVALID && nodeValid(down))
                         relax(u, down, turnCost_);
                     auto it = std::lower_bound(goalLinks_.begin(), goalLinks_.end(),
                                                std::make_pair(u, std::make_pair(0u, 0u)));

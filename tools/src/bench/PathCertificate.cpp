@@ -21,13 +21,16 @@ namespace michi
             auto check = [&](const ompl::base::State *state, std::size_t segment, double t)
             {
                 ++result.statesChecked;
+                space->copyToReals(values, state);
                 if (!si->satisfiesBounds(state))
                 {
-                    result.reason =
-                        "segment " + std::to_string(segment) + " at " + std::to_string(t) + ": out of bounds";
+                    std::string at;
+                    for (double v : values)
+                        at += (at.empty() ? "" : ", ") + std::to_string(v);
+                    result.reason = "segment " + std::to_string(segment) + " at " + std::to_string(t) +
+                                    ": out of bounds (" + at + ")";
                     return false;
                 }
-                space->copyToReals(values, state);
                 const std::string hit = fcl.describeCollision(values.data());
                 if (!hit.empty())
                     result.reason = "segment " + std::to_string(segment) + " at " + std::to_string(t) + ": " + hit;

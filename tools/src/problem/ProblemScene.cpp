@@ -267,29 +267,59 @@ namespace michi
                 if (const YAML::Node map = scene["map"])
                 {
                     const std::string key = "scene.map";
-                    r.keys(map, key, {"pgm", "resolution", "origin", "height", "threshold"});
-                    const std::string pgm = r.path(r.require(map, "pgm", key), key + ".pgm");
-                    const double resolution = r.number(r.require(map, "resolution", key), key + ".resolution");
-                    if (!(resolution > 0.))
-                        r.fail(key + ".resolution", "expected a positive number (metres per cell)");
-                    Eigen::Vector2d origin = Eigen::Vector2d::Zero();
-                    if (map["origin"])
-                    {
-                        const auto o = r.coordinates(map["origin"], key + ".origin", 2);
-                        origin = Eigen::Vector2d(o[0], o[1]);
-                    }
+                    r.keys(map, key, {"pgm", "ros", "resolution", "origin", "height", "threshold"});
+                    if (!map.IsMap())
+                        r.fail(key, "expected a mapping (pgm or ros, ...)");
+                    if (static_cast<bool>(map["pgm"]) == static_cast<bool>(map["ros"]))
+                        r.fail(key, "expected exactly one of pgm (an image) and ros (a ROS map_server YAML file)");
                     const double height = r.number(map, "height", key, 1.);
-                    const double threshold = r.number(map, "threshold", key, 0.5);
-                    try
+                    if (map["ros"])
                     {
-                        problem.scene->add(validity::occupancyObstacles(pgm, resolution, origin, height, threshold));
+                        // the map file gives the image, resolution, origin and thresholds
+                        for (const char *k : {"resolution", "origin", "threshold"})
+                            if (map[k])
+                                r.fail(key + "." + k, "comes from the ROS map file (scene.map.ros); remove it here");
+                        const std::string file = r.path(map["ros"], key + ".ros");
+                        const RosMap ros = readRosMap(file, height);
+                        try
+                        {
+                            problem.scene->add(ros.obstacles);
+                        }
+                        catch (const std::exception &e)
+                        {
+                            r.fail(key + ".ros", e.what());
+                        }
+                        if (ros.yaw == 0.)
+                        {
+                            problem.grid.mapResolution = ros.resolution;  // grid checker cells aligned with the map's
+                            problem.grid.origin = ros.origin;
+                        }
                     }
-                    catch (const std::exception &e)
+                    else
                     {
-                        r.fail(key + ".pgm", e.what());
+                        const std::string pgm = r.path(map["pgm"], key + ".pgm");
+                        const double resolution = r.number(r.require(map, "resolution", key), key + ".resolution");
+                        if (!(resolution > 0.))
+                            r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                        Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+                        if (map["origin"])
+                        {
+                            const auto o = r.coordinates(map["origin"], key + ".origin", 2);
+                            origin = Eigen::Vector2d(o[0], o[1]);
+                        }
+                        const double threshold = r.number(map, "threshold", key, 0.5);
+                        try
+                        {
+                            problem.scene->add(
+                                validity::occupancyObstacles(pgm, resolution, origin, height, threshold));
+                        }
+                        catch (const std::exception &e)
+                        {
+                            r.fail(key + ".pgm", e.what());
+                        }
+                        problem.grid.mapResolution = resolution;  // grid checker cells aligned with the map's
+                        problem.grid.origin = origin;
                     }
-                    problem.grid.mapResolution = resolution;  // grid checker cells aligned with the map's
-                    problem.grid.origin = origin;
                 }
                 if (const YAML::Node moveit = scene["moveit"])
                     readMoveItSceneKey(r, moveit, problem);

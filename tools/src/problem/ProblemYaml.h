@@ -101,6 +101,22 @@ namespace michi
 
             void readScene(const Reader &r, const YAML::Node &scene, Problem &problem, GridMapInfo &gridMap);
 
+            /** A ROS map_server map (RosMap.cpp): its YAML file's settings and the obstacles of its image. */
+            struct RosMap
+            {
+                std::string image;  ///< the image's path
+                double resolution{0.};
+                Eigen::Vector2d origin{Eigen::Vector2d::Zero()};  ///< lower-left corner of the image
+                double yaw{0.};                                   ///< the map's turn about the origin
+                int width{0}, rows{0};
+                std::size_t occupiedCells{0};  ///< occupied and unknown pixels (both are obstacles)
+                std::vector<validity::Obstacle> obstacles;
+            };
+
+            /** Read a ROS map_server YAML file and its image; \e height: the boxes' height. Throws ProblemError
+                naming the map file and its key. */
+            RosMap readRosMap(const std::string &file, double height);
+
             // ---------------------------------------------------------------- queries (ProblemQueries.cpp)
 
             /** Joint limits (ARM) or bounds (SE2) of a configuration; \e indexKeys: name value i "key[i]". */

@@ -7,6 +7,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -118,8 +119,17 @@ namespace michi
                     ++visited;
                     const double t = piece.t0 + std::min(1., u) * (piece.t1 - piece.t0);
                     const int k = static_cast<int>(((idx[2] % table.headings()) + table.headings()) % table.headings());
-                    if (idx[0] < 0 || idx[1] < 0 || idx[0] >= g.width || idx[1] >= g.height ||
-                        !table.valid(static_cast<int>(idx[0]), static_cast<int>(idx[1]), k))
+                    bool free = idx[0] >= 0 && idx[1] >= 0 && idx[0] < g.width && idx[1] < g.height;
+                    if (free && !table.valid(static_cast<int>(idx[0]), static_cast<int>(idx[1]), k))
+                    {
+                        // the entry holds a colliding pose, maybe not this piece's: check the piece's poses in it
+                        double uNext = 1.;
+                        for (int a = 0; a < 3; ++a)
+                            if (idx[a] != end[a])
+                                uNext = std::min(uNext, tMax[a]);
+                        free = checker_->exact() && exactSpan(piece, std::min(1., u), uNext);
+                    }
+                    if (!free)
                     {
                         visited_.fetch_add(visited, std::memory_order_relaxed);
                         if (contact)
@@ -144,6 +154,30 @@ namespace michi
                 }
             }
             visited_.fetch_add(visited, std::memory_order_relaxed);
+            return true;
+        }
+
+        bool GridMotionValidator::exactSpan(const Piece &piece, double ua, double ub) const
+        {
+            // no footprint point moves farther than L over the span (position change plus circumradius times the
+            // turn); poses n + 1 equally spaced hold every pose between within L / (2 n) of one of them, so each
+            // is tested with the footprint grown by that
+            const HeadingTable &table = checker_->table();
+            const double span = std::max(0., ub - ua);
+            const double length = span * (std::hypot(piece.x1 - piece.x0, piece.y1 - piece.y0) +
+                                          table.circumradius() * std::abs(piece.yaw1 - piece.yaw0));
+            const double spacing = EXACT_SPACING * table.grid().resolution;
+            const int n = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+            if (n > 100000)
+                return false;
+            const double margin = length / (2. * n);
+            for (int i = 0; i <= n; ++i)
+            {
+                const double u = ua + span * i / n;
+                if (!table.freePose(piece.x0 + u * (piece.x1 - piece.x0), piece.y0 + u * (piece.y1 - piece.y0),
+                                    piece.yaw0 + u * (piece.yaw1 - piece.yaw0), margin))
+                    return false;
+            }
             return true;
         }
 

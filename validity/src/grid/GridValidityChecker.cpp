@@ -136,6 +136,7 @@ namespace michi
                                             std::to_string(j1 - j0) +
                                             " cells is too large; set collision.grid.resolution");
             tolerance_ = 1e-6 * res;
+            exact_ = settings.mapResolution > 0.;
             const Eigen::Vector2d origin(o.x() + i0 * res, o.y() + j0 * res);
             OccupancyGrid grid =
                 rasterizeScene(*scene_, res, origin, static_cast<int>(i1 - i0), static_cast<int>(j1 - j0), tolerance_);

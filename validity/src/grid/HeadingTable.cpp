@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -90,8 +91,36 @@ namespace michi
             for (const auto &p : footprint)
                 circumradius_ = std::max(circumradius_, p.norm());
             makeStamps(footprint, tolerance);
+            tolerance_ = tolerance;
+            // a convex footprint is one piece (its hull, with as many corners); any other is its triangles
+            const auto hull = convexHull(footprint);
+            if (hull.size() == footprint.size() && hull.size() <= 16)
+                pieces_.push_back(hull);
+            else
+                for (const auto &t : triangulatePolygon(footprint))
+                    pieces_.push_back({footprint[t[0]], footprint[t[1]], footprint[t[2]]});
+            for (const auto &piece : pieces_)
+            {
+                // a convex piece holds the origin when the origin is on the inner side of (or on) every edge
+                bool inside = true;
+                for (std::size_t e = 0; e < piece.size() && inside; ++e)
+                {
+                    const Eigen::Vector2d &a = piece[e], &b = piece[(e + 1) % piece.size()];
+                    inside = cross(a, b, Eigen::Vector2d::Zero()) >= 0.;
+                }
+                originInside_ = originInside_ || inside;
+            }
             wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
+            occupiedBits_.assign(wordsPerRow_ * grid_.height, 0);
+            for (int j = 0; j < grid_.height; ++j)
+                for (int i = 0; i < grid_.width; ++i)
+                    if (grid_.cells[static_cast<std::size_t>(j) * grid_.width + i])
+                        occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] |= std::uint64_t{1}
+                                                                                                << (i & 63);
             bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
+            makeCoreStamps();
+            if (!coreStamps_.empty())
+                blockedBits_.assign(bits_.size(), 0);
             blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
             const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
             blockAllValid_.assign(blocks / 64 + 1, 0);
@@ -142,6 +171,149 @@ namespace michi
                     blockAllInvalid_[b >> 6] =
                         allInvalid ? (blockAllInvalid_[b >> 6] | bit) : (blockAllInvalid_[b >> 6] & ~bit);
                 }
+        }
+
+        bool HeadingTable::freePose(double x, double y, double yaw, double margin) const
+        {
+            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(yaw) || !(margin >= 0.))
+                return false;
+            // in cell units: cell (i, j) is the square [i, i + 1] x [j, j + 1]; growing the footprint by m is
+            // growing each cell by m, so a piece meets the grown cell (i, j) when its x range over the rows
+            // band [j - m, j + 1 + m] meets [i - m, i + 1 + m] (exact for a convex piece)
+            const double inv = inverseResolution_;
+            // most poses the table refuses lie inside an obstacle: their cell is occupied, and the footprint,
+            // holding the origin, meets it (one bit, before any trigonometry)
+            if (originInside_)
+            {
+                const double fx = (x - grid_.origin.x()) * inv, fy = (y - grid_.origin.y()) * inv;
+                if (fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height &&
+                    occupied(static_cast<int>(fx), static_cast<int>(fy)))
+                    return false;
+            }
+            if (certainlyBlocked(x, y, yaw))
+                return false;
+            const double m = (margin + tolerance_) * inv + 1e-9;
+            const double c = std::cos(yaw), s = std::sin(yaw);
+            const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
+            double u[16], v[16];
+            for (const auto &piece : pieces_)
+            {
+                const std::size_t n = std::min<std::size_t>(piece.size(), 16);
+                double vmin = std::numeric_limits<double>::infinity(), vmax = -vmin;
+                double umin = vmin, umax = vmax;
+                for (std::size_t p = 0; p < n; ++p)
+                {
+                    u[p] = ox + (c * piece[p].x() - s * piece[p].y()) * inv;
+                    v[p] = oy + (s * piece[p].x() + c * piece[p].y()) * inv;
+                    vmin = std::min(vmin, v[p]);
+                    vmax = std::max(vmax, v[p]);
+                    umin = std::min(umin, u[p]);
+                    umax = std::max(umax, u[p]);
+                }
+                // cells beyond the grid may hold obstacles the grid does not know: not free
+                if (umin - m < 0. || vmin - m < 0. || umax + m >= grid_.width || vmax + m >= grid_.height)
+                    return false;
+                const int j0 = static_cast<int>(std::ceil(vmin - m - 1.)), j1 = static_cast<int>(std::floor(vmax + m));
+                for (int j = std::max(0, j0); j <= j1; ++j)
+                {
+                    const double lo = j - m, hi = j + 1. + m;
+                    double xa = std::numeric_limits<double>::infinity(), xb = -xa;
+                    for (std::size_t p = 0; p < n; ++p)
+                    {
+                        if (v[p] >= lo && v[p] <= hi)
+                        {
+                            xa = std::min(xa, u[p]);
+                            xb = std::max(xb, u[p]);
+                        }
+                        const std::size_t q = (p + 1) % n;
+                        for (double y0 : {lo, hi})
+                            if ((v[p] - y0) * (v[q] - y0) < 0.)
+                            {
+                                const double xc = u[p] + (u[q] - u[p]) * (y0 - v[p]) / (v[q] - v[p]);
+                                xa = std::min(xa, xc);
+                                xb = std::max(xb, xc);
+                            }
+                    }
+                    if (!(xa <= xb))
+                        continue;
+                    const int i0 = std::max(0, static_cast<int>(std::ceil(xa - m - 1.)));
+                    const int i1 = std::min(grid_.width - 1, static_cast<int>(std::floor(xb + m)));
+                    const std::uint64_t *row = occupiedBits_.data() + static_cast<std::size_t>(j) * wordsPerRow_;
+                    for (int w = i0 >> 6; w <= i1 >> 6; ++w)
+                    {
+                        std::uint64_t mask = ~std::uint64_t{0};
+                        if (w == i0 >> 6)
+                            mask &= ~std::uint64_t{0} << (i0 & 63);
+                        if (w == i1 >> 6 && (i1 & 63) != 63)
+                            mask &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
+                        if (row[w] & mask)
+                            return false;
+                    }
+                }
+            }
+            return true;
+        }
+
+        bool HeadingTable::certainlyBlocked(double x, double y, double yaw) const
+        {
+            if (blockedBits_.empty())
+                return false;
+            const double fx = (x - grid_.origin.x()) * inverseResolution_;
+            const double fy = (y - grid_.origin.y()) * inverseResolution_;
+            if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height))
+                return false;
+            const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+            const int k = headingBin(yaw);
+            const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+            return (blockedBits_[word] >> (i & 63)) & 1u;
+        }
+
+        void HeadingTable::makeCoreStamps()
+        {
+            coreStamps_.clear();
+            if (pieces_.size() != 1)
+                return;  // not convex: no core (freePose decides)
+            const std::vector<Eigen::Vector2d> &hull = pieces_[0];
+            const double r = grid_.resolution;
+            // the same yaw samples as makeStamps; every yaw of the bin is within half a spacing of one, where a
+            // point of the footprint moves at most sweep
+            const int samples = std::max(1, static_cast<int>(std::ceil(step_ * circumradius_ / (0.1 * r))));
+            const double sweep = circumradius_ * (step_ / samples) / 2. + tolerance_ + 1e-9 * (1. + circumradius_);
+            // entry (i, j) holds positions u in [0, r)^2 of its cell; cell (i + dx, j + dy) minus u spans the
+            // square [(dx - 1) r, (dx + 1) r] x [(dy - 1) r, (dy + 1) r]: inside the footprint (grown by sweep) at
+            // every sample yaw, the footprint covers that cell whole from every pose of the entry
+            const int n = static_cast<int>(std::ceil(circumradius_ / r)) + 1;
+            coreStamps_.resize(headings_);
+            for (int k = 0; k < headings_; ++k)
+            {
+                auto &stamp = coreStamps_[k];
+                for (int dy = -n; dy <= n; ++dy)
+                    for (int dx = -n; dx <= n; ++dx)
+                    {
+                        bool inside = true;
+                        for (int s = 0; s < samples && inside; ++s)
+                        {
+                            const double yaw = k * step_ - step_ / 2. + (s + 0.5) * step_ / samples;
+                            const Eigen::Rotation2Dd back(-yaw);  // the square in the footprint's frame
+                            for (int c = 0; c < 4 && inside; ++c)
+                            {
+                                const Eigen::Vector2d corner(
+                                    (dx + ((c & 1) ? 1. : -1.)) * r + ((c & 1) ? sweep : -sweep),
+                                    (dy + ((c & 2) ? 1. : -1.)) * r + ((c & 2) ? sweep : -sweep));
+                                const Eigen::Vector2d q = back * corner;
+                                // strictly inside every edge of the counter-clockwise hull
+                                for (std::size_t e = 0; e < hull.size() && inside; ++e)
+                                    inside = cross(hull[e], hull[(e + 1) % hull.size()], q) > 0.;
+                            }
+                        }
+                        if (!inside)
+                            continue;
+                        if (!stamp.empty() && stamp.back().dy == dy && stamp.back().x1 == dx - 1)
+                            stamp.back().x1 = dx;
+                        else
+                            stamp.push_back(GridSpan{dy, dx, dx});
+                    }
+            }
         }
 
         int HeadingTable::headingBin(double yaw) const
@@ -276,6 +448,36 @@ namespace michi
                         else
                             row[i >> 6] |= bit;
                     }
+                    if (blockedBits_.empty())
+                        continue;
+                    // the same with the core stamp: an occupied cell in it blocks every pose of the entry
+                    std::fill(blocked.begin(), blocked.end(), 0);
+                    for (const auto &span : coreStamps_[k])
+                    {
+                        const int jj = j + span.dy;
+                        if (jj < r0 || jj > r1)
+                            continue;
+                        const std::int32_t *p = prefix.data() + static_cast<std::size_t>(jj - r0) * (w + 1);
+                        if (p[w] == 0)
+                            continue;
+                        for (int t = 0; t < n; ++t)
+                        {
+                            const int i = box.i0 + t;
+                            const int a = std::min(w, std::max(0, i + span.x0));
+                            const int b = std::min(w, std::max(0, i + span.x1 + 1));
+                            blocked[t] |= static_cast<std::uint8_t>(p[b] > p[a]);
+                        }
+                    }
+                    std::uint64_t *core = blockedBits_.data() + (static_cast<std::size_t>(k) * h + j) * wordsPerRow_;
+                    for (int t = 0; t < n; ++t)
+                    {
+                        const int i = box.i0 + t;
+                        const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+                        if (blocked[t])
+                            core[i >> 6] |= bit;
+                        else
+                            core[i >> 6] &= ~bit;
+                    }
                 }
             summarise(box);
         }
@@ -305,6 +507,9 @@ namespace michi
                 if ((cell != 0) == occupied)
                     continue;
                 cell = occupied ? 1 : 0;
+                std::uint64_t &bits = occupiedBits_[static_cast<std::size_t>(c.second) * wordsPerRow_ + (c.first >> 6)];
+                const std::uint64_t bit = std::uint64_t{1} << (c.first & 63);
+                bits = occupied ? (bits | bit) : (bits & ~bit);
                 changed.i0 = std::min(changed.i0, c.first);
                 changed.i1 = std::max(changed.i1, c.first);
                 changed.j0 = std::min(changed.j0, c.second);
@@ -349,7 +554,7 @@ namespace michi
         std::size_t HeadingTable::bytes() const
         {
             return (bits_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cellAllValid_.size() +
-                    cellAllInvalid_.size()) *
+                    cellAllInvalid_.size() + occupiedBits_.size() + blockedBits_.size()) *
                        sizeof(std::uint64_t) +
                    grid_.cells.size();
         }

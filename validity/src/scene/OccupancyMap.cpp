@@ -1,7 +1,12 @@
+#include <michi/validity/scene/OccupancyImage.h>
 #include <michi/validity/scene/Scene.h>
 #include <michi/validity/Limits.h>
 
+#include <png.h>
+
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 
 #include <fstream>
@@ -54,95 +59,190 @@ namespace michi
             }
         }  // namespace
 
-        std::vector<Obstacle> occupancyObstacles(const std::string &pgmPath, double resolution,
-                                                 const Eigen::Vector2d &origin, double height, double threshold)
+        namespace
         {
-            if (!(resolution > 0.))
-                throw std::invalid_argument(pgmPath + ": resolution must be positive");
+            GreyImage readPgm(const std::string &pgmPath, std::uint64_t fileSize)
+            {
+                std::ifstream in(pgmPath, std::ios::binary);
+                if (!in)
+                    throw std::runtime_error(pgmPath + ": cannot open map image");
+                const std::string magic = headerToken(in);
+                if (magic != "P5" && magic != "P2")
+                    throw std::runtime_error(pgmPath + ": not a PGM image (magic '" + magic +
+                                             "', expected P2 or P5) nor a PNG image");
+                const int width = headerInt(in, pgmPath, "width");
+                const int rows = headerInt(in, pgmPath, "height");
+                const int maxValue = headerInt(in, pgmPath, "maximum grey value");
+                if (maxValue > 65535)
+                    throw std::runtime_error(pgmPath + ": maximum grey value above 65535");
+                const std::uint64_t cells = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(rows);
+                if (cells > MAX_MAP_CELLS)
+                    throw std::runtime_error(pgmPath + ": PGM of " + std::to_string(width) + " x " +
+                                             std::to_string(rows) + " cells is above the limit of " +
+                                             std::to_string(MAX_MAP_CELLS) + " cells");
+                // the header must agree with the data before anything is allocated: a 21-byte file claiming
+                // 50000 x 50000 cells must not allocate 10 GB
+                const int bytes = maxValue < 256 ? 1 : 2;
+                const auto dataStart = static_cast<std::uint64_t>(in.tellg());
+                const std::uint64_t available = fileSize > dataStart ? fileSize - dataStart : 0;
+                const std::uint64_t needed = magic == "P5" ? cells * bytes : 2 * cells - 1;  // P2: digit + separator
+                if (available < needed)
+                    throw std::runtime_error(pgmPath + ": image data is truncated (header says " +
+                                             std::to_string(width) + " x " + std::to_string(rows) +
+                                             " cells, the file holds " + std::to_string(available) + " bytes of data)");
+                GreyImage image;
+                image.width = width;
+                image.rows = rows;
+                image.maxValue = maxValue;
+                std::vector<int> &pixels = image.grey;
+                pixels.resize(cells);
+                if (magic == "P5")
+                {
+                    std::vector<unsigned char> raw(pixels.size() * bytes);
+                    in.read(reinterpret_cast<char *>(raw.data()), static_cast<std::streamsize>(raw.size()));
+                    if (in.gcount() != static_cast<std::streamsize>(raw.size()))
+                        throw std::runtime_error(pgmPath + ": image data is truncated");
+                    for (std::size_t i = 0; i < pixels.size(); ++i)
+                        pixels[i] = bytes == 1 ? raw[i] : (raw[2 * i] << 8) | raw[2 * i + 1];
+                    if (in.peek() != std::char_traits<char>::eof())
+                        throw std::runtime_error(pgmPath + ": holds more data than its header's " +
+                                                 std::to_string(width) + " x " + std::to_string(rows) + " cells");
+                }
+                else
+                {
+                    for (auto &p : pixels)
+                        if (!(in >> p) || p < 0 || p > maxValue)
+                            throw std::runtime_error(pgmPath + ": image data is truncated or has a value outside 0.." +
+                                                     std::to_string(maxValue));
+                    std::string extra;
+                    if (in >> extra)
+                        throw std::runtime_error(pgmPath + ": holds more data than its header's " +
+                                                 std::to_string(width) + " x " + std::to_string(rows) + " cells");
+                }
+                return image;
+            }
+
+            GreyImage readPng(const std::string &path)
+            {
+                // libpng's simplified API, as 8-bit RGBA: a grey image gives R = G = B, an image without alpha
+                // gives alpha 255; ROS map_server then averages the colour channels, as done here
+                png_image png;
+                std::memset(&png, 0, sizeof(png));
+                png.version = PNG_IMAGE_VERSION;
+                if (!png_image_begin_read_from_file(&png, path.c_str()))
+                    throw std::runtime_error(path + ": not a readable PNG image (" + png.message + ")");
+                const std::uint64_t cells = static_cast<std::uint64_t>(png.width) * png.height;
+                if (png.width == 0 || png.height == 0 || cells > MAX_MAP_CELLS || png.width > 1u << 30)
+                {
+                    png_image_free(&png);
+                    throw std::runtime_error(path + ": PNG of " + std::to_string(png.width) + " x " +
+                                             std::to_string(png.height) + " cells is empty or above the limit of " +
+                                             std::to_string(MAX_MAP_CELLS) + " cells");
+                }
+                const bool hasAlpha = (png.format & PNG_FORMAT_FLAG_ALPHA) != 0;
+                png.format = PNG_FORMAT_RGBA;
+                std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(png));
+                if (!png_image_finish_read(&png, nullptr, rgba.data(), 0, nullptr))
+                {
+                    const std::string message = png.message;
+                    png_image_free(&png);
+                    throw std::runtime_error(path + ": cannot decode the PNG image (" + message + ")");
+                }
+                GreyImage image;
+                image.width = static_cast<int>(png.width);
+                image.rows = static_cast<int>(png.height);
+                image.maxValue = 255;
+                image.grey.resize(cells);
+                if (hasAlpha)
+                    image.alpha.resize(cells);
+                for (std::size_t i = 0; i < cells; ++i)
+                {
+                    const std::uint8_t *p = rgba.data() + 4 * i;
+                    image.grey[i] = (p[0] + p[1] + p[2]) / 3;
+                    if (hasAlpha)
+                        image.alpha[i] = p[3];
+                }
+                return image;
+            }
+        }  // namespace
+
+        GreyImage readGreyImage(const std::string &path)
+        {
             // a directory or a device (/dev/zero) would read forever or fail with a raw library message
             std::error_code ec;
-            if (!std::filesystem::is_regular_file(pgmPath, ec))
-                throw std::runtime_error(pgmPath + ": not a regular file");
-            const auto fileSize = std::filesystem::file_size(pgmPath, ec);
+            if (!std::filesystem::is_regular_file(path, ec))
+                throw std::runtime_error(path + ": not a regular file");
+            const auto fileSize = std::filesystem::file_size(path, ec);
             if (ec)
-                throw std::runtime_error(pgmPath + ": cannot read the file size: " + ec.message());
-            std::ifstream in(pgmPath, std::ios::binary);
-            if (!in)
-                throw std::runtime_error(pgmPath + ": cannot open map image");
-            const std::string magic = headerToken(in);
-            if (magic != "P5" && magic != "P2")
-                throw std::runtime_error(pgmPath + ": not a PGM image (magic '" + magic + "', expected P2 or P5)");
-            const int width = headerInt(in, pgmPath, "width");
-            const int rows = headerInt(in, pgmPath, "height");
-            const int maxValue = headerInt(in, pgmPath, "maximum grey value");
-            if (maxValue > 65535)
-                throw std::runtime_error(pgmPath + ": maximum grey value above 65535");
-            const std::uint64_t cells = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(rows);
-            if (cells > MAX_MAP_CELLS)
-                throw std::runtime_error(pgmPath + ": PGM of " + std::to_string(width) + " x " + std::to_string(rows) +
-                                         " cells is above the limit of " + std::to_string(MAX_MAP_CELLS) + " cells");
-            // the header must agree with the data before anything is allocated: a 21-byte file claiming
-            // 50000 x 50000 cells must not allocate 10 GB
-            const int bytes = maxValue < 256 ? 1 : 2;
-            const auto dataStart = static_cast<std::uint64_t>(in.tellg());
-            const std::uint64_t available = fileSize > dataStart ? fileSize - dataStart : 0;
-            const std::uint64_t needed = magic == "P5" ? cells * bytes : 2 * cells - 1;  // P2: digit + separator
-            if (available < needed)
-                throw std::runtime_error(pgmPath + ": image data is truncated (header says " + std::to_string(width) +
-                                         " x " + std::to_string(rows) + " cells, the file holds " +
-                                         std::to_string(available) + " bytes of data)");
-            std::vector<int> pixels(cells);
-            if (magic == "P5")
+                throw std::runtime_error(path + ": cannot read the file size: " + ec.message());
+            char signature[8] = {0};
             {
-                std::vector<unsigned char> raw(pixels.size() * bytes);
-                in.read(reinterpret_cast<char *>(raw.data()), static_cast<std::streamsize>(raw.size()));
-                if (in.gcount() != static_cast<std::streamsize>(raw.size()))
-                    throw std::runtime_error(pgmPath + ": image data is truncated");
-                for (std::size_t i = 0; i < pixels.size(); ++i)
-                    pixels[i] = bytes == 1 ? raw[i] : (raw[2 * i] << 8) | raw[2 * i + 1];
-                if (in.peek() != std::char_traits<char>::eof())
-                    throw std::runtime_error(pgmPath + ": holds more data than its header's " + std::to_string(width) +
-                                             " x " + std::to_string(rows) + " cells");
+                std::ifstream in(path, std::ios::binary);
+                if (!in)
+                    throw std::runtime_error(path + ": cannot open map image");
+                in.read(signature, 8);
             }
-            else
-            {
-                for (auto &p : pixels)
-                    if (!(in >> p) || p < 0 || p > maxValue)
-                        throw std::runtime_error(pgmPath + ": image data is truncated or has a value outside 0.." +
-                                                 std::to_string(maxValue));
-                std::string extra;
-                if (in >> extra)
-                    throw std::runtime_error(pgmPath + ": holds more data than its header's " + std::to_string(width) +
-                                             " x " + std::to_string(rows) + " cells");
-            }
-            if (!isGeometryValue(width * resolution) || !isGeometryValue(rows * resolution) ||
-                !isGeometryValue(origin.x()) || !isGeometryValue(origin.y()) || !isGeometryValue(height))
-                throw std::invalid_argument(pgmPath + ": the map's extent, origin or height is out of range");
+            static const unsigned char PNG_SIGNATURE[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+            if (fileSize >= 8 && std::memcmp(signature, PNG_SIGNATURE, 8) == 0)
+                return readPng(path);
+            return readPgm(path, fileSize);
+        }
 
+        std::vector<Obstacle> cellObstacles(const std::vector<std::uint8_t> &occupied, int width, int rows,
+                                            double resolution, const Eigen::Vector2d &origin, double height, double yaw,
+                                            const std::string &what)
+        {
+            if (!(resolution > 0.))
+                throw std::invalid_argument(what + ": resolution must be positive");
+            if (occupied.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(rows))
+                throw std::invalid_argument(what + ": occupancy does not match the image size");
+            if (!isGeometryValue(width * resolution) || !isGeometryValue(rows * resolution) ||
+                !isGeometryValue(origin.x()) || !isGeometryValue(origin.y()) || !isGeometryValue(height) ||
+                !std::isfinite(yaw))
+                throw std::invalid_argument(what + ": the map's extent, origin or height is out of range");
+            // the map's frame: origin at its lower-left corner, turned by yaw (ROS map_server's origin)
+            Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+            frame.translation() = Eigen::Vector3d(origin.x(), origin.y(), 0.);
+            frame.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
             std::vector<Obstacle> obstacles;
             for (int r = 0; r < rows; ++r)
             {
-                const double y = origin.y() + (rows - 1 - r + 0.5) * resolution;  // image row 0 is the top
+                const double y = (rows - 1 - r + 0.5) * resolution;  // image row 0 is the top
                 int c = 0;
                 while (c < width)
                 {
-                    if (pixels[static_cast<std::size_t>(r) * width + c] >= threshold * maxValue)
+                    if (!occupied[static_cast<std::size_t>(r) * width + c])
                     {
                         ++c;
                         continue;
                     }
                     const int start = c;
-                    while (c < width && pixels[static_cast<std::size_t>(r) * width + c] < threshold * maxValue)
+                    while (c < width && occupied[static_cast<std::size_t>(r) * width + c])
                         ++c;
                     Obstacle o;
                     o.name = "cells_r" + std::to_string(r) + "_c" + std::to_string(start);
                     o.shape = Shape::box(Eigen::Vector3d((c - start) * resolution, resolution, height));
-                    o.pose.translation() =
-                        Eigen::Vector3d(origin.x() + 0.5 * (start + c) * resolution, y, 0.5 * height);
+                    Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
+                    local.translation() = Eigen::Vector3d(0.5 * (start + c) * resolution, y, 0.5 * height);
+                    o.pose = yaw == 0. ? local : frame * local;
+                    if (yaw == 0.)
+                        o.pose.translation() += Eigen::Vector3d(origin.x(), origin.y(), 0.);
                     obstacles.push_back(std::move(o));
                 }
             }
             return obstacles;
+        }
+
+        std::vector<Obstacle> occupancyObstacles(const std::string &pgmPath, double resolution,
+                                                 const Eigen::Vector2d &origin, double height, double threshold)
+        {
+            if (!(resolution > 0.))
+                throw std::invalid_argument(pgmPath + ": resolution must be positive");
+            const GreyImage image = readGreyImage(pgmPath);
+            std::vector<std::uint8_t> occupied(image.grey.size());
+            for (std::size_t i = 0; i < occupied.size(); ++i)
+                occupied[i] = image.grey[i] < threshold * image.maxValue ? 1 : 0;
+            return cellObstacles(occupied, image.width, image.rows, resolution, origin, height, 0., pgmPath);
         }
     }  // namespace validity
 }  // namespace michi

@@ -1,6 +1,8 @@
 #ifndef MICHI_PLANNERS_HEADING_LATTICE_
 #define MICHI_PLANNERS_HEADING_LATTICE_
 
+#include <michi/planners/heading_lattice/PagedArray.h>
+
 #include <ompl/base/Planner.h>
 #include <ompl/geometric/PathGeometric.h>
 
@@ -34,9 +36,11 @@ namespace michi
            (group * headings + k) into flat arrays holding its validity (checked with si->isValid the first time
            the search or the heuristic needs it, then cached) and the state of its drive and turn edges. A* runs
            on that graph with an admissible heuristic: the larger of the straight-line distance to the goal and a
-           2-D Dijkstra over the groups with a free node (resumable, from the goal's groups, kept per goal and
-           map), divided by the most an 8-connected path exceeds a straight drive. Edges are checked lazily
-           (LazyPRM's way): a path found by A* is checked edge by edge with the space's motion validator, the
+           2-D search over the groups with a free node (reverse resumable A*: from the goal's groups, directed at
+           the start, kept per goal and map), divided by the most an 8-connected path exceeds a straight drive;
+           heuristic_weight > 1 makes it weighted A* (fewer expansions, a path at most that factor longer).
+           Node and search arrays are paged (PagedArray): memory follows what the search touched. Edges are checked
+           lazily (LazyPRM's way): a path found by A* is checked edge by edge with the space's motion validator, the
            results cached; on a colliding edge (or turn edges of a run whose corrected motions collide) A* runs
            again. The lattice is kept across queries (new start and goal, new problem definition) as long as the
            map is the same: the same validity checker, motion validator and state space settings. When the
@@ -84,6 +88,13 @@ namespace michi
             double getConnectionCells() const
             {
                 return connectionCells_;
+            }
+            /** \brief A* multiplies its admissible heuristic by this (>= 1): weighted A* (Pohl), a path at most
+                this many times the lattice's shortest, found with fewer expansions. 1 (default): the shortest. */
+            void setHeuristicWeight(double weight);
+            double getHeuristicWeight() const
+            {
+                return heuristicWeight_;
             }
             /** \brief A node of the lattice. */
             struct Node
@@ -251,6 +262,7 @@ namespace michi
             double cellSize_{0.25};
             double angleStep_{0.39269908169872414};  // pi / 8
             double connectionCells_{2.};
+            double heuristicWeight_{1.};
 
             unsigned int headings_{0};
             double x0_{0.}, y0_{0.};
@@ -277,12 +289,12 @@ namespace michi
             std::vector<ObstacleBox> boxes_;  ///< the scene's obstacles when the lattice was last made current
 
             // flat per-node arrays (index: node id)
-            std::vector<std::uint8_t> nodeState_;  ///< 0 unchecked, 1 free, 2 blocked, 3 stale (check again)
-            std::vector<std::uint8_t> edgeState_;  ///< bits 0-1: drive to driveNext(), bits 2-3: turn to heading k+1
-            // A* scratch (index: vertex), reset by a stamp
-            std::vector<float> g_;
-            std::vector<std::uint32_t> parent_;
-            std::vector<std::uint32_t> stamp_;
+            PagedArray<std::uint8_t> nodeState_;  ///< 0 unchecked, 1 free, 2 blocked, 3 stale (check again)
+            PagedArray<std::uint8_t> edgeState_;  ///< bits 0-1: drive to driveNext(), bits 2-3: turn to heading k+1
+            // A* scratch (index: vertex), reset by a stamp; paged like the node arrays (a search touches few ids)
+            PagedArray<float> g_;
+            PagedArray<std::uint32_t> parent_;
+            PagedArray<std::uint32_t> stamp_;
             std::uint32_t searchStamp_{0};
             // the 2-D heuristic over groups (index: group), resumable Dijkstra from the goals
             std::vector<float> hDist_;
@@ -290,7 +302,13 @@ namespace michi
             std::vector<std::uint8_t> groupFree_;                 ///< 0 unknown, 1 some node free, 2 none
             std::vector<std::pair<float, std::uint32_t>> hOpen_;  ///< heap (min first)
             bool hReady_{false};
-            std::vector<double> hGoals_;  ///< goal positions the heuristic was made for (x, y pairs)
+            std::vector<double> hGoals_;   ///< goal positions the heuristic was made for (x, y pairs)
+            std::vector<double> hStarts_;  ///< start positions the 2-D search is directed at (x, y pairs)
+            /** \brief Straight-line distance from group \e g's point to the nearest start (the 2-D search's A*
+                heuristic). */
+            float groupToStart(std::uint32_t g) const;
+            /** \brief Direct the open 2-D search at the current starts (its closed groups stay exact). */
+            void aimHeuristic();
 
             std::vector<QueryVertex> queries_;
             /** \brief For each lattice node joined to a goal: (query index, connection index). */
@@ -305,7 +323,7 @@ namespace michi
             std::vector<DirectEdge> direct_;
             mutable std::vector<ompl::base::State *> exportStates_;
             mutable std::vector<Node> nodeList_;
-            mutable std::vector<std::uint32_t> nodeIndex_;  ///< node id -> index in nodeList_ (or ~0u)
+            mutable PagedArray<std::uint32_t> nodeIndex_;  ///< node id -> index in nodeList_ (or ~0u)
             mutable bool nodeListDirty_{true};
             std::vector<std::vector<double>> rawPath_;
             double lastBuildTime_{0.};

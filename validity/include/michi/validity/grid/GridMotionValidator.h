@@ -19,8 +19,10 @@ namespace michi
             SE2StateSpace (x, y and yaw linear, yaw the short way round) or of state_spaces::TurnMoveTurnStateSpace
             (turn in place, drive straight, turn in place: three such pieces) is a set of straight segments in
             (x, y, yaw); every table entry (cell x heading bin) that a segment passes through is visited
-            (Amanatides and Woo's voxel walk) and the motion is valid when all of them are. As each entry is free
-            for all its poses, a valid motion is free along its whole length (conservative like the table).
+            (Amanatides and Woo's voxel walk). A valid entry is free for all its poses; in an invalid one (near
+            obstacles) the segment's own poses are tested exactly (HeadingTable::freePose) at spacings of at most
+            a quarter cell of footprint motion, the footprint grown by half the spacing, so a valid motion is free
+            along its whole length and one-cell doors the table closes stay open to the motions that fit.
             Thread-safe. */
         class GridMotionValidator : public ompl::base::MotionValidator
         {
@@ -51,6 +53,11 @@ namespace michi
             }
 
         private:
+            /** \brief Footprint motion (in table cells) between the exact tests in an invalid entry. */
+            static constexpr double EXACT_SPACING = 0.25;
+            /** \brief Is the piece free for fractions [ua, ub] of it (exact tests, footprint grown to cover the
+                poses between them)? */
+            bool exactSpan(const Piece &piece, double ua, double ub) const;
             bool check(const ompl::base::State *s1, const ompl::base::State *s2,
                        std::pair<ompl::base::State *, double> *lastValid) const;
             GridValidityCheckerPtr checker_;

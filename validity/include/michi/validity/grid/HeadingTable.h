@@ -129,6 +129,19 @@ namespace michi
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
                 return (bits_[word] >> (i & 63)) & 1u;
             }
+            /** \brief Is the footprint at pose (x, y, yaw), grown by \e margin metres (a square growth, so at least
+                as far in every direction), clear of every occupied cell? Exact on the grid (each convex piece of the
+                footprint is intersected with the rows of cells it spans), for the poses the table's entries cannot
+                decide: an invalid entry only says that \e some pose of its cell and heading bin collides. The
+                tolerance given at construction is added to the margin. False outside the grid. */
+            bool freePose(double x, double y, double yaw, double margin = 0.) const;
+            /** \brief Is cell (i, j) occupied? False outside the grid. */
+            bool occupied(int i, int j) const
+            {
+                if (!grid_.inside(i, j))
+                    return false;
+                return (occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] >> (i & 63)) & 1u;
+            }
             /** \brief Cells that, when occupied, make heading \e k invalid, relative to the pose's cell. */
             const std::vector<GridSpan> &stamp(int k) const
             {
@@ -141,7 +154,7 @@ namespace michi
             }
             /** \brief Number of valid entries. */
             std::size_t validCount() const;
-            /** \brief Bytes held (bits, occupancy). */
+            /** \brief Bytes held (bits, occupancy, summaries). */
             std::size_t bytes() const;
 
             /** \brief Mark cells occupied or free and recompute the entries they can change; returns the box of
@@ -153,6 +166,11 @@ namespace michi
 
         private:
             void makeStamps(const std::vector<Eigen::Vector2d> &footprint, double tolerance);
+            /** \brief coreStamps_ of a convex footprint: the cells the footprint covers whole at every pose of an
+                entry (every position in the cell, every yaw in the bin). */
+            void makeCoreStamps();
+            /** \brief Is entry (cell of x, y; bin of yaw) known to collide at every pose (blockedBits_)? */
+            bool certainlyBlocked(double x, double y, double yaw) const;
             void computeRegion(const CellBox &box);
             /** \brief Recompute the block summaries of the blocks meeting \e box. */
             void summarise(const CellBox &box);
@@ -166,11 +184,21 @@ namespace michi
             double circumradius_{0.};
             std::size_t wordsPerRow_{0};
             std::vector<std::uint64_t> bits_;
+            /** like bits_: 1 where an occupied cell lies in the entry's core stamp, so every pose of the entry
+                collides and freePose() need not look (empty when the footprint is not convex) */
+            std::vector<std::uint64_t> blockedBits_;
+            std::vector<std::vector<GridSpan>> coreStamps_;
             std::size_t blocksPerRow_{0};
             std::vector<std::uint64_t> blockAllValid_;    ///< per 8 x 8 block: every entry valid
             std::vector<std::uint64_t> blockAllInvalid_;  ///< per 8 x 8 block: every entry invalid
             std::vector<std::uint64_t> cellAllValid_;    ///< per cell (rows of wordsPerRow_ words): every heading valid
             std::vector<std::uint64_t> cellAllInvalid_;  ///< per cell: every heading invalid
+            std::vector<std::uint64_t> occupiedBits_;    ///< per cell (rows of wordsPerRow_ words): occupied
+            /** convex pieces of the footprint (its hull when it is convex, else triangles), for freePose() */
+            std::vector<std::vector<Eigen::Vector2d>> pieces_;
+            double tolerance_{0.};
+            /** the robot's origin lies in its footprint: a pose in an occupied cell collides (freePose's shortcut) */
+            bool originInside_{false};
             std::vector<std::vector<GridSpan>> stamps_;
             int reach_[4]{0, 0, 0, 0};  ///< min dx, max dx, min dy, max dy over all stamps
         };

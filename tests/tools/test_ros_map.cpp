@@ -1,0 +1,175 @@
+// ROS map_server maps as scene.map.ros (issue 14): the bundled problems/ros_office.yaml (YAML + PNG) loads with its
+// walls, desks and unknown space as obstacles; map_server's trinary and scale modes, negate and thresholds on small
+// PGM images; and every bad map file or key gives a one-line error naming the file and the key.
+#include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/problem/Problem.h>
+
+#include <ompl/base/ScopedState.h>
+
+#include <boost/filesystem.hpp>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+namespace fs = boost::filesystem;
+namespace ob = ompl::base;
+
+namespace
+{
+    class RosMaps : public ::testing::Test
+    {
+    protected:
+        void SetUp() override
+        {
+            dir_ = fs::temp_directory_path() / fs::unique_path("michi-rosmap-%%%%%%%%");
+            fs::create_directories(dir_);
+            // one row of 4 pixels: black, ROS's unknown grey, white, mid grey (P2, maximum 255)
+            write("row.pgm", "P2\n4 1\n255\n0 205 254 100\n");
+        }
+        void TearDown() override
+        {
+            fs::remove_all(dir_);
+        }
+        std::string write(const std::string &name, const std::string &text)
+        {
+            std::ofstream(dir_ / name) << text;
+            return (dir_ / name).string();
+        }
+        /** A problem whose scene is the ROS map file \e map (written with \e text). */
+        std::string problem(const std::string &mapText, const std::string &sceneMap = "{ros: m.yaml}")
+        {
+            write("m.yaml", mapText);
+            return write("p.yaml",
+                         "name: p\nrobot: {type: se2, footprint: [[-0.01, -0.01], [0.01, -0.01], "
+                         "[0.01, 0.01], [-0.01, 0.01]], bounds: {x: [0, 5], y: [0, 1]}}\n"
+                         "scene: {map: " +
+                             sceneMap + "}\nstart: [4.5, 0.5, 0]\ngoal: [4.6, 0.5, 0]\n");
+        }
+        /** The columns of the one-row map's occupied cells. */
+        std::set<int> occupied(const std::string &mapText)
+        {
+            const auto p = michi::tools::loadProblem(problem(mapText));
+            std::set<int> columns;
+            for (const auto &o : p.scene->obstacles())
+            {
+                const double x0 = o.pose.translation().x() - 0.5 * o.shape->size().x();
+                const double x1 = o.pose.translation().x() + 0.5 * o.shape->size().x();
+                for (int c = 0; c < 4; ++c)
+                    if (c + 0.5 > x0 && c + 0.5 < x1)
+                        columns.insert(c);
+            }
+            return columns;
+        }
+        std::string error(const std::string &path)
+        {
+            try
+            {
+                michi::tools::loadProblem(path);
+            }
+            catch (const std::exception &e)
+            {
+                const std::string what = e.what();
+                EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
+                return what;
+            }
+            ADD_FAILURE() << path << " loaded without error";
+            return "";
+        }
+        fs::path dir_;
+    };
+}  // namespace
+
+TEST(RosMap, BundledOfficeLoadsWithUnknownSpaceAsObstacles)
+{
+    const auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/ros_office.yaml");
+    EXPECT_GT(problem.scene->obstacles().size(), 50u);
+    EXPECT_DOUBLE_EQ(problem.grid.mapResolution, 0.05);  // the grid checker's cells align with the map's
+    auto ctx = michi::tools::makePlanningContext(problem);
+    auto si = ctx.setup->getSpaceInformation();
+    auto at = [&](double x, double y, double yaw)
+    {
+        ob::ScopedState<> s(si->getStateSpace());
+        si->getStateSpace()->copyFromReals(s.get(), {x, y, yaw});
+        return si->isValid(s.get());
+    };
+    EXPECT_TRUE(at(1.0, 0.5, 0.));          // the corridor
+    EXPECT_TRUE(at(1.45, 1.35, M_PI / 2));  // in room A's door, facing through it
+    EXPECT_FALSE(at(1.2, 1.35, 0.));        // across it, beside its post
+    EXPECT_FALSE(at(6.7, 4.7, 0.));         // the storeroom nobody mapped (unknown)
+    EXPECT_FALSE(at(7.45, 2.5, M_PI / 2));  // unknown space outside the outer wall, inside the image
+    EXPECT_FALSE(at(1.3, 3.7, 0.));         // room A's desk
+}
+
+TEST_F(RosMaps, TrinaryScaleAndNegateAsMapServerReadsThem)
+{
+    const std::string base = "image: row.pgm\nresolution: 1\norigin: [0, 0, 0]\n";
+    // trinary (default): p = (255 - v) / 255 = 1, 0.196, 0.004, 0.61: occupied, unknown, free, unknown
+    EXPECT_EQ(occupied(base + "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"), (std::set<int>{0, 1, 3}));
+    // a lower occupied threshold makes the mid grey occupied, a higher free threshold makes ROS's grey free
+    EXPECT_EQ(occupied(base + "negate: 0\noccupied_thresh: 0.5\nfree_thresh: 0.3\n"), (std::set<int>{0, 3}));
+    // negate: p = v / 255 = 0, 0.80, 0.996, 0.39
+    EXPECT_EQ(occupied(base + "negate: 1\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"), (std::set<int>{1, 2, 3}));
+    // scale: the values between the thresholds are occupancies below the occupied threshold, not obstacles
+    EXPECT_EQ(occupied(base + "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: scale\n"),
+              (std::set<int>{0}));
+    // nav2's defaults (0.65, 0.25) when the thresholds and negate are left out
+    EXPECT_EQ(occupied(base), (std::set<int>{0, 3}));
+}
+
+TEST_F(RosMaps, OriginAndYawPlaceTheMap)
+{
+    const auto p = michi::tools::loadProblem(
+        problem("image: row.pgm\nresolution: 0.5\norigin: [1, 0.25, 0]\n", "{ros: m.yaml, height: 2}"));
+    ASSERT_FALSE(p.scene->obstacles().empty());
+    const auto &first = p.scene->obstacles().front();  // cell 0: x in [1, 1.5], y in [0.25, 0.75]
+    EXPECT_NEAR(first.pose.translation().x() - 0.5 * first.shape->size().x(), 1., 1e-12);
+    EXPECT_NEAR(first.pose.translation().y(), 0.5, 1e-12);
+    EXPECT_NEAR(first.shape->size().z(), 2., 1e-12);
+    const auto turned =
+        michi::tools::loadProblem(problem("image: row.pgm\nresolution: 0.5\norigin: [1, 0.25, 1.5707963267948966]\n"));
+    const auto &t = turned.scene->obstacles().front();  // turned about the origin: cell 0's centre at (0.75, 0.5)
+    EXPECT_NEAR(t.pose.translation().x(), 0.75, 1e-9);
+    EXPECT_NEAR(t.pose.translation().y(), 0.5, 1e-9);
+    EXPECT_DOUBLE_EQ(turned.grid.mapResolution, 0.);  // a turned map is not aligned with the grid checker
+}
+
+TEST_F(RosMaps, BadMapFilesNameTheFileAndKey)
+{
+    write("text.png", "not an image at all\n");
+    struct Case
+    {
+        std::string map;  // the ROS map file's text
+        std::string key;
+    };
+    const std::string ok = "resolution: 0.1\norigin: [0, 0, 0]\n";
+    const std::vector<Case> cases{
+        {"resolution: 0.1\norigin: [0, 0, 0]\n", "image"},
+        {"image: missing.pgm\n" + ok, "image"},
+        {"image: text.png\n" + ok, "image"},
+        {"image: row.pgm\nresolution: -1\norigin: [0, 0, 0]\n", "resolution"},
+        {"image: row.pgm\nresolution: 0.1\norigin: [0, 0]\n", "origin"},
+        {"image: row.pgm\nresolution: 0.1\n", "origin"},
+        {"image: row.pgm\n" + ok + "negate: 2\n", "negate"},
+        {"image: row.pgm\n" + ok + "occupied_thresh: 1.5\n", "occupied_thresh"},
+        {"image: row.pgm\n" + ok + "occupied_thresh: 0.3\nfree_thresh: 0.5\n", "free_thresh"},
+        {"image: row.pgm\n" + ok + "mode: raw\n", "mode"},
+        {"image: row.pgm\n" + ok + "colour: red\n", "colour"},
+        {"[1, 2, 3]\n", "ROS map_server map"},
+    };
+    for (std::size_t i = 0; i < cases.size(); ++i)
+    {
+        const std::string what = error(problem(cases[i].map));
+        EXPECT_NE(what.find((dir_ / "m.yaml").string()), std::string::npos) << "case " << i << ": " << what;
+        EXPECT_NE(what.find(cases[i].key), std::string::npos) << "case " << i << ": " << what;
+    }
+    // and in the problem file: the keys the map file gives, or both sources
+    const std::string good = "image: row.pgm\n" + ok;
+    std::string what = error(problem(good, "{ros: m.yaml, resolution: 0.1}"));
+    EXPECT_NE(what.find("scene.map.resolution"), std::string::npos) << what;
+    EXPECT_NE(what.find("p.yaml"), std::string::npos) << what;
+    what = error(problem(good, "{ros: m.yaml, pgm: row.pgm}"));
+    EXPECT_NE(what.find("scene.map"), std::string::npos) << what;
+    what = error(problem(good, "{ros: none.yaml}"));
+    EXPECT_NE(what.find("scene.map.ros"), std::string::npos) << what;
+}
