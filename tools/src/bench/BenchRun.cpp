@@ -29,6 +29,8 @@ namespace michi
                     ++done;
                     if (datasetRun)
                         run["query INTEGER"] = std::to_string(runQuery[planner.get()]);
+                    if (experienceDataset)  // the held-out problem's index in the dataset folder
+                        run["held_out_problem INTEGER"] = std::to_string(heldOutFirst + runQuery[planner.get()]);
                     bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
                     if (solved)
                     {
@@ -57,6 +59,8 @@ namespace michi
                         return;
                     if (datasetRun && runQuery[planner.get()] != contextOptions.query)
                         return;  // the picture shows the first query's paths
+                    if (experienceDataset && runQuery[planner.get()] != 0)
+                        return;  // and the first held-out problem's (drawn in the problem's own scene)
                     const auto pdef = planner->getProblemDefinition();
                     if (!pdef || !pdef->hasExactSolution())
                         return;
@@ -80,6 +84,8 @@ namespace michi
             ot::Benchmark::Request request(timeLimit, problem.benchmark.memoryLimit, runs, 0.05, false, false,
                                            problem.benchmark.simplify);
             benchmark->benchmark(request);
+            if (experienceDataset)  // the pictures are drawn in the problem's own scene
+                installScene(problem, ctx, problem);
         }
     }  // namespace tools
 }  // namespace michi
