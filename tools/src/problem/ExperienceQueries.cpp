@@ -1,5 +1,7 @@
 #include <michi/tools/problem/ExperienceQueries.h>
 #include <michi/tools/problem/Dataset.h>
+#include <michi/tools/problem/ExperienceDataset.h>
+#include <michi/planners/path_seed/PathSeed.h>
 #include "ProblemYaml.h"
 #include <michi/validity/InputFile.h>
 
@@ -335,6 +337,23 @@ namespace michi
             // Before anything draws from OMPL's generator: RRT-Connect's training paths, and so the library, follow
             // from --seed.
             ompl::RNG::setSeed(seed);
+            if (!problem.experience.dataset.empty())
+            {
+                // a dataset problem: trained as michi bench trains, each training problem in its own scene
+                ContextOptions options;
+                options.scene = copyScene(*problem.scene);
+                const PlanningContext dctx = makePlanningContext(problem, options);
+                auto planner = std::make_shared<planners::PathSeed>(dctx.setup->getSpaceInformation());
+                planner->setVariant(variant);
+                const auto sets = loadExperienceDataset(problem);
+                trainOnDataset(problem, dctx, sets.training, problem.experience.trainingTime, {planner}, nullptr);
+                planner->saveLibrary(file);
+                std::ostringstream report;
+                report << "michi path-seed-library: wrote " << file << " (" << planner->experienceCount() << " "
+                       << variant << " seeds from " << sets.training.entries.size() << " training problems of "
+                       << sets.training.name << ")";
+                return report.str();
+            }
             const PlanningContext ctx = makePlanningContext(problem, 0);
             planners::PathSeedLibrary library(planners::seedVariantFromName(variant));
             const auto paths = solveTrainingQueries(problem, ctx, nullptr);
