@@ -2,6 +2,7 @@
 // problems 0-49 train the experience planners and 50-99 are held out, each with its own scene.
 #include <michi/planners/experience/ExperiencePeers.h>
 #include <michi/planners/path_seed/PathSeed.h>
+#include <michi/tools/bench/BenchmarkRunner.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/ExperienceDataset.h>
 #include <michi/tools/problem/Problem.h>
@@ -13,6 +14,7 @@
 #include <boost/filesystem.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <set>
 
@@ -167,4 +169,33 @@ TEST(ExperienceDataset, ADatasetProblemWithAnotherRobotIsRefused)
         EXPECT_NE(std::string(e.what()).find("xarm6_ring.yaml: robot: plans other joints"), std::string::npos)
             << e.what();
     }
+}
+
+TEST(ExperienceDataset, BenchRunsEachHeldOutProblemOncePerPlanner)
+{
+    ompl::RNG::setSeed(5);
+    const std::string file = variant("experience: {dataset: " + (SOURCE / "datasets/table_pick").string() +
+                                     ", training: 0-1, held_out: 50-51, training_time: 5}");
+    const Problem problem = loadProblem(file);
+    michi::tools::BenchOptions options;
+    options.planners = {"michi::PathSeed", "geometric::RRTConnect"};
+    options.timeLimit = 10.;
+    options.outDir = (fs::path(file).parent_path() / "out").string();
+    const auto result = michi::tools::runBenchmark(problem, options);
+    ASSERT_EQ(result.planners.size(), 2u);
+    for (const auto &p : result.planners)
+        EXPECT_EQ(p.runs, 2u) << p.name;  // runs = held-out problems
+    // run i of every planner planned held-out problem 50 + i (the run property held_out_problem)
+    const std::string command = "sqlite3 '" + result.database +
+                                "' \"select p.name, held_out_problem from runs join plannerConfigs p on "
+                                "p.id = runs.plannerid order by runs.id\" 2>&1";
+    std::string rows;
+    if (FILE *pipe = popen(command.c_str(), "r"))
+    {
+        char buffer[256];
+        while (fgets(buffer, sizeof buffer, pipe))
+            rows += buffer;
+        pclose(pipe);
+    }
+    EXPECT_EQ(rows, "geometric_PathSeed|50\ngeometric_PathSeed|51\ngeometric_RRTConnect|50\ngeometric_RRTConnect|51\n");
 }
