@@ -145,6 +145,12 @@ namespace michi
             return ExperienceRace::solve(ptc);
         }
 
+        void ThunderPlanner::sceneChanged()
+        {
+            if (db_->getSPARSdb())
+                db_->getSPARSdb()->clearEdgeCollisionStates();
+        }
+
         std::size_t ThunderPlanner::experienceCount() const
         {
             // every path given to the roadmap (ThunderDB counts them whether or not they connected)

@@ -2,12 +2,14 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/StateSpaceTypes.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Exception.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <thread>
 
@@ -45,6 +47,7 @@ namespace michi
             declareParam<std::string>("library_file", this, &PathSeed::setLibraryFile, &PathSeed::getLibraryFile);
             declareParam<unsigned int>("candidates", this, &PathSeed::setCandidates, &PathSeed::getCandidates,
                                        "0:1:50");
+            declareParam<unsigned int>("max_seeds", this, &PathSeed::setMaxSeeds, &PathSeed::getMaxSeeds, "0:1:100000");
             declareParam<std::string>("repair", this, &PathSeed::setRepair, &PathSeed::getRepair);
             declareParam<std::string>("variant", this, &PathSeed::setVariant, &PathSeed::getVariant);
             declareParam<bool>("race", this, &PathSeed::setRace, &PathSeed::getRace, "0,1");
@@ -58,6 +61,14 @@ namespace michi
                                        &PathSeed::getStitchNeighbours, "1:1:20");
             declareParam<unsigned int>("shortcut_steps", this, &PathSeed::setShortcutSteps, &PathSeed::getShortcutSteps,
                                        "0:1:1000");
+            // which values wrap: a compound space's SO(2) components (michi's CompoundJointStateSpace for continuous
+            // joints); every other component holds one value per dimension
+            const auto space = si->getStateSpace();
+            if (space->isCompound())
+                for (const auto &sub : space->as<ob::CompoundStateSpace>()->getSubspaces())
+                    continuous_.insert(continuous_.end(), sub->getDimension(),
+                                       sub->getType() == ob::STATE_SPACE_SO2 ? 1 : 0);
+            continuous_.resize(space->getDimension(), 0);
             addPlannerProgressProperty("library seeds INTEGER",
                                        [this]
                                        {
@@ -81,7 +92,14 @@ namespace michi
                 throw std::invalid_argument(file + ": path seeds of dimension " + std::to_string(lib->dimension()) +
                                             ", the state space has " + std::to_string(si_->getStateDimension()));
             library_ = lib;
+            library_->setCapacity(maxSeeds_);
             libraryFile_ = file;
+        }
+
+        void PathSeed::setMaxSeeds(unsigned int seeds)
+        {
+            maxSeeds_ = seeds;
+            library_->setCapacity(seeds);
         }
 
         void PathSeed::saveLibrary(const std::string &file) const
@@ -94,6 +112,7 @@ namespace michi
             if (!library)
                 throw std::invalid_argument("PathSeed: null library");
             library_ = std::move(library);
+            library_->setCapacity(maxSeeds_);
         }
 
         void PathSeed::setRepair(const std::string &method)
@@ -108,7 +127,10 @@ namespace michi
             const SeedVariant v = seedVariantFromName(variant);  // throws for an unknown name
             // Seeds of one variant cannot be decoded as another: changing the variant starts an empty library.
             if (v != library_->variant())
+            {
                 library_ = std::make_shared<PathSeedLibrary>(v);
+                library_->setCapacity(maxSeeds_);
+            }
         }
 
         std::string PathSeed::getVariant() const
@@ -151,13 +173,44 @@ namespace michi
             return Eigen::Map<const Eigen::VectorXd>(reals.data(), reals.size());
         }
 
+        namespace
+        {
+            double wrapped(double angle)  // into [-pi, pi)
+            {
+                return angle - 2. * M_PI * std::floor((angle + M_PI) / (2. * M_PI));
+            }
+        }  // namespace
+
+        void PathSeed::unwrap(std::vector<Eigen::VectorXd> &path) const
+        {
+            for (std::size_t k = 0; k < continuous_.size(); ++k)
+                if (continuous_[k])
+                    for (std::size_t i = 1; i < path.size() && path[i].size() == path[0].size() &&
+                                            static_cast<std::size_t>(path[0].size()) == continuous_.size();
+                         ++i)
+                        path[i][k] = path[i - 1][k] + wrapped(path[i][k] - path[i - 1][k]);
+        }
+
+        Eigen::VectorXd PathSeed::nearestGoal(const Eigen::VectorXd &start, const Eigen::VectorXd &goal) const
+        {
+            Eigen::VectorXd g = goal;
+            for (std::size_t k = 0; k < continuous_.size(); ++k)
+                if (continuous_[k])
+                    g[k] = start[k] + wrapped(goal[k] - start[k]);
+            return g;
+        }
+
         void PathSeed::addExperience(const og::PathGeometric &path)
         {
             if (path.getStateCount() < 2)
                 return;
+            // a compound space's copyToReals needs its value locations, made by setup() (as Planner::setup() does)
+            if (!si_->isSetup())
+                si_->setup();
             std::vector<Eigen::VectorXd> p;
             for (const auto *s : const_cast<og::PathGeometric &>(path).getStates())
                 p.push_back(toVector(s));
+            unwrap(p);
             library_->add(p);
         }
 
@@ -170,6 +223,7 @@ namespace michi
         {
             Planner::clear();
             decoded_.clear();
+            candidateIds_.clear();
             solution_.clear();
             scratch_.reset();
             lastSource_ = NONE;
@@ -181,9 +235,10 @@ namespace michi
         {
             decoded_.clear();
             anchoredPaths_.clear();
+            candidateIds_.clear();
             if (library_->size() == 0 || candidates_ == 0)
                 return false;
-            const Eigen::VectorXd s = toVector(start), g = toVector(goal);
+            const Eigen::VectorXd s = toVector(start), g = nearestGoal(s, toVector(goal));
             const auto seeds = library_->candidates(s, g, candidates_);
             const auto space = si_->getStateSpace();
             std::vector<Eigen::VectorXd> decoded;
@@ -210,6 +265,7 @@ namespace michi
                 si_->freeState(state);
                 path.append(goal);
                 decoded_.push_back(path);
+                candidateIds_.push_back(seed.id);
                 // for stitching only: the seed's own path moved to end at the new goal, and to start at the new
                 // start (exact reproduction gives it back from the seed); near a narrow goal or start the seed's
                 // absolute approach often fits where the decoded one, turned with the new line, does not
@@ -250,6 +306,7 @@ namespace michi
                 {
                     out = decoded_[o.second];
                     lastSource_ = RECALL;
+                    library_->markUsed(candidateIds_[o.second]);
                     found = true;
                     break;
                 }
@@ -268,7 +325,12 @@ namespace michi
                 // itself.
                 stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
             if (found)
+            {
                 lastSource_ = STITCH;
+                // every candidate was in the graph the stitched path came from
+                for (const auto id : candidateIds_)
+                    library_->markUsed(id);
+            }
             lastChecks_ += checks;
             return found;
         }
@@ -290,6 +352,7 @@ namespace michi
                     {
                         out = path;
                         lastSource_ = REPAIR;
+                        library_->markUsed(candidateIds_[i]);
                     }
                 }
             return repaired;

@@ -3,6 +3,7 @@
 
 #include <ompl/datastructures/NearestNeighborsLinear.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -32,7 +33,44 @@ namespace michi
                                             std::to_string(record.code.dimension) + " in a library of dimension " +
                                             std::to_string(dimension_));
             dimension_ = record.code.dimension;
+            record.id = nextId_++;
             seeds_.push_back(std::move(record));
+            shrink();
+        }
+
+        void PathSeedLibrary::shrink()
+        {
+            while (capacity_ > 0 && seeds_.size() > capacity_)
+            {
+                // fewest uses, then oldest (smallest id)
+                const auto worst = std::min_element(seeds_.begin(), seeds_.end(),
+                                                    [](const SeedRecord &a, const SeedRecord &b)
+                                                    {
+                                                        return a.uses != b.uses ? a.uses < b.uses : a.id < b.id;
+                                                    });
+                seeds_.erase(worst);
+            }
+        }
+
+        void PathSeedLibrary::setCapacity(std::size_t seeds)
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            capacity_ = seeds;
+            shrink();
+        }
+
+        std::size_t PathSeedLibrary::capacity() const
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            return capacity_;
+        }
+
+        void PathSeedLibrary::markUsed(std::uint64_t id)
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            for (auto &s : seeds_)
+                if (s.id == id)
+                    ++s.uses;
         }
 
         std::vector<SeedRecord> PathSeedLibrary::candidates(const Eigen::VectorXd &start, const Eigen::VectorXd &goal,
@@ -275,6 +313,7 @@ namespace michi
                 for (double t : s.code.deviation)
                     if (t < 0.)
                         r.fail("'deviation' values must not be negative");
+                s.id = lib->nextId_++;
                 lib->seeds_.push_back(std::move(s));
             }
             // An empty library takes the dimension of the first path added, as a new one does.

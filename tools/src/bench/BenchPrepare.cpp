@@ -3,6 +3,7 @@
 #include <michi/tools/bench/PathCertificate.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/problem/ExperienceQueries.h>
+#include <michi/planners/experience/ExperiencePlanner.h>
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>
@@ -41,6 +42,20 @@ namespace michi
                 runs = static_cast<unsigned int>(dataset.entries.size());
             }
             datasetRun = !dataset.entries.empty();
+            experienceDataset = options.heldOut && !problem.experience.dataset.empty();
+            if (experienceDataset)
+            {
+                if (datasetRun)
+                    throw ProblemError(problem.file, "benchmark.queries",
+                                       "an experience dataset's runs are its held-out problems (no --queries)");
+                experienceSets = loadExperienceDataset(problem);
+                for (const auto &entry : experienceSets.heldOut.entries)
+                    heldOutProblems.push_back(loadProblem(entry.problemFile));
+                heldOutFirst = parseQuerySelection(problem.experience.heldOutProblems).first;
+                runs = options.runs > 0 ? options.runs : static_cast<unsigned int>(heldOutProblems.size());
+                // scenes of the dataset's problems are installed in a copy, never in the problem's own
+                contextOptions.scene = copyScene(*problem.scene);
+            }
             if (options.planners.empty())
                 specs = problem.planners;
             else
@@ -77,8 +92,15 @@ namespace michi
                 }
             if (!ownChecker.empty())
                 contextOptions.checker = ownChecker;
+            // a dataset's scenes are swapped under the FCL checker; the other checkers precompute the scene
+            if (experienceDataset && (problem.checker != "fcl" || !ownChecker.empty() || compareCheckers))
+                throw ProblemError(problem.file, "experience.dataset",
+                                   "an experience dataset runs on the FCL checker only (collision.checker: fcl)");
             ctx = makePlanningContext(problem, contextOptions);  // checks start and goal
             si = ctx.setup->getSpaceInformation();
+            if (experienceDataset)
+                for (std::size_t k = 0; k < heldOutProblems.size(); ++k)  // every held-out query, before any run
+                    installDatasetQuery(problem, ctx, heldOutProblems[k], experienceSets.heldOut.entries[k].query);
             if (datasetRun)
                 checkDatasetQueries(problem, ctx, dataset);
             // checker and motion validator of each planner instance (compareCheckers: FCL ones, then the other's)
@@ -147,10 +169,26 @@ namespace michi
                 checkHeldOutQueries(problem, ctx);
                 benchmark->addExperimentParameter("held_out_queries", "INTEGER", std::to_string(heldOut.size()));
             }
-            if (cycleHeldOut || !checking.empty() || datasetRun)
+            if (experienceDataset)
+            {
+                benchmark->addExperimentParameter("experience_dataset", "VARCHAR(128)", experienceSets.heldOut.name);
+                benchmark->addExperimentParameter("held_out_queries", "INTEGER",
+                                                  std::to_string(heldOutProblems.size()));
+            }
+            if (cycleHeldOut || !checking.empty() || datasetRun || experienceDataset)
                 benchmark->setPreRunEvent(
                     [this](const ob::PlannerPtr &planner)
                     {
+                        if (experienceDataset)
+                        {
+                            // the run's own scene and query; installed before OMPL starts the run's clock
+                            const std::size_t k = datasetNext[planner.get()]++ % heldOutProblems.size();
+                            runQuery[planner.get()] = k;
+                            installDatasetQuery(problem, ctx, heldOutProblems[k],
+                                                experienceSets.heldOut.entries[k].query);
+                            if (auto *learner = dynamic_cast<planners::ExperiencePlanner *>(planner.get()))
+                                learner->sceneChanged();
+                        }
                         if (datasetRun)
                         {
                             const auto &entry = dataset.entries[datasetNext[planner.get()]++ % dataset.entries.size()];
@@ -173,6 +211,9 @@ namespace michi
             if (compareCheckers)
                 benchmark->addExperimentParameter("checkers", "VARCHAR(32)", "fcl," + compare);
             trainExperiencePlanners(problem, ctx, planners, options.progress);
+            if (experienceDataset)
+                trainOnDataset(problem, ctx, experienceSets.training, problem.experience.trainingTime, planners,
+                               options.progress);
             benchmark->addExperimentParameter("seed", "INTEGER", std::to_string(problem.benchmark.seed));
         }
     }  // namespace tools

@@ -3,6 +3,7 @@
 #include <michi/tools/bench/PathCertificate.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/problem/ExperienceQueries.h>
+#include <michi/planners/path_seed/PathSeed.h>
 
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>
@@ -29,6 +30,15 @@ namespace michi
                     ++done;
                     if (datasetRun)
                         run["query INTEGER"] = std::to_string(runQuery[planner.get()]);
+                    if (experienceDataset)  // the held-out problem's index in the dataset folder
+                        run["held_out_problem INTEGER"] = std::to_string(heldOutFirst + runQuery[planner.get()]);
+                    // where PathSeed's path came from (recall, stitch, repair, scratch) and the checks it spent on
+                    // its seeds: what docs/path-seed.md's tables break its times down by
+                    if (const auto *seeds = dynamic_cast<const planners::PathSeed *>(planner.get()))
+                    {
+                        run["path_seed_source VARCHAR(16)"] = seeds->getLastSource();
+                        run["path_seed_checks INTEGER"] = std::to_string(seeds->getLastRecallChecks());
+                    }
                     bool solved = run.count("solved BOOLEAN") && run["solved BOOLEAN"] == "1";
                     if (solved)
                     {
@@ -57,6 +67,8 @@ namespace michi
                         return;
                     if (datasetRun && runQuery[planner.get()] != contextOptions.query)
                         return;  // the picture shows the first query's paths
+                    if (experienceDataset && runQuery[planner.get()] != 0)
+                        return;  // and the first held-out problem's (drawn in the problem's own scene)
                     const auto pdef = planner->getProblemDefinition();
                     if (!pdef || !pdef->hasExactSolution())
                         return;
@@ -80,6 +92,8 @@ namespace michi
             ot::Benchmark::Request request(timeLimit, problem.benchmark.memoryLimit, runs, 0.05, false, false,
                                            problem.benchmark.simplify);
             benchmark->benchmark(request);
+            if (experienceDataset)  // the pictures are drawn in the problem's own scene
+                installScene(problem, ctx, problem);
         }
     }  // namespace tools
 }  // namespace michi

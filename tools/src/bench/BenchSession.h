@@ -10,6 +10,7 @@
 #include <michi/tools/bench/BenchmarkRunner.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/Dataset.h>
+#include <michi/tools/problem/ExperienceDataset.h>
 
 #include <ompl/tools/benchmark/Benchmark.h>
 
@@ -63,7 +64,12 @@ namespace michi
             std::unique_ptr<ompl::tools::Benchmark> benchmark;
             std::vector<ompl::base::PlannerPtr> planners;
             bool cycleHeldOut{false};
-            std::map<std::string, std::size_t> heldOutRun;                   ///< next held-out query of each planner
+            /** an experience dataset run (ExperienceDataset.h): run i plans held-out problem i mod n in its scene */
+            bool experienceDataset{false};
+            ExperienceDataset experienceSets;
+            std::vector<Problem> heldOutProblems;           ///< experienceSets.heldOut's problems, loaded once
+            std::size_t heldOutFirst{0};                    ///< folder index of the first held-out problem
+            std::map<std::string, std::size_t> heldOutRun;  ///< next held-out query of each planner
             std::map<const ompl::base::Planner *, std::size_t> datasetNext;  ///< next dataset entry of each planner
             std::map<const ompl::base::Planner *, std::size_t> runQuery;     ///< query of the run in progress
 

@@ -1,4 +1,7 @@
 #include <michi/tools/problem/ExperienceQueries.h>
+#include <michi/tools/problem/Dataset.h>
+#include <michi/tools/problem/ExperienceDataset.h>
+#include <michi/planners/path_seed/PathSeed.h>
 #include "ProblemYaml.h"
 #include <michi/validity/InputFile.h>
 
@@ -108,6 +111,49 @@ namespace michi
                 return collision.empty() ? "" : "in collision: " + collision;
             }
 
+            // experience: {dataset: FOLDER, training: A-B, held_out: C-D}: the sets are problems of the folder
+            // (Dataset.h), resolved by loadExperienceDataset() when a benchmark needs them
+            void readExperienceDataset(const std::string &problemFile, const Problem &problem, const YAML::Node &e,
+                                       ExperienceQueries &out)
+            {
+                if (e["queries"])
+                    throw ProblemError(problemFile, "experience.queries",
+                                       "give either queries (a queries file) or dataset (a folder of problems)");
+                if (problem.kind != Problem::Kind::ARM)
+                    throw ProblemError(problemFile, "experience", "experience queries need an arm problem");
+                const YAML::Node d = e["dataset"];
+                const fs::path p(d.IsScalar() ? d.Scalar() : std::string());
+                const fs::path full = p.is_absolute() ? p : fs::path(problemFile).parent_path() / p;
+                if (!d.IsScalar() || p.empty() || !fs::is_directory(full))
+                    throw ProblemError(problemFile, "experience.dataset",
+                                       "expected a folder of problem files, got '" + full.string() + "'");
+                out.dataset = full.lexically_normal().string();
+                QuerySelection sets[2];
+                const char *keys[2] = {"training", "held_out"};
+                for (int i = 0; i < 2; ++i)
+                {
+                    const std::string key = std::string("experience.") + keys[i];
+                    const YAML::Node n = e[keys[i]];
+                    if (!n || !n.IsScalar())
+                        throw ProblemError(problemFile, key, "expected a range A-B of the dataset's problems (from 0)");
+                    try
+                    {
+                        sets[i] = parseQuerySelection(n.Scalar());
+                    }
+                    catch (const std::invalid_argument &error)
+                    {
+                        throw ProblemError(problemFile, key, error.what());
+                    }
+                    if (sets[i].all)
+                        throw ProblemError(problemFile, key,
+                                           "expected a range A-B, not all (the sets must be disjoint)");
+                    (i == 0 ? out.trainingProblems : out.heldOutProblems) = n.Scalar();
+                }
+                if (sets[0].first <= sets[1].last && sets[1].first <= sets[0].last)
+                    throw ProblemError(problemFile, "experience.held_out",
+                                       "overlaps experience.training: held-out problems must not be trained on");
+            }
+
             double seconds(std::chrono::steady_clock::time_point since)
             {
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -126,9 +172,11 @@ namespace michi
             for (const auto &kv : e)
             {
                 const std::string k = kv.first.as<std::string>();
-                if (k != "queries" && k != "training_time" && k != "library")
+                if (k != "queries" && k != "training_time" && k != "library" && k != "dataset" && k != "training" &&
+                    k != "held_out")
                     throw ProblemError(problemFile, "experience." + k,
-                                       "unknown key (expected queries, training_time, library)");
+                                       "unknown key (expected queries, training_time, library, dataset, training, "
+                                       "held_out)");
             }
             if (const YAML::Node t = e["training_time"])
             {
@@ -155,6 +203,15 @@ namespace michi
                                        "expected an existing experience file, got '" + lfull.string() + "'");
                 out.library = lfull.lexically_normal().string();
             }
+            if (e["dataset"])
+            {
+                readExperienceDataset(problemFile, problem, e, out);
+                return out;
+            }
+            for (const char *k : {"training", "held_out"})
+                if (e[k])
+                    throw ProblemError(problemFile, std::string("experience.") + k,
+                                       "only with experience.dataset (a queries file holds its own sets)");
             if (!e["queries"] || !e["queries"].IsScalar())
                 throw ProblemError(problemFile, "experience.queries", "expected the name of a queries file");
             const fs::path p(e["queries"].Scalar());
@@ -280,6 +337,23 @@ namespace michi
             // Before anything draws from OMPL's generator: RRT-Connect's training paths, and so the library, follow
             // from --seed.
             ompl::RNG::setSeed(seed);
+            if (!problem.experience.dataset.empty())
+            {
+                // a dataset problem: trained as michi bench trains, each training problem in its own scene
+                ContextOptions options;
+                options.scene = copyScene(*problem.scene);
+                const PlanningContext dctx = makePlanningContext(problem, options);
+                auto planner = std::make_shared<planners::PathSeed>(dctx.setup->getSpaceInformation());
+                planner->setVariant(variant);
+                const auto sets = loadExperienceDataset(problem);
+                trainOnDataset(problem, dctx, sets.training, problem.experience.trainingTime, {planner}, nullptr);
+                planner->saveLibrary(file);
+                std::ostringstream report;
+                report << "michi path-seed-library: wrote " << file << " (" << planner->experienceCount() << " "
+                       << variant << " seeds from " << sets.training.entries.size() << " training problems of "
+                       << sets.training.name << ")";
+                return report.str();
+            }
             const PlanningContext ctx = makePlanningContext(problem, 0);
             planners::PathSeedLibrary library(planners::seedVariantFromName(variant));
             const auto paths = solveTrainingQueries(problem, ctx, nullptr);
@@ -301,6 +375,31 @@ namespace michi
             return report.str();
         }
 
+        bool solveTrainingQuery(const PlanningContext &ctx, const Query &query, double time, og::PathGeometric &path)
+        {
+            const auto si = ctx.setup->getSpaceInformation();
+            auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+            ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
+            setState(start, query.start);
+            setState(goal, query.goal);
+            pdef->setStartAndGoalStates(start, goal);
+            og::RRTConnect rrt(si);
+            rrt.setProblemDefinition(pdef);
+            rrt.setup();
+            // Paper 001's seeds come from RRT-Connect with a time limit (5 s there); a query it does not solve
+            // gives no seed.
+            if (rrt.solve(ob::timedPlannerTerminationCondition(time)) != ob::PlannerStatus::EXACT_SOLUTION)
+                return false;
+            path = *pdef->getSolutionPath()->as<og::PathGeometric>();
+            og::PathSimplifier simplifier(si);
+            // Simplified before it is stored: RRT-Connect's raw paths zigzag, and the zigzag would be decoded into
+            // every new query.
+            simplifier.simplify(path, 1.);
+            // The simplifier's shortcuts are checked motions, but the whole path is checked once more before it
+            // becomes experience.
+            return path.check();
+        }
+
         std::vector<og::PathGeometric> solveTrainingQueries(const Problem &problem, const PlanningContext &ctx,
                                                             std::ostream *progress)
         {
@@ -318,27 +417,8 @@ namespace michi
                     if (!why.empty())
                         throw ProblemError(problem.experience.file, key + "." + which, why);
                 }
-                auto pdef = std::make_shared<ob::ProblemDefinition>(si);
-                ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
-                setState(start, training[i].start);
-                setState(goal, training[i].goal);
-                pdef->setStartAndGoalStates(start, goal);
-                og::RRTConnect rrt(si);
-                rrt.setProblemDefinition(pdef);
-                rrt.setup();
-                // Paper 001's seeds come from RRT-Connect with a time limit (5 s there); a query it does not solve
-                // gives no seed.
-                if (rrt.solve(ob::timedPlannerTerminationCondition(problem.experience.trainingTime)) !=
-                    ob::PlannerStatus::EXACT_SOLUTION)
-                    continue;
-                og::PathGeometric path(*pdef->getSolutionPath()->as<og::PathGeometric>());
-                og::PathSimplifier simplifier(si);
-                // Simplified before it is stored: RRT-Connect's raw paths zigzag, and the zigzag would be decoded into
-                // every new query.
-                simplifier.simplify(path, 1.);
-                // The simplifier's shortcuts are checked motions, but the whole path is checked once more before it
-                // becomes experience.
-                if (path.check())
+                og::PathGeometric path(si);
+                if (solveTrainingQuery(ctx, training[i], problem.experience.trainingTime, path))
                     paths.push_back(path);
             }
             if (progress)
@@ -384,6 +464,11 @@ namespace michi
                 if (!why.empty())
                     throw ProblemError(problem.experience.file, key + ".goal", why);
             }
+        }
+
+        std::string invalidStateReason(const PlanningContext &ctx, const std::vector<double> &values)
+        {
+            return invalidReason(ctx, values);
         }
 
         void setQuery(const PlanningContext &ctx, const Query &query)

@@ -82,6 +82,10 @@ namespace michi
             ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition &ptc) override;
             void addExperience(const ompl::geometric::PathGeometric &path) override;
             std::size_t experienceCount() const override;
+            /** \brief SPARSdb marks the roadmap edges it checks free or in collision and never checks them again:
+                in a new scene those marks are stale (a stale "in collision" would hide a free edge), so they are
+                cleared. */
+            void sceneChanged() override;
             /** \brief Number of added paths whose start and goal the roadmap connected afterwards (SPARSdb's
                 addPathToRoadmap succeeded); the others still added their states where the roadmap needed them. */
             std::size_t connectedExperienceCount() const

@@ -20,6 +20,11 @@ namespace michi
             virtual void addExperience(const ompl::geometric::PathGeometric &path) = 0;
             /** \brief Number of experiences kept. */
             virtual std::size_t experienceCount() const = 0;
+            /** \brief The scene changed (a dataset run installs each problem's own): forget whatever was learned
+                about collisions in the old one. Experience itself (paths, seeds) is kept. */
+            virtual void sceneChanged()
+            {
+            }
             /** \brief Add the experiences of a file in the planner's own format; false when the planner has no
                 such format (the default). Throws for a file that cannot be read. */
             virtual bool loadExperience(const std::string & /*file*/)

@@ -76,6 +76,13 @@ namespace michi
             {
                 return candidates_;
             }
+            /** \brief At most this many seeds in the library (0: no bound; PathSeedLibrary::setCapacity): with
+                learn on, the seeds that took part in the fewest solutions are forgotten first. */
+            void setMaxSeeds(unsigned int seeds);
+            unsigned int getMaxSeeds() const
+            {
+                return maxSeeds_;
+            }
             /** \brief "rrtconnect" (default), "stomp" or "none". */
             void setRepair(const std::string &method);
             const std::string &getRepair() const
@@ -186,11 +193,20 @@ namespace michi
             bool fromScratch(const ompl::base::State *start, const ompl::base::PlannerTerminationCondition &ptc,
                              ompl::geometric::PathGeometric &out);
             Eigen::VectorXd toVector(const ompl::base::State *state) const;
+            /** Continuous joints (SO(2) components) of \e path made continuous: each waypoint's value is its
+                predecessor's plus the wrapped difference, so a path across +-pi is encoded without the 2 pi jump. */
+            void unwrap(std::vector<Eigen::VectorXd> &path) const;
+            /** \e goal's continuous joints moved by 2 pi k to within pi of \e start's: the short way round, the way
+                the state space interpolates, is the start-goal line a seed decodes on. */
+            Eigen::VectorXd nearestGoal(const Eigen::VectorXd &start, const Eigen::VectorXd &goal) const;
             void learn(const ompl::geometric::PathGeometric &path);
 
             PathSeedLibraryPtr library_;
             std::string libraryFile_;
+            std::vector<char> continuous_;  ///< per value of a state: an SO(2) component (wraps at +-pi)
             unsigned int candidates_{10};
+            unsigned int maxSeeds_{0};
+            std::vector<std::uint64_t> candidateIds_;  ///< library ids of the decoded_ paths' seeds
             std::string repair_{"rrtconnect"};
             bool race_{true};
             bool stitch_{true};

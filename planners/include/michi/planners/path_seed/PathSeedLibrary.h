@@ -3,6 +3,7 @@
 
 #include <michi/planners/path_seed/PathSeedCodec.h>
 
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -26,7 +27,9 @@ namespace michi
             Eigen::VectorXd start;
             Eigen::VectorXd goal;
             PathSeedCode code;
-            double length{0.};  ///< joint-space length of the path it was encoded from
+            double length{0.};    ///< joint-space length of the path it was encoded from
+            std::uint64_t id{0};  ///< unique in its library (order of addition), for markUsed()
+            std::size_t uses{0};  ///< solutions it took part in (markUsed; not saved to files)
         };
 
         /** \brief A library of path seeds (paper 001): seeds learned from solved paths, saved to and loaded
@@ -49,6 +52,14 @@ namespace michi
             std::vector<SeedRecord> candidates(const Eigen::VectorXd &start, const Eigen::VectorXd &goal,
                                                std::size_t k) const;
 
+            /** \brief At most \e seeds seeds (0: no bound). Past the bound the library forgets the seed that took
+                part in the fewest solutions, the oldest of those first (a seed just added has had no chance to be
+                used, so it goes last among the unused); already past it, seeds are forgotten now. */
+            void setCapacity(std::size_t seeds);
+            std::size_t capacity() const;
+            /** \brief Seed \e id took part in a solution (no effect when it was forgotten). */
+            void markUsed(std::uint64_t id);
+
             std::size_t size() const;
             unsigned int dimension() const;
             SeedVariant variant() const
@@ -69,7 +80,11 @@ namespace michi
         private:
             SeedVariant variant_;
             unsigned int dimension_{0};
+            /** forget seeds past capacity_ (mutex_ held) */
+            void shrink();
             std::vector<SeedRecord> seeds_;
+            std::size_t capacity_{0};
+            std::uint64_t nextId_{0};
             mutable std::mutex mutex_;
         };
 

@@ -58,6 +58,12 @@ namespace michi
         /** \brief The queries as the YAML file readExperienceQueries() reads (\e header: comment lines). */
         std::string experienceQueriesYaml(const ExperienceQueries &queries, const std::string &header);
 
+        /** \brief Solve one training query with RRT-Connect (\e time seconds) in \e ctx's scene, simplify the
+            solution (OMPL's PathSimplifier, 1 s) and check it; false when RRT-Connect found none or the simplified
+            path is invalid. */
+        bool solveTrainingQuery(const PlanningContext &ctx, const Query &query, double time,
+                                ompl::geometric::PathGeometric &path);
+
         /** \brief Solve every training query with RRT-Connect (problem.experience.trainingTime each), simplify
             the solutions (OMPL's PathSimplifier) and return them. Checks each start and goal first (ProblemError
             naming experience.training[i]). */
@@ -75,6 +81,10 @@ namespace michi
         /** \brief Check the held-out queries (bounds, collisions) before a benchmark; throws ProblemError naming
             experience.held_out[i].start/goal. */
         void checkHeldOutQueries(const Problem &problem, const PlanningContext &ctx);
+
+        /** \brief Why \e values cannot be a start or goal in \e ctx (outside the bounds, or what collides), or ""
+            when it can. */
+        std::string invalidStateReason(const PlanningContext &ctx, const std::vector<double> &values);
 
         /** \brief Set start and goal of \e ctx's problem definition to \e query (a held-out query's run). */
         void setQuery(const PlanningContext &ctx, const Query &query);

@@ -92,6 +92,11 @@ namespace michi
             double trainingTime{5.};      ///< seconds of RRT-Connect per training query
             std::string library;          ///< experience file given to experience planners before training
             std::string file;             ///< the file the queries came from
+            /** \brief experience.dataset: a folder of problem files (tools/problem/ExperienceDataset.h), each
+                problem with its own scene and query; empty when the queries come from experience.queries. */
+            std::string dataset;
+            std::string trainingProblems;  ///< experience.training: the folder's problems that train ("A-B", from 0)
+            std::string heldOutProblems;   ///< experience.held_out: the folder's problems of the runs ("A-B")
         };
 
         /** \brief Everything a problem file says: robot, scene, queries, planners and benchmark settings.

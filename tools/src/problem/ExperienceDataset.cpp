@@ -1,0 +1,121 @@
+#include <michi/tools/problem/ExperienceDataset.h>
+#include <michi/tools/problem/ExperienceQueries.h>
+
+#include <michi/planners/experience/ExperiencePlanner.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace michi
+{
+    namespace tools
+    {
+        namespace
+        {
+            Dataset select(const Problem &problem, const Dataset &all, const std::string &key, const std::string &range)
+            {
+                const QuerySelection s = parseQuerySelection(range);  // checked by readExperienceQueries
+                if (s.last >= all.entries.size())
+                    throw ProblemError(problem.file, key,
+                                       "problems " + range + " requested, " + problem.experience.dataset + " has " +
+                                           std::to_string(all.entries.size()) + " (0-" +
+                                           std::to_string(all.entries.size() - 1) + ")");
+                Dataset d;
+                d.name = all.name + "[" + range + "]";
+                d.entries.assign(all.entries.begin() + static_cast<long>(s.first),
+                                 all.entries.begin() + static_cast<long>(s.last) + 1);
+                return d;
+            }
+        }  // namespace
+
+        ExperienceDataset loadExperienceDataset(const Problem &problem)
+        {
+            const Dataset all = loadDatasetFolder(problem.experience.dataset);
+            ExperienceDataset d;
+            d.training = select(problem, all, "experience.training", problem.experience.trainingProblems);
+            d.heldOut = select(problem, all, "experience.held_out", problem.experience.heldOutProblems);
+            return d;
+        }
+
+        validity::ScenePtr copyScene(const validity::Scene &scene)
+        {
+            auto copy = std::make_shared<validity::Scene>();
+            copy->add(scene.obstacles());
+            return copy;
+        }
+
+        void installScene(const Problem &problem, const PlanningContext &ctx, const Problem &source)
+        {
+            if (source.kind != Problem::Kind::ARM || source.valueNames() != problem.valueNames())
+                throw ProblemError(source.file, "robot",
+                                   "plans other joints than " + problem.file + " (a dataset's problems share a robot)");
+            // only the joints not planned: the planned ones' values there are the request's start
+            bool same = source.fixedValues.size() == ctx.fixedValues.size();
+            for (std::size_t i = 0; i < source.fixedValues.size() && same; ++i)
+                same = std::find(problem.groupVariables.begin(), problem.groupVariables.end(), static_cast<int>(i)) !=
+                           problem.groupVariables.end() ||
+                       source.fixedValues[i] == ctx.fixedValues[i];
+            if (!same)
+                throw ProblemError(
+                    source.file, "request.start_state",
+                    "the robot's other joints differ from " + problem.file + "'s (a dataset's problems share them)");
+            for (const auto &obstacle : ctx.scene->obstacles())
+                ctx.scene->remove(obstacle.name);
+            ctx.scene->add(source.scene->obstacles());
+        }
+
+        void installDatasetQuery(const Problem &problem, const PlanningContext &ctx, const Problem &source,
+                                 std::size_t query)
+        {
+            installScene(problem, ctx, source);
+            const Query &q = source.queries.at(query);
+            const std::string key = "queries[" + std::to_string(query) + "].";
+            for (const auto *values : {&q.start, &q.goal})
+            {
+                const std::string why = invalidStateReason(ctx, *values);
+                if (!why.empty())
+                    throw ProblemError(source.file, key + (values == &q.start ? "start" : "goal"), why);
+            }
+            setQuery(ctx, q);
+        }
+
+        std::size_t trainOnDataset(const Problem &problem, const PlanningContext &ctx, const Dataset &training,
+                                   double time, const std::vector<ob::PlannerPtr> &planners, std::ostream *progress)
+        {
+            std::vector<planners::ExperiencePlanner *> learners;
+            for (const auto &planner : planners)
+                if (auto *learner = dynamic_cast<planners::ExperiencePlanner *>(planner.get()))
+                    learners.push_back(learner);
+            if (learners.empty())
+                return 0;
+            const auto began = std::chrono::steady_clock::now();
+            std::size_t learned = 0;
+            for (const auto &entry : training.entries)
+            {
+                const Problem source = loadProblem(entry.problemFile);
+                installDatasetQuery(problem, ctx, source, entry.query);
+                og::PathGeometric path(ctx.setup->getSpaceInformation());
+                if (!solveTrainingQuery(ctx, source.queries[entry.query], time, path))
+                    continue;
+                // each learner sees the path in the scene it was solved in, and all of them the same path
+                for (auto *learner : learners)
+                {
+                    learner->sceneChanged();
+                    learner->addExperience(path);
+                }
+                ++learned;
+            }
+            if (progress)
+                *progress << "michi bench: training: " << learned << " of " << training.entries.size()
+                          << " training problems of " << training.name << " solved by RRT-Connect (" << time
+                          << " s each, each in its own scene) in " << std::setprecision(3)
+                          << std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count()
+                          << " s (not in run times)" << std::endl;
+            return learned;
+        }
+    }  // namespace tools
+}  // namespace michi
