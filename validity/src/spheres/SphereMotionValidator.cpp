@@ -85,7 +85,9 @@ namespace michi
                     ompl::base::State *from = si_->allocState(), *to = si_->allocState();
                     space->interpolate(s1, s2, p.t0, from);
                     space->interpolate(s1, s2, p.t1, to);
-                    const bool free = exactMotions_->checkMotion(from, to);
+                    // the workspace validator takes its first state as valid (OMPL's convention); this piece may
+                    // begin the motion, whose first state nobody has checked
+                    const bool free = si_->isValid(from) && exactMotions_->checkMotion(from, to);
                     si_->freeState(from);
                     si_->freeState(to);
                     if (!free)
