@@ -78,8 +78,9 @@ namespace michi
                     break;
                 }
                 // a state free for the real geometry that the spheres cannot show free (a hand at its grasp):
-                // halving cannot help. FCL decides this piece as michi's FCL checker checks motions (no point of
-                // the robot moves more than 1 cm between checks): FCL's exact walk took 8 ms a motion here
+                // halving cannot help. FCL decides this piece with the workspace validator at 1 mm (no point of
+                // the robot moves more than 1 mm between checks; at 1 cm verify-checker found unsafe motions):
+                // FCL's exact walk took 8 ms a motion here. This piece is checked, not certified
                 if (exactMotions_ && !checker_->spheresFree(mid.data()))
                 {
                     ompl::base::State *from = si_->allocState(), *to = si_->allocState();
