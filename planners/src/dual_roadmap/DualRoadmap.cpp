@@ -160,43 +160,36 @@ namespace michi
             return true;
         }
 
+        bool DualRoadmap::stillProved(std::uint64_t &stamp, const ob::State *a, const ob::State *b) const
+        {
+            // carried over when no change since touched it; else forgotten, so it is not asked again
+            if (stamp != 0 && stamp != epoch_)
+                stamp = unaffectedSince(stamp, a, b) ? epoch_ : 0;
+            return stamp == epoch_;
+        }
+
         bool DualRoadmap::knownValid(Vertex v)
         {
             auto &p = graph_[v];
-            // carried over when no change since touched it; else forgotten, so it is not asked again
-            if (p.validIn != 0 && p.validIn != epoch_)
-                p.validIn = unaffectedSince(p.validIn, p.state, p.state) ? epoch_ : 0;
-            return p.validIn == epoch_;
+            return stillProved(p.validIn, p.state, p.state);
         }
 
         bool DualRoadmap::knownInvalid(Vertex v)
         {
             auto &p = graph_[v];
-            if (p.invalidIn != 0 && p.invalidIn != epoch_)
-                p.invalidIn = unaffectedSince(p.invalidIn, p.state, p.state) ? epoch_ : 0;
-            return p.invalidIn == epoch_;
+            return stillProved(p.invalidIn, p.state, p.state);
         }
 
         bool DualRoadmap::knownValid(const Graph::edge_descriptor &e)
         {
-            auto &p = graph_[e];
-            if (p.validIn != 0 && p.validIn != epoch_)
-                p.validIn = unaffectedSince(p.validIn, graph_[boost::source(e, graph_)].state,
-                                            graph_[boost::target(e, graph_)].state)
-                                ? epoch_
-                                : 0;
-            return p.validIn == epoch_;
+            return stillProved(graph_[e].validIn, graph_[boost::source(e, graph_)].state,
+                               graph_[boost::target(e, graph_)].state);
         }
 
         bool DualRoadmap::knownInvalid(const Graph::edge_descriptor &e)
         {
-            auto &p = graph_[e];
-            if (p.invalidIn != 0 && p.invalidIn != epoch_)
-                p.invalidIn = unaffectedSince(p.invalidIn, graph_[boost::source(e, graph_)].state,
-                                              graph_[boost::target(e, graph_)].state)
-                                  ? epoch_
-                                  : 0;
-            return p.invalidIn == epoch_;
+            return stillProved(graph_[e].invalidIn, graph_[boost::source(e, graph_)].state,
+                               graph_[boost::target(e, graph_)].state);
         }
 
         void DualRoadmap::setSceneChangeCounter(std::function<std::uint64_t()> counter)

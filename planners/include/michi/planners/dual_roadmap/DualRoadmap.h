@@ -260,6 +260,9 @@ namespace michi
             Vertex rememberQueryVertex(Vertex v);
             /** \brief No change since epoch \e since (> 0) affects the motion \e a -> \e b (a == b: the state). */
             bool unaffectedSince(std::uint64_t since, const ompl::base::State *a, const ompl::base::State *b) const;
+            /** A proof (\e stamp: the epoch it was made in) of the state or motion a-b, renewed to this epoch
+                when no scene change since touched it, else forgotten; true when it holds now. */
+            bool stillProved(std::uint64_t &stamp, const ompl::base::State *a, const ompl::base::State *b) const;
             bool knownValid(Vertex v);
             bool knownInvalid(Vertex v);
             bool knownValid(const Graph::edge_descriptor &e);
