@@ -1,5 +1,9 @@
 #include "support/MichiCommand.h"
 
+#include <michi/tools/bench/PlanningContext.h>
+
+#include <gtest/gtest.h>
+
 #include <array>
 #include <fstream>
 #include <sstream>
@@ -24,6 +28,24 @@ namespace michi
             const int status = pclose(pipe);
             run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
             return run;
+        }
+
+        std::string problemLoadError(const std::string &path, bool plan)
+        {
+            try
+            {
+                const auto problem = tools::loadProblem(path);
+                if (plan)
+                    tools::makePlanningContext(problem);
+            }
+            catch (const std::exception &e)
+            {
+                const std::string what = e.what();
+                EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
+                return what;
+            }
+            ADD_FAILURE() << path << " loaded without error";
+            return "";
         }
 
         std::string problemFile(const std::string &name)

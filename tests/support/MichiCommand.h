@@ -24,6 +24,9 @@ namespace michi
 
         /** \brief The bytes of a file (empty when it cannot be read): what a command wrote. */
         std::string slurp(const std::string &file);
+        /** \brief Load problem file \e path (and, with \e plan, make its planning context) and return the error
+            message, which must be one line; fails the calling test if loading succeeds. */
+        std::string problemLoadError(const std::string &path, bool plan = false);
 
         /** \brief The same for a path object (boost::filesystem::path, std::filesystem::path). */
         template <typename Path, typename = decltype(std::declval<const Path &>().string())>

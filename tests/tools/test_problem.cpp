@@ -7,6 +7,8 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <boost/filesystem.hpp>
+#include "support/MichiCommand.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -60,19 +62,7 @@ namespace
         /** Load and return the error message; fails the test if loading succeeds. */
         std::string error(const std::string &path)
         {
-            try
-            {
-                auto p = michi::tools::loadProblem(path);
-                michi::tools::makePlanningContext(p);
-            }
-            catch (const std::exception &e)
-            {
-                const std::string what = e.what();
-                EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-                return what;
-            }
-            ADD_FAILURE() << path << " loaded without error";
-            return "";
+            return michi::test::problemLoadError(path, true);
         }
         fs::path dir_;
     };

@@ -7,6 +7,8 @@
 #include <ompl/base/ScopedState.h>
 
 #include <boost/filesystem.hpp>
+#include "support/MichiCommand.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -63,18 +65,7 @@ namespace
         }
         std::string error(const std::string &path)
         {
-            try
-            {
-                michi::tools::loadProblem(path);
-            }
-            catch (const std::exception &e)
-            {
-                const std::string what = e.what();
-                EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-                return what;
-            }
-            ADD_FAILURE() << path << " loaded without error";
-            return "";
+            return michi::test::problemLoadError(path, false);
         }
         fs::path dir_;
     };
