@@ -170,6 +170,21 @@ namespace michi
             jmapGeneration_ = generation;
         }
 
+        void ConcentricCircle::refreshCapsules()
+        {
+            // As refreshJMapMap: another checker, or the same checker's scene changed, means other obstacles.
+            const auto *checker = si_->getStateValidityChecker().get();
+            const validity::FclValidityChecker *fcl = dynamic_cast<const validity::FclValidityChecker *>(checker);
+            if (const auto *jmap = dynamic_cast<const validity::JMapValidityChecker *>(checker))
+                fcl = jmap->fcl().get();
+            const std::uint64_t generation = fcl ? fcl->scene()->changeCount() : 0;
+            if (checker == capsuleChecker_ && generation == capsuleGeneration_)
+                return;
+            capsules_ = CapsuleClearance::make(*si_);
+            capsuleChecker_ = checker;
+            capsuleGeneration_ = generation;
+        }
+
         bool ConcentricCircle::selectsClearance() const
         {
             // The problem's objective counts as well: a MaximizeMinClearanceObjective on the problem definition asks
@@ -522,7 +537,17 @@ namespace michi
             // Safe paths (paper 000's aim): asked for clearance, the chosen path's points move away from the
             // obstacles, each move kept only if its state and motions stay valid.
             if (selectsClearance())
-                pushAwayFromObstacles(si_, fullPaths_[bestPath_], ptc);
+            {
+                refreshCapsules();
+                ClearanceFunction measure;
+                if (capsules_)
+                    measure = [this, values = std::vector<double>()](const ob::State *s) mutable
+                    {
+                        si_->getStateSpace()->copyToReals(values, s);
+                        return capsules_->at(values.data());
+                    };
+                pushAwayFromObstacles(si_, fullPaths_[bestPath_], ptc, measure);
+            }
             auto path = std::make_shared<og::PathGeometric>(si_);
             for (auto *s : fullPaths_[bestPath_])
                 path->append(s);

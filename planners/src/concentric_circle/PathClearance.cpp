@@ -1,7 +1,11 @@
 #include "PathClearance.h"
 
+#include <michi/validity/robot/CollisionBodies.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 namespace ob = ompl::base;
 
@@ -19,7 +23,95 @@ namespace michi
                     return 0.;
                 return tile.distanceToBoundary(x, y, cap);
             }
+
+            double cross(const Eigen::Vector2d &u, const Eigen::Vector2d &v)
+            {
+                return u.x() * v.y() - u.y() * v.x();
+            }
+
+            double pointSegmentSquared(const Eigen::Vector2d &p, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
+            {
+                const Eigen::Vector2d ab = b - a;
+                const double len2 = ab.squaredNorm();
+                const double t = len2 > 0. ? std::clamp((p - a).dot(ab) / len2, 0., 1.) : 0.;
+                return (a + t * ab - p).squaredNorm();
+            }
+
+            /** squared distance between segments [a, b] and [c, d]: 0 when they cross, else the nearest of the four
+                end-point-to-segment distances (in the plane the closest pair of two disjoint segments always has an
+                end point in it) */
+            double segmentSegmentSquared(const Eigen::Vector2d &a, const Eigen::Vector2d &b, const Eigen::Vector2d &c,
+                                         const Eigen::Vector2d &d)
+            {
+                const double d1 = cross(d - c, a - c), d2 = cross(d - c, b - c);
+                const double d3 = cross(b - a, c - a), d4 = cross(b - a, d - a);
+                if (((d1 > 0. && d2 < 0.) || (d1 < 0. && d2 > 0.)) && ((d3 > 0. && d4 < 0.) || (d3 < 0. && d4 > 0.)))
+                    return 0.;
+                return std::min({pointSegmentSquared(a, c, d), pointSegmentSquared(b, c, d),
+                                 pointSegmentSquared(c, a, b), pointSegmentSquared(d, a, b)});
+            }
+
+            const validity::FclValidityChecker *fclOf(const ob::SpaceInformation &si)
+            {
+                const auto *checker = si.getStateValidityChecker().get();
+                if (const auto *f = dynamic_cast<const validity::FclValidityChecker *>(checker))
+                    return f;
+                if (const auto *j = dynamic_cast<const validity::JMapValidityChecker *>(checker))
+                    return j->fcl().get();
+                return nullptr;
+            }
         }  // namespace
+
+        std::shared_ptr<const CapsuleClearance> CapsuleClearance::make(const ob::SpaceInformation &si)
+        {
+            const auto *fcl = fclOf(si);
+            const auto *group = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
+            if (group == nullptr)
+                return nullptr;
+            std::shared_ptr<CapsuleClearance> out(new CapsuleClearance());
+            try
+            {
+                out->arm_ = validity::PlanarArm::fromModel(*group->model());
+            }
+            catch (const std::invalid_argument &)
+            {
+                return nullptr;  // a joint that does not turn about z: no planar model, FCL measures instead
+            }
+            out->variables_ = group->variables();
+            const std::vector<double> unset(out->variables_.size(), 0.);
+            out->configuration_ = group->fullConfiguration(unset.data());
+            for (const auto &poly : fcl->scene()->polygons2d())
+            {
+                auto addRing = [&out](const validity::Polygon2::ring_type &ring)
+                {
+                    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+                        out->edges_.push_back({{ring[i].x(), ring[i].y()}, {ring[i + 1].x(), ring[i + 1].y()}});
+                };
+                addRing(poly.outer());
+                for (const auto &inner : poly.inners())
+                    addRing(inner);
+            }
+            if (out->edges_.empty())
+                return nullptr;
+            return out;
+        }
+
+        double CapsuleClearance::at(const double *values) const
+        {
+            // The group's values into the model's configuration (the other joints keep the values the checker uses).
+            std::vector<double> q = configuration_;
+            for (std::size_t i = 0; i < variables_.size(); ++i)
+                q[variables_[i]] = values[i];
+            double best = std::numeric_limits<double>::infinity();
+            for (const auto &capsule : arm_->worldCapsules(q.data()))
+            {
+                double nearest = std::numeric_limits<double>::infinity();
+                for (const Edge2 &e : edges_)
+                    nearest = std::min(nearest, segmentSegmentSquared(capsule.a, capsule.b, e.a, e.b));
+                best = std::min(best, std::sqrt(nearest) - capsule.radius);
+            }
+            return std::max(best, 0.);
+        }
 
         double jmapClearance(const ob::SpaceInformation &si, const validity::JMapValidityChecker &checker,
                              const ob::State *state, double cap)
@@ -52,7 +144,8 @@ namespace michi
         }
 
         int pushAwayFromObstacles(const ob::SpaceInformationPtr &si, std::vector<ob::State *> &states,
-                                  const ob::PlannerTerminationCondition &ptc, int sweeps, double step)
+                                  const ob::PlannerTerminationCondition &ptc, const ClearanceFunction &clearance,
+                                  int sweeps, double step)
         {
             if (states.size() < 3)
                 return 0;
@@ -61,10 +154,14 @@ namespace michi
             ob::State *moved = si->allocState();
             ob::State *probe = si->allocState();
             std::vector<double> v, w;
+            auto measure = [&](const ob::State *s)
+            {
+                return clearance ? clearance(s) : checker->clearance(s);
+            };
             auto clearanceAt = [&](const std::vector<double> &values)
             {
                 space->copyFromReals(probe, values);
-                return si->satisfiesBounds(probe) && checker->isValid(probe) ? checker->clearance(probe) : 0.;
+                return si->satisfiesBounds(probe) && checker->isValid(probe) ? measure(probe) : 0.;
             };
             int kept = 0;
             for (int sweep = 0; sweep < sweeps && !ptc && step > 1e-3; ++sweep)
@@ -92,7 +189,7 @@ namespace michi
                     w[1] += step * g[1] / norm;
                     space->copyFromReals(moved, w);
                     // kept only if clearer, valid, and both motions pass: the path stays a valid path at every move
-                    if (!si->satisfiesBounds(moved) || !checker->isValid(moved) || checker->clearance(moved) <= c0 ||
+                    if (!si->satisfiesBounds(moved) || !checker->isValid(moved) || measure(moved) <= c0 ||
                         !si->checkMotion(states[i - 1], moved) || !si->checkMotion(moved, states[i + 1]))
                         continue;
                     si->copyState(states[i], moved);

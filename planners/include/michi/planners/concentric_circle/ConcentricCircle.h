@@ -16,6 +16,8 @@ namespace michi
 {
     namespace planners
     {
+        class CapsuleClearance;
+
         /**
            @anchor michiConcentricCircle
            @par Short description
@@ -262,6 +264,13 @@ namespace michi
             std::shared_ptr<CircleMap> jmapMap_;
             const void *jmapChecker_{nullptr};
             std::uint64_t jmapGeneration_{0};  ///< the scene's changeCount() when jmapMap_ was made
+            /** The planar arm's capsule clearance the push climbs (null: not a planar arm, the checker's
+                clearance() instead), made for \e capsuleChecker_ at the scene's \e capsuleGeneration_. */
+            std::shared_ptr<const CapsuleClearance> capsules_;
+            const void *capsuleChecker_{nullptr};
+            std::uint64_t capsuleGeneration_{0};
+            /** capsules_ for the current checker and scene */
+            void refreshCapsules();
             void refreshJMapMap();
             std::string usedMode_;
             std::vector<std::vector<ompl::base::State *>> fullPaths_;
