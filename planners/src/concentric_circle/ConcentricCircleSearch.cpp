@@ -368,27 +368,69 @@ namespace michi
             {
                 if (ptc)
                     return false;
-                for (const int i : arc)
-                    rings_[r].potential[i] = potential(rings_[r].points[i], goal, s, k);
                 const bool closed = static_cast<int>(arc.size()) == n;
                 const bool ends = settings_.arcEnds && !closed && arc.size() >= 3;
-                std::vector<int> chain;
-                if (ends)
-                    chain.push_back(candidate(arc.front()));
+                auto &phi = rings_[r].potential;
+                std::vector<char> exact(arc.size(), 0);
+                auto evaluate = [&](std::size_t j)
+                {
+                    if (!exact[j])
+                        phi[arc[j]] = potential(rings_[r].points[arc[j]], goal, s, k);
+                    exact[j] = 1;
+                };
                 // count pieces of equal size (rounded up), rather than full pieces plus a short remainder, so no piece
                 // is a stub.
                 const int count = (static_cast<int>(arc.size()) + piecePoints - 1) / piecePoints;
                 const int size = (static_cast<int>(arc.size()) + count - 1) / count;
+                std::vector<int> minima;
+                std::vector<std::size_t> order;
                 for (std::size_t from = 0; from < arc.size(); from += size)
                 {
-                    int best = -1;
+                    const std::size_t to = std::min(arc.size(), from + static_cast<std::size_t>(size));
+                    // Branch and bound on equation (3): the repulsion terms are never negative (Kp >= 0), so the
+                    // attraction -Kg / |PG| alone is a lower bound of a point's potential. Points are evaluated in the
+                    // order of that bound, and once the bound exceeds the best potential found, no later point can
+                    // be the minimum: its repulsion (the sight-line tests, most of the potential's cost on a J-map)
+                    // is never computed, and it keeps the bound as its potential. The minimum, and which point it
+                    // is (the first along the arc among equals), are exactly those of evaluating every point.
+                    order.clear();
+                    for (std::size_t j = from; j < to; ++j)
+                    {
+                        order.push_back(j);
+                        if (!exact[j])
+                            phi[arc[j]] = -settings_.kGoal / std::max((rings_[r].points[arc[j]] - goal).norm(), 1e-9);
+                    }
+                    const bool bound = settings_.kObstacle >= 0.;
+                    std::stable_sort(order.begin(), order.end(),
+                                     [&](std::size_t a, std::size_t b)
+                                     {
+                                         return phi[arc[a]] < phi[arc[b]];
+                                     });
+                    std::size_t best = to;
                     double bestPhi = INF;
-                    for (std::size_t j = from; j < std::min(arc.size(), from + size); ++j)
-                        if (rings_[r].potential[arc[j]] < bestPhi)
+                    for (const std::size_t j : order)
+                    {
+                        if (bound && phi[arc[j]] > bestPhi)
+                            break;
+                        evaluate(j);
+                        if (phi[arc[j]] < bestPhi || (phi[arc[j]] == bestPhi && j < best))
                         {
-                            bestPhi = rings_[r].potential[arc[j]];
-                            best = arc[j];
+                            bestPhi = phi[arc[j]];
+                            best = j;
                         }
+                    }
+                    minima.push_back(arc[best]);
+                }
+                std::vector<int> chain;
+                if (ends)
+                {
+                    // the end points are candidates whatever their potential; a node carries the exact value
+                    evaluate(0);
+                    evaluate(arc.size() - 1);
+                    chain.push_back(candidate(arc.front()));
+                }
+                for (const int best : minima)
+                {
                     if (ends && (best == arc.front() || best == arc.back()))
                         continue;  // already a candidate
                     chain.push_back(candidate(best));

@@ -66,7 +66,9 @@ namespace michi
             Eigen::Vector2d centre{Eigen::Vector2d::Zero()};
             std::vector<Eigen::Vector2d> points;
             std::vector<char> free;
-            std::vector<double> potential;    ///< per free point (0 for blocked points)
+            /** per free point: its potential (equation 3), or, for a point that cannot be its piece's minimum, the
+                lower bound that showed it (the attraction alone, above the minimum; 0 for blocked points) */
+            std::vector<double> potential;
             std::vector<int> candidates;      ///< node ids
             std::vector<Edge2> blockedEdges;  ///< chords of the blocked runs (potential without polygons)
             bool linked{false};               ///< candidates computed and linked
