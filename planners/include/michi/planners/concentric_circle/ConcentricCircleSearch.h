@@ -160,7 +160,7 @@ namespace michi
             void proposeLink(int a, int b);
             bool validateLink(int a, int b);
             bool validatePath(const std::vector<int> &path);
-            /** checks the links of shortest paths until one passes or none is left */
+            /** a path from the start to the goal on checked links (checkedSearch)? */
             bool lazyConnect();
             int addSet(int centre, int goal, double spacing, int divisions, bool cover);
             /** sample ring k (1-based) of set s if not yet sampled; returns its index in rings_ */
@@ -169,11 +169,9 @@ namespace michi
             bool linkRing(int s, int k, const ompl::base::PlannerTerminationCondition &ptc);
             double potential(const Eigen::Vector2d &p, const Eigen::Vector2d &goal, int s, int k) const;
             bool connected();
-            void dijkstra(int source, std::vector<double> &dist, std::vector<int> &parent) const;
-            /** dijkstra() whose tree uses checked links only (failed links are removed) */
-            void checkedTree(int source, std::vector<double> &dist, std::vector<int> &parent);
-            /** A* from \e source to \e target; false when unreachable (then \e parent is partial) */
-            bool shortestPath(int source, int target, std::vector<double> &dist, std::vector<int> &parent) const;
+            /** Dijkstra from \e source (\e target < 0: the whole tree; true) or A* to \e target (false when
+                unreachable), checking each link where it would shorten a distance and removing those that fail */
+            bool checkedSearch(int source, int target, std::vector<double> &dist, std::vector<int> &parent);
 
             const CircleMap &map_;
             ConcentricCircleSettings settings_;
