@@ -3,6 +3,7 @@
 #include <boost/geometry/index/rtree.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 namespace bg = boost::geometry;
@@ -157,9 +158,12 @@ namespace michi
         {
             validity::Box2 box(validity::Point2(std::min(a.x(), b.x()), std::min(a.y(), b.y())),
                                validity::Point2(std::max(a.x(), b.x()), std::max(a.y(), b.y())));
-            for (auto it = index_->tree.qbegin(bgi::intersects(box)); it != index_->tree.qend(); ++it)
+            thread_local std::vector<Value> found;
+            found.clear();
+            index_->tree.query(bgi::intersects(box), std::back_inserter(found));
+            for (const Value &v : found)
             {
-                const int e = it->second;
+                const int e = v.second;
                 if (e == skip1 || e == skip2)
                     continue;
                 if (segmentsTouch(a, b, edges_[e].a, edges_[e].b))
@@ -182,9 +186,14 @@ namespace michi
                                validity::Point2(p.x() + range, p.y() + range));
             std::vector<int> near;
             Eigen::Vector2d lo = p, hi = p;
-            for (auto it = index_->tree.qbegin(bgi::intersects(box)); it != index_->tree.qend(); ++it)
+            // query() into a vector rather than the qbegin() iterator: the iterator is type-erased and cost more
+            // than the edge tests here (perf on planar_2link's J-map).
+            thread_local std::vector<Value> found;
+            found.clear();
+            index_->tree.query(bgi::intersects(box), std::back_inserter(found));
+            for (const Value &v : found)
             {
-                const int e = it->second;
+                const int e = v.second;
                 const Edge2 &ed = edges_[e];
                 // potential_range: a far edge's term Kp / Dp^2 is small (docs/concentric-circle.md), and leaving it out
                 // keeps the cost per point bounded on large maps.
@@ -202,8 +211,10 @@ namespace michi
             // segment tests (an R-tree query per sight line cost more than the tests it saved).
             std::vector<int> blockers;
             const validity::Box2 sight(validity::Point2(lo.x(), lo.y()), validity::Point2(hi.x(), hi.y()));
-            for (auto it = index_->tree.qbegin(bgi::intersects(sight)); it != index_->tree.qend(); ++it)
-                blockers.push_back(it->second);
+            found.clear();
+            index_->tree.query(bgi::intersects(sight), std::back_inserter(found));
+            for (const Value &v : found)
+                blockers.push_back(v.second);
             auto blockedAmong = [&](const Eigen::Vector2d &a, const Eigen::Vector2d &b, int skip1, int skip2)
             {
                 const Eigen::Vector2d sLo = a.cwiseMin(b), sHi = a.cwiseMax(b);
@@ -219,16 +230,27 @@ namespace michi
                 }
                 return false;
             };
+            // Vertex v is the first end point of edge v (and the second of prev_[v]): two near edges that share a
+            // vertex ask the same question about it (the same sight line, the same two edges skipped), so each
+            // answer is kept for the other edge.
+            std::vector<std::pair<int, bool>> seen;
+            auto vertexHidden = [&](int v)
+            {
+                for (const auto &known : seen)
+                    if (known.first == v)
+                        return known.second;
+                const bool hidden = blockedAmong(p, edges_[v].a, v, prev_[v]);
+                seen.emplace_back(v, hidden);
+                return hidden;
+            };
             for (const int e : near)
             {
-                const Edge2 &ed = edges_[e];
-                // vertex a is shared by edges e and prev_[e]; vertex b by e and the edge after e
                 // Paper 000: only edges whose both end points are visible from P count, so the pockets of concave
                 // polygons do not pull the potential in. The edges meeting at the end point itself are skipped, since a
                 // sight line always touches them there.
-                if (blockedAmong(p, ed.a, e, prev_[e]) || blockedAmong(p, ed.b, e, next_[e]))
+                if (vertexHidden(e) || vertexHidden(next_[e]))
                     continue;
-                edges.push_back(ed);
+                edges.push_back(edges_[e]);
             }
             return true;
         }
