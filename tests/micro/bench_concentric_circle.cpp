@@ -2,12 +2,15 @@
 // the problems of paper 000 (Google Benchmark; not part of ctest), with a plain timedPlannerTerminationCondition
 // (no helper thread, unlike Planner::solve(t >= 1 s) and OMPL's Benchmark):
 //   build/tests/micro/bench_concentric_circle --benchmark_min_time=2
+// (planar_2link_jmap_clearance: with the clearance objective of michi bench --objective clearance, which adds
+// ConcentricCircle's push away from obstacles; RRTConnect ignores objectives)
 // Each iteration clears the planner and the solutions and solves once; RRTConnect's seed is fixed once, before the
 // first benchmark (its time varies with the seed; ConcentricCircle is deterministic).
 #include <michi/planners/concentric_circle/ConcentricCircle.h>
 #include <michi/tools/bench/PlanningContext.h>
 
 #include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -19,8 +22,18 @@
 
 namespace
 {
-    michi::tools::Problem load(const std::string &name)
+    const std::string CLEARANCE = "+clearance";
+
+    bool asksClearance(const std::string &name)
     {
+        return name.size() > CLEARANCE.size() &&
+               name.compare(name.size() - CLEARANCE.size(), CLEARANCE.size(), CLEARANCE) == 0;
+    }
+
+    michi::tools::Problem load(std::string name)
+    {
+        if (asksClearance(name))
+            name.resize(name.size() - CLEARANCE.size());
         const auto colon = name.find(':');
         auto problem =
             michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + name.substr(0, colon) + ".yaml");
@@ -34,9 +47,13 @@ namespace
         michi::tools::Problem problem;
         michi::tools::PlanningContext ctx;
 
-        // name: a bundled problem, or "problem:checker" to run it with that checker (e.g. planar_2link:jmap)
+        // name: a bundled problem, or "problem:checker" to run it with that checker (e.g. planar_2link:jmap);
+        // "+clearance" at the end sets the clearance objective, as michi bench --objective clearance does
         explicit Fixture(const std::string &name) : problem(load(name)), ctx(michi::tools::makePlanningContext(problem))
         {
+            if (asksClearance(name))
+                ctx.setup->getProblemDefinition()->setOptimizationObjective(
+                    std::make_shared<ompl::base::MaximizeMinClearanceObjective>(ctx.setup->getSpaceInformation()));
             ctx.setup->setup();
         }
     };
@@ -94,6 +111,11 @@ BENCHMARK_CAPTURE(concentricCircle, planar_2link_ConcentricCircle, std::string("
 BENCHMARK_CAPTURE(rrtConnect, planar_2link_jmap_RRTConnect, std::string("planar_2link:jmap"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(concentricCircle, planar_2link_jmap_ConcentricCircle, std::string("planar_2link:jmap"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rrtConnect, planar_2link_jmap_clearance_RRTConnect, std::string("planar_2link:jmap+clearance"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(concentricCircle, planar_2link_jmap_clearance_ConcentricCircle,
+                  std::string("planar_2link:jmap+clearance"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(rrtConnect, planar_3dof_hand_RRTConnect, std::string("planar_3dof_hand"))
     ->Unit(benchmark::kMillisecond);
