@@ -173,7 +173,7 @@ namespace michi
         // ---------------------------------------------------------------- hand map
 
         HandLift::HandLift(ob::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal, int axis1,
-                           int axis2, int hand, std::vector<Eigen::Vector2d> armPath)
+                           int axis2, int hand, std::vector<Eigen::Vector2d> armPath, double from, double to)
             : si_(std::move(si))
             , start_(std::move(start))
             , goal_(std::move(goal))
@@ -188,8 +188,21 @@ namespace michi
                 s_.push_back(s_.back() + (arm_[i] - arm_[i - 1]).norm());
             // an arm that does not move still gets a short axis, so the hand can turn
             length_ = std::max(s_.back(), 1e-3);
-            start2_ = Eigen::Vector2d(0., start_[hand_]);
-            goal2_ = Eigen::Vector2d(length_, start_[hand_] + difference(axes_[hand_], start_[hand_], goal_[hand_]));
+            from_ = std::clamp(from, 0., length_);
+            to_ = to < 0. ? length_ : std::clamp(to, from_, length_);
+            if (to_ - from_ < 1e-3)
+            {
+                // a window too short to plan in: widened around its middle (within the path)
+                const double mid = 0.5 * (from_ + to_);
+                from_ = std::max(0., std::min(mid - 5e-4, length_ - 1e-3));
+                to_ = from_ + 1e-3;
+            }
+            const double goalHand = start_[hand_] + difference(axes_[hand_], start_[hand_], goal_[hand_]);
+            // Before a window that starts later than the path, the arm is outside the grown map, where the hand
+            // reaches no obstacle at any value: the hand turns to its goal value there (outsideBefore()), and the
+            // hand map inside the window starts from it, often leaving a straight way through the bottleneck.
+            start2_ = Eigen::Vector2d(from_, from_ > 0. ? goalHand : start_[hand_]);
+            goal2_ = Eigen::Vector2d(to_, goalHand);
             a_ = si_->allocState();
             b_ = si_->allocState();
         }
@@ -219,6 +232,27 @@ namespace michi
             v[axis2_] = arm.y();
             v[hand_] = p.y();
             return v;
+        }
+
+        std::vector<Eigen::Vector2d> HandLift::outsideBefore() const
+        {
+            std::vector<Eigen::Vector2d> out;
+            // the hand turns linearly with arc length from its start value to the window's entry value
+            for (std::size_t k = 0; k < s_.size() && s_[k] < from_ - 1e-12; ++k)
+                out.emplace_back(s_[k], start_[hand_] + (start2_.y() - start_[hand_]) * s_[k] / from_);
+            return out;
+        }
+
+        std::vector<Eigen::Vector2d> HandLift::outsideAfter() const
+        {
+            std::vector<Eigen::Vector2d> out;
+            for (std::size_t k = 0; k < s_.size(); ++k)
+                if (s_[k] > to_ + 1e-12)
+                    out.emplace_back(s_[k], goal2_.y());
+            // a path whose last vertex is within the window's rounding still ends at the goal's arm values
+            if (to_ < length_ - 1e-12 && (out.empty() || out.back().x() < length_))
+                out.emplace_back(length_, goal2_.y());
+            return out;
         }
 
         void HandLift::lift(const Eigen::Vector2d &p, ob::State *state) const
@@ -271,8 +305,8 @@ namespace michi
                 {
                     return breakpoints(a, b);
                 });
-            map->lo = Eigen::Vector2d(0., axes_[hand_].lo);
-            map->hi = Eigen::Vector2d(length_, axes_[hand_].hi);
+            map->lo = Eigen::Vector2d(from_, axes_[hand_].lo);
+            map->hi = Eigen::Vector2d(to_, axes_[hand_].hi);
             map->wraps = {{false, axes_[hand_].wraps}};
             return map;
         }
@@ -443,9 +477,10 @@ namespace michi
 
         // ---------------------------------------------------------------- the arm without its hand
 
-        std::shared_ptr<CircleMap> makeArmCircleMap(const ob::SpaceInformationPtr &si, const ProjectionLift &arm,
-                                                    const std::vector<int> &handValues)
+        ArmMaps makeArmMaps(const ob::SpaceInformationPtr &si, const ProjectionLift &arm,
+                            const std::vector<int> &handValues, int slices, double tolerance)
         {
+            ArmMaps out;
             const auto *fcl = fclOf(si);
             const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
             validity::PlanarArmPtr planar;
@@ -461,26 +496,75 @@ namespace michi
                 }
             }
             if (!planar)
-                return arm.makeMap();
+            {
+                out.map = arm.makeMap();
+                out.kind = "projection";
+                return out;
+            }
             const auto &variables = rgb->variables();
             std::vector<double> start = arm.values(arm.start2());
             std::vector<double> configuration = rgb->fullConfiguration(start.data());
             std::vector<int> links;
+            // The hand's reach beyond its joint: how far the obstacles grow for the grown map. A hand link's points
+            // lie within reachFrom() (its capsules' centre segments) plus the capsule's radius of the hand joint.
+            double handReach = 0.;
             for (std::size_t l = 0; l < planar->links().size(); ++l)
             {
                 bool hand = false;
                 // Paper 000: the arm's map is built without the hand. A link moved by a hand value is left out, so
                 // the arm map only blocks what the arm's own links hit; the hand map deals with the rest.
                 for (const int h : handValues)
-                    hand = hand || planar->moves(variables[h], static_cast<int>(l));
+                    if (planar->moves(variables[h], static_cast<int>(l)))
+                    {
+                        hand = true;
+                        double radius = 0.;
+                        for (const auto &capsule : planar->links()[l].capsules)
+                            radius = std::max(radius, capsule.radius);
+                        handReach = std::max(handReach, planar->reachFrom(variables[h], static_cast<int>(l)) + radius);
+                    }
                 if (!hand)
                     links.push_back(static_cast<int>(l));
             }
             auto axes = validity::planarAxes(*planar, variables[arm.axis1()], variables[arm.axis2()], configuration);
-            auto source =
-                std::make_shared<validity::PlanarIntervalSource>(planar, fcl->scene()->polygons2d(), axes, links);
+            const validity::MultiPolygon2 obstacles = fcl->scene()->polygons2d();
+            auto source = std::make_shared<validity::PlanarIntervalSource>(planar, obstacles, axes, links);
             const auto &valueAxis = arm.axes();
             const ValueAxis ax1 = valueAxis[arm.axis1()], ax2 = valueAxis[arm.axis2()];
+            if (handReach > 0.)
+            {
+                // the grown map's question for one configuration: the exact capsules against the grown obstacles
+                auto grown = std::make_shared<validity::PlanarIntervalSource>(
+                    planar, validity::growObstacles(obstacles, handReach), axes, links);
+                out.inGrown = [grown](const Eigen::Vector2d &p)
+                {
+                    return grown->collides(p.x(), p.y());
+                };
+            }
+            // The paper's arm J-map: polygons that contain the arm's collision region, searched with the J-map's own
+            // point and segment tests. The polygons are conservative and may close a channel the start or goal lies
+            // in (docs/concentric-circle.md); then the exact capsules decide instead. Polygon maps do not wrap.
+            if (slices > 0 && !ax1.wraps && !ax2.wraps)
+            {
+                validity::JMapSettings settings;
+                settings.slices = slices;
+                settings.tolerance = tolerance;
+                settings.trueIntervals = false;
+                const validity::JMapPtr jmap = validity::JMap::build(*source, settings);
+                const Eigen::Vector2d s2 = arm.start2(), g2 = arm.goal2();
+                if (!jmap->collides(s2.x(), s2.y()) && !jmap->collides(g2.x(), g2.y()))
+                {
+                    auto map = std::make_shared<PolygonCircleMap>(jmap->polygons(), Eigen::Vector2d(ax1.lo, ax2.lo),
+                                                                  Eigen::Vector2d(ax1.hi, ax2.hi));
+                    map->setInsideTest(
+                        [jmap](const Eigen::Vector2d &p)
+                        {
+                            return jmap->collides(p.x(), p.y());
+                        });
+                    out.map = map;
+                    out.kind = "jmap";
+                    return out;
+                }
+            }
             auto freeAt = [source](const Eigen::Vector2d &p)
             {
                 return !source->collides(p.x(), p.y());
@@ -502,7 +586,9 @@ namespace michi
             map->lo = Eigen::Vector2d(ax1.lo, ax2.lo);
             map->hi = Eigen::Vector2d(ax1.hi, ax2.hi);
             map->wraps = {{ax1.wraps, ax2.wraps}};
-            return map;
+            out.map = map;
+            out.kind = "capsules";
+            return out;
         }
     }  // namespace planners
 }  // namespace michi

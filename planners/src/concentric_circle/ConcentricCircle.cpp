@@ -70,6 +70,12 @@ namespace michi
                                  &ConcentricCircle::getSurfaceAngle, "-3.15:0.05:3.15");
             declareParam<int>("hand_axis", this, &ConcentricCircle::setHandAxis, &ConcentricCircle::getHandAxis,
                               "-1:1:100");
+            declareParam<int>("arm_slices", this, &ConcentricCircle::setArmSlices, &ConcentricCircle::getArmSlices,
+                              "0:1:100000");
+            declareParam<double>("arm_tolerance", this, &ConcentricCircle::setArmTolerance,
+                                 &ConcentricCircle::getArmTolerance, "0.001:0.001:0.5");
+            declareParam<bool>("hand_in_bottleneck", this, &ConcentricCircle::setHandInBottleneck,
+                               &ConcentricCircle::getHandInBottleneck, "0,1");
         }
 
         ConcentricCircle::~ConcentricCircle()
@@ -330,7 +336,14 @@ namespace michi
             for (int v = 0; v < n; ++v)
                 if (v != axis1_ && v != axis2_)
                     others.push_back(v);
-            armStage.map = makeArmCircleMap(si_, *arm, others);
+            const ArmMaps armMaps = makeArmMaps(si_, *arm, others, armSlices_, armTolerance_);
+            armStage.map = armMaps.map;
+            armMapKind_ = armMaps.kind;
+            if (armSlices_ > 0 && armMaps.kind == "capsules")
+                OMPL_INFORM(
+                    "%s: the arm's start or goal lies inside its J-map polygons (%d slices); the arm is planned "
+                    "on the exact capsule geometry instead",
+                    getName().c_str(), armSlices_);
             armStage.lift = [arm](const Eigen::Vector2d &p, ob::State *s)
             {
                 arm->lift(p, s);
@@ -343,35 +356,105 @@ namespace michi
             // 2. along each arm path (shortest first): the hand map, arm-path arc length x hand value
             for (std::size_t i = 0; i < armStage.search->paths().size() && !ptc; ++i)
             {
-                auto handLift =
-                    std::make_shared<HandLift>(si_, start, goal, axis1_, axis2_, hand, armStage.search->pathPoints(i));
-                Stage handStage;
-                handStage.name = "hand";
-                handStage.map = handLift->makeMap();
-                handStage.lift = [handLift](const Eigen::Vector2d &p, ob::State *s)
+                const auto armPath = armStage.search->pathPoints(i);
+                // Paper 000, section 3.3: the hand needs a map only where the arm path crosses the bottleneck;
+                // elsewhere the arm is farther from every obstacle than the hand reaches, so the hand keeps its start
+                // value before that stretch and its goal value after it. The window is the stretch from the first to
+                // the last point of the path in the grown map (sampled every 0.005 rad, widened by two samples).
+                double from = 0., to = -1.;
+                if (handInBottleneck_ && armMaps.inGrown)
                 {
-                    handLift->lift(p, s);
-                };
-                handStage.search = std::make_shared<ConcentricCircleSearch>(*handStage.map, settings_);
-                const bool handFound = handStage.search->run(handLift->start2(), handLift->goal2(), ptc);
-                if (!handFound)
-                {
-                    // keep the first failed hand map for pictures and diagnostics
-                    if (stages_.size() == 1)
-                        stages_.push_back(handStage);
-                    continue;
+                    const double step = 0.005;
+                    double s = 0., first = -1., last = -1.;
+                    for (std::size_t k = 1; k < armPath.size(); ++k)
+                    {
+                        const double len = (armPath[k] - armPath[k - 1]).norm();
+                        const int m = std::max(1, static_cast<int>(std::ceil(len / step)));
+                        for (int j = k == 1 ? 0 : 1; j <= m; ++j)
+                        {
+                            const double f = static_cast<double>(j) / m;
+                            if (armMaps.inGrown(armPath[k - 1] + f * (armPath[k] - armPath[k - 1])))
+                            {
+                                if (first < 0.)
+                                    first = s + f * len;
+                                last = s + f * len;
+                            }
+                        }
+                        s += len;
+                    }
+                    if (first >= 0.)
+                    {
+                        from = std::max(0., first - 2. * step);
+                        to = std::min(s, last + 2. * step);
+                    }
                 }
-                // Only the arm stage and the solved hand stage are kept, so stages_.back() is the search that produced
-                // the solution.
-                stages_.resize(1);
-                stages_[0].chosenPath = static_cast<int>(i);
-                stages_.push_back(handStage);
-                for (std::size_t j = 0; j < handStage.search->paths().size(); ++j)
-                    fullPaths_.push_back(liftPath(handStage, j, false));
-                if (!fullPaths_.empty())
+                if (solveHand(start, goal, hand, i, armPath, from, to, ptc))
                     return true;
-                stages_.pop_back();
+                // The hand's turn outside the window can fail where the grown map says nothing (a self-collision of
+                // the hand with the arm): the whole arm path then, as without the bottleneck.
+                if ((from > 0. || to >= 0.) && !ptc && solveHand(start, goal, hand, i, armPath, 0., -1., ptc))
+                    return true;
             }
+            return false;
+        }
+
+        bool ConcentricCircle::solveHand(const std::vector<double> &start, const std::vector<double> &goal, int hand,
+                                         std::size_t armPathIndex, const std::vector<Eigen::Vector2d> &armPath,
+                                         double from, double to, const ob::PlannerTerminationCondition &ptc)
+        {
+            const std::size_t i = armPathIndex;
+            auto handLift = std::make_shared<HandLift>(si_, start, goal, axis1_, axis2_, hand, armPath, from, to);
+            Stage handStage;
+            handStage.name = "hand";
+            handStage.map = handLift->makeMap();
+            handStage.lift = [handLift](const Eigen::Vector2d &p, ob::State *s)
+            {
+                handLift->lift(p, s);
+            };
+            handStage.search = std::make_shared<ConcentricCircleSearch>(*handStage.map, settings_);
+            const bool handFound = handStage.search->run(handLift->start2(), handLift->goal2(), ptc);
+            if (!handFound)
+            {
+                // keep the first failed hand map for pictures and diagnostics
+                if (stages_.size() == 1)
+                    stages_.push_back(handStage);
+                return false;
+            }
+            // Only the arm stage and the solved hand stage are kept, so stages_.back() is the search that produced
+            // the solution.
+            stages_.resize(1);
+            stages_[0].chosenPath = static_cast<int>(i);
+            stages_.push_back(handStage);
+            // Before the window the hand turns to its goal value, after it it holds still, while the arm moves:
+            // those motions were not part of the hand map, so they are checked here (a path whose outside part
+            // fails is left out).
+            const auto before = handLift->outsideBefore(), after = handLift->outsideAfter();
+            for (std::size_t j = 0; j < handStage.search->paths().size(); ++j)
+            {
+                std::vector<Eigen::Vector2d> points = before;
+                const auto inside = handStage.search->pathPoints(j);
+                points.insert(points.end(), inside.begin(), inside.end());
+                points.insert(points.end(), after.begin(), after.end());
+                std::vector<ob::State *> states;
+                for (const auto &q : points)
+                {
+                    states.push_back(si_->allocState());
+                    handLift->lift(q, states.back());
+                }
+                bool ok = true;
+                for (std::size_t k = 1; ok && k <= before.size() && k < states.size(); ++k)
+                    ok = si_->checkMotion(states[k - 1], states[k]);
+                for (std::size_t k = states.size() - after.size(); ok && k < states.size(); ++k)
+                    ok = k == 0 || si_->checkMotion(states[k - 1], states[k]);
+                if (ok)
+                    fullPaths_.push_back(std::move(states));
+                else
+                    for (auto *st : states)
+                        si_->freeState(st);
+            }
+            if (!fullPaths_.empty())
+                return true;
+            stages_.pop_back();
             return false;
         }
 

@@ -5,7 +5,9 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 /* How ConcentricCircle turns an OMPL space into 2-D maps and map points back into states: the projection on two
@@ -90,8 +92,12 @@ namespace michi
         class HandLift
         {
         public:
+            /** \param from, to the window of arc lengths the map spans (paper 000: the stretch of the arm path in
+                the bottleneck; to < 0: the whole path). Before a window that starts after the path's start, the
+                hand turns from its start value to its goal value, and the map starts there; after the window it
+                keeps its goal value (outsideBefore(), outsideAfter()). */
             HandLift(ompl::base::SpaceInformationPtr si, std::vector<double> start, std::vector<double> goal, int axis1,
-                     int axis2, int hand, std::vector<Eigen::Vector2d> armPath);
+                     int axis2, int hand, std::vector<Eigen::Vector2d> armPath, double from = 0., double to = -1.);
             ~HandLift();
             const Eigen::Vector2d &start2() const
             {
@@ -114,6 +120,17 @@ namespace michi
             {
                 return arm_;
             }
+            /** \brief Total arc length of the arm path. */
+            double length() const
+            {
+                return length_;
+            }
+            /** \brief Map points of the arm path's vertices before the window (from the path's start on), the hand
+                turning linearly with arc length to the window's entry value. */
+            std::vector<Eigen::Vector2d> outsideBefore() const;
+            /** \brief Map points of the arm path's vertices after the window, at the goal's hand value (to the
+                path's end). */
+            std::vector<Eigen::Vector2d> outsideAfter() const;
 
         private:
             ompl::base::SpaceInformationPtr si_;
@@ -123,6 +140,7 @@ namespace michi
             std::vector<Eigen::Vector2d> arm_;
             std::vector<double> s_;
             double length_{0.};
+            double from_{0.}, to_{0.};  ///< the window of arc lengths the map spans
             Eigen::Vector2d start2_, goal2_;
             ompl::base::State *a_, *b_;
         };
@@ -168,12 +186,29 @@ namespace michi
             over exactly the two values of the state (every tile built, polygons united), else null. */
         std::shared_ptr<CircleMap> makeJMapCircleMap(const ompl::base::SpaceInformationPtr &si);
 
-        /** \brief The arm's map for the hierarchy: when the space's checker is michi's FCL (or J-map) checker
-            of a planar arm (every joint about z), the exact capsule geometry of the arm's links without the
-            links that the values \e handValues move (as the paper's arm J-map), segments sampled every 0.005
-            rad; otherwise \e arm's projection map. */
-        std::shared_ptr<CircleMap> makeArmCircleMap(const ompl::base::SpaceInformationPtr &si,
-                                                    const ProjectionLift &arm, const std::vector<int> &handValues);
+        /** \brief The arm stage of the hierarchy (paper 000, section 3): the arm's map, and where the hand can
+            collide at all. */
+        struct ArmMaps
+        {
+            std::shared_ptr<CircleMap> map;
+            /** "jmap": the J-map polygons of the arm's links without the hand (the paper); "capsules": the exact
+                capsule geometry of those links, segments sampled every 0.005 rad (when the start or goal lies
+                inside the conservative polygons); "projection": the space's checker on the plane of the two
+                values (not a planar arm) */
+            std::string kind;
+            /** True where the arm lies in the grown map (the arm's links against the obstacles grown by the
+                hand's reach): only there can the hand touch an obstacle, the paper's bottleneck (grown map minus
+                map) for an arm configuration that is free. Empty when there is no planar model or no hand. */
+            std::function<bool(const Eigen::Vector2d &)> inGrown;
+        };
+
+        /** \brief The arm's maps for the hierarchy. When the space's checker is michi's FCL (or J-map) checker of
+            a planar arm (every joint about z): the J-map (\e slices cells of axis 1, line-walk tolerance
+            \e tolerance) of the arm's links without the links that the values \e handValues move, as the paper
+            builds the arm's J-map; the capsule geometry when the start or goal is inside its polygons; and the
+            grown map. Otherwise \e arm's projection map. */
+        ArmMaps makeArmMaps(const ompl::base::SpaceInformationPtr &si, const ProjectionLift &arm,
+                            const std::vector<int> &handValues, int slices, double tolerance);
     }  // namespace planners
 }  // namespace michi
 

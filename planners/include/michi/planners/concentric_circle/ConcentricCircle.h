@@ -5,6 +5,7 @@
 #include <michi/planners/concentric_circle/ConcentricCircleSearch.h>
 
 #include <ompl/base/Planner.h>
+#include <ompl/util/Exception.h>
 
 #include <cstdint>
 #include <functional>
@@ -216,6 +217,44 @@ namespace michi
                 return handAxis_;
             }
 
+            /** \brief Cells of axis 1 of the arm's J-map in hierarchy mode (0: no J-map, the capsule geometry). */
+            void setArmSlices(int v)
+            {
+                if (v < 0)
+                    throw ompl::Exception(getName(), "arm_slices must be >= 0");
+                armSlices_ = v;
+            }
+            int getArmSlices() const
+            {
+                return armSlices_;
+            }
+            /** \brief The arm J-map's line-walk tolerance r (radians) in hierarchy mode. */
+            void setArmTolerance(double v)
+            {
+                if (!(v > 0.))
+                    throw ompl::Exception(getName(), "arm_tolerance must be > 0");
+                armTolerance_ = v;
+            }
+            double getArmTolerance() const
+            {
+                return armTolerance_;
+            }
+            /** \brief Hand maps of hierarchy mode span only the stretch of the arm path in the grown map (the
+                paper's bottleneck); false: the whole arm path. */
+            void setHandInBottleneck(bool v)
+            {
+                handInBottleneck_ = v;
+            }
+            bool getHandInBottleneck() const
+            {
+                return handInBottleneck_;
+            }
+            /** \brief The arm map the last hierarchy solve used: "jmap", "capsules" or "projection" (empty: none). */
+            const std::string &armMapKind() const
+            {
+                return armMapKind_;
+            }
+
             /** \brief The searches of the last solve (for pictures and tests). */
             const std::vector<Stage> &stages() const
             {
@@ -240,6 +279,11 @@ namespace michi
                                  const ompl::base::PlannerTerminationCondition &ptc);
             bool solveHierarchy(const std::vector<double> &start, const std::vector<double> &goal,
                                 const ompl::base::PlannerTerminationCondition &ptc);
+            /** the hand stage along arm path \e armPathIndex over the window [from, to] of its arc length (to < 0:
+                all of it); true when it gave full paths */
+            bool solveHand(const std::vector<double> &start, const std::vector<double> &goal, int hand,
+                           std::size_t armPathIndex, const std::vector<Eigen::Vector2d> &armPath, double from,
+                           double to, const ompl::base::PlannerTerminationCondition &ptc);
             bool solveSurface(const std::vector<double> &start, const std::vector<double> &goal,
                               const ompl::base::PlannerTerminationCondition &ptc);
             /** states of path \e i of stage \e s (every segment checked with the motion validator); empty when
@@ -256,6 +300,10 @@ namespace michi
             int axis1_{0};
             int axis2_{1};
             int handAxis_{-1};
+            int armSlices_{720};
+            double armTolerance_{0.01};
+            bool handInBottleneck_{true};
+            std::string armMapKind_;
             double surfaceAngle_{0.};
 
             std::vector<Stage> stages_;
