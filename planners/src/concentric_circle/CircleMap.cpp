@@ -3,6 +3,7 @@
 #include <boost/geometry/index/rtree.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <utility>
 
@@ -62,6 +63,11 @@ namespace michi
         }
 
         bool CircleMap::obstacleEdges(const Eigen::Vector2d &, double, std::vector<Edge2> &) const
+        {
+            return false;
+        }
+
+        bool CircleMap::freeArcs(const Eigen::Vector2d &, double, double, int, std::vector<int> &) const
         {
             return false;
         }
@@ -251,6 +257,86 @@ namespace michi
                 if (vertexHidden(e) || vertexHidden(next_[e]))
                     continue;
                 edges.push_back(edges_[e]);
+            }
+            return true;
+        }
+
+        bool PolygonCircleMap::freeArcs(const Eigen::Vector2d &centre, double radius, double phase, int n,
+                                        std::vector<int> &arc) const
+        {
+            arc.assign(static_cast<std::size_t>(std::max(n, 0)), -1);
+            if (n <= 0)
+                return true;
+            if (!(radius > 0.))
+                return false;  // a point, not a circle: the point test
+            const double twoPi = 2. * M_PI;
+            // Angles (from phase, in [0, 2 pi)) where the circle crosses an edge: |a + t (b - a) - c| = r for t in
+            // [0, 1]. Only edges meeting the circle's bounding box can.
+            const validity::Box2 box(validity::Point2(centre.x() - radius, centre.y() - radius),
+                                     validity::Point2(centre.x() + radius, centre.y() + radius));
+            thread_local std::vector<Value> found;
+            found.clear();
+            index_->tree.query(bgi::intersects(box), std::back_inserter(found));
+            std::vector<double> crossings;
+            for (const Value &v : found)
+            {
+                const Edge2 &e = edges_[v.second];
+                const Eigen::Vector2d d = e.b - e.a, f = e.a - centre;
+                const double a = d.squaredNorm(), b = 2. * f.dot(d), c = f.squaredNorm() - radius * radius;
+                const double disc = b * b - 4. * a * c;
+                if (!(a > 0.) || disc < 0.)
+                    continue;
+                const double root = std::sqrt(disc);
+                for (const double t : {(-b - root) / (2. * a), (-b + root) / (2. * a)})
+                    if (t >= 0. && t <= 1.)
+                    {
+                        const Eigen::Vector2d q = e.a + t * d - centre;
+                        double angle = std::atan2(q.y(), q.x()) - phase;
+                        angle -= twoPi * std::floor(angle / twoPi);
+                        crossings.push_back(angle >= twoPi ? 0. : angle);
+                    }
+            }
+            std::sort(crossings.begin(), crossings.end());
+            auto pointAt = [&](double angle)
+            {
+                return Eigen::Vector2d(centre +
+                                       radius * Eigen::Vector2d(std::cos(phase + angle), std::sin(phase + angle)));
+            };
+            const std::size_t m = crossings.size();
+            // Interval k runs from crossing k to crossing k + 1; the last one wraps round to the first crossing. A
+            // circle that crosses nothing is one interval. Each is free or blocked as its middle is.
+            std::vector<char> intervalFree(std::max<std::size_t>(m, 1), 0);
+            for (std::size_t k = 0; k < intervalFree.size(); ++k)
+            {
+                const double from = m == 0 ? 0. : crossings[k];
+                const double to = m == 0 ? 0. : (k + 1 < m ? crossings[k + 1] : crossings[0] + twoPi);
+                const Eigen::Vector2d middle = pointAt(0.5 * (from + to));
+                // isFree() is false out of the map's range, but the range's border is no polygon edge: an interval
+                // leaving the map is judged by the polygons alone, and the points beyond the border drop out below.
+                intervalFree[k] =
+                    inside_ ? !inside_(middle) : !bg::covered_by(validity::Point2(middle.x(), middle.y()), obstacles_);
+            }
+            const double touch = 1e-12;
+            for (int i = 0; i < n; ++i)
+            {
+                const double angle = twoPi * i / n;
+                const Eigen::Vector2d p = pointAt(angle);
+                if (!inRange(p))
+                    continue;
+                std::size_t k = m == 0 ? 0 : m - 1;  // before the first crossing: the wrapping interval
+                if (m > 0)
+                {
+                    const auto it = std::upper_bound(crossings.begin(), crossings.end(), angle);
+                    if (it != crossings.begin())
+                        k = static_cast<std::size_t>(it - crossings.begin()) - 1;
+                    // on a crossing: the point touches a polygon, which counts as blocked (closed polygons)
+                    const double next = it != crossings.end() ? *it : crossings[0] + twoPi;
+                    const double prev = it != crossings.begin() ? *(it - 1) : crossings[m - 1] - twoPi;
+                    if (angle - prev <= touch || next - angle <= touch)
+                        continue;
+                }
+                if (intervalFree[k])
+                    arc[i] = static_cast<int>(k);
             }
             return true;
         }

@@ -220,6 +220,13 @@ namespace michi
                 ring.points.resize(n);
                 ring.free.assign(n, 0);
                 ring.potential.assign(n, 0.);
+                if (ptc)
+                    return -1;
+                // J-map polygons: the circle's free arcs in one pass from its crossings with the polygon edges;
+                // other maps: a point test per point.
+                const bool arcs = map_.freeArcs(ring.centre, ring.radius, phase, n, ring.arc);
+                if (!arcs)
+                    ring.arc.clear();
                 for (int i = 0; i < n; ++i)
                 {
                     // ptc is checked every few points only: one point test is cheap next to evaluating the condition.
@@ -227,7 +234,7 @@ namespace michi
                         return -1;
                     const double a = phase + 2. * M_PI * i / n;
                     ring.points[i] = ring.centre + ring.radius * Eigen::Vector2d(std::cos(a), std::sin(a));
-                    ring.free[i] = map_.isFree(ring.points[i]) ? 1 : 0;
+                    ring.free[i] = (arcs ? ring.arc[i] >= 0 : map_.isFree(ring.points[i])) ? 1 : 0;
                 }
                 // chords of the blocked runs (at most 6 steps each): the obstacle edges the circles see
                 int firstFree = -1;
@@ -311,14 +318,21 @@ namespace michi
             const CcSet set = sets_[s];
             const Eigen::Vector2d goal = image(nodes_[set.centreNode].p, nodes_[set.goalNode].p);
             const int n = static_cast<int>(rings_[r].points.size());
-            // free arcs: maximal runs of free points (cyclic); the minimum-potential point of each is a candidate
-            std::vector<char> freeMask = rings_[r].free;
-            int firstBlocked = -1;
-            for (int i = 0; i < n && firstBlocked < 0; ++i)
-                if (!freeMask[i])
-                    firstBlocked = i;
+            // free arcs: maximal runs of free points (cyclic) that the map puts on one arc (an obstacle thinner than
+            // the points' spacing splits an arc the map computed from the polygons); the minimum-potential point
+            // of each is a candidate
+            const std::vector<char> &freeMask = rings_[r].free;
+            const std::vector<int> &arcOf = rings_[r].arc;
+            auto sameArc = [&](int a, int b)
+            {
+                return freeMask[a] && freeMask[b] && (arcOf.empty() || arcOf[a] == arcOf[b]);
+            };
+            int firstBreak = -1;
+            for (int i = 0; i < n && firstBreak < 0; ++i)
+                if (!sameArc((i + n - 1) % n, i))
+                    firstBreak = i;
             std::vector<std::vector<int>> arcs;
-            if (firstBlocked < 0)
+            if (firstBreak < 0)
             {
                 arcs.emplace_back();
                 for (int i = 0; i < n; ++i)
@@ -326,12 +340,12 @@ namespace michi
             }
             else
             {
-                for (int step = 1; step <= n; ++step)
+                for (int step = 0; step < n; ++step)
                 {
-                    const int i = (firstBlocked + step) % n;
+                    const int i = (firstBreak + step) % n;
                     if (!freeMask[i])
                         continue;
-                    if (!freeMask[(i + n - 1) % n])
+                    if (!sameArc((i + n - 1) % n, i))
                         arcs.emplace_back();
                     arcs.back().push_back(i);
                 }

@@ -47,6 +47,14 @@ namespace michi
                 sampled on the circles as edges). */
             virtual bool obstacleEdges(const Eigen::Vector2d &p, double range, std::vector<Edge2> &edges) const;
 
+            /** \brief The free arcs of a circle in one pass (paper 000's sections of a circle between obstacle
+                regions), for the \e n points at angles phase + 2 pi i / n: \e arc[i] is the index of the free arc
+                holding point i, -1 where the point is blocked or out of range. Returns false when the map cannot
+                (then the search tests the points one by one and takes runs of free points as arcs). Default:
+                false. */
+            virtual bool freeArcs(const Eigen::Vector2d &centre, double radius, double phase, int n,
+                                  std::vector<int> &arc) const;
+
             /** \brief True when \e p lies within the ranges of the non-wrapping axes. */
             bool inRange(const Eigen::Vector2d &p) const;
         };
@@ -86,6 +94,10 @@ namespace michi
             bool isFree(const Eigen::Vector2d &p) const override;
             bool isVisible(const Eigen::Vector2d &a, const Eigen::Vector2d &b) const override;
             bool obstacleEdges(const Eigen::Vector2d &p, double range, std::vector<Edge2> &edges) const override;
+            /** \brief The arcs between the circle's crossings with the polygon edges, each free or blocked as its
+                middle is; a point on a crossing (touching a polygon) is blocked. */
+            bool freeArcs(const Eigen::Vector2d &centre, double radius, double phase, int n,
+                          std::vector<int> &arc) const override;
             const validity::MultiPolygon2 &obstacles() const
             {
                 return obstacles_;

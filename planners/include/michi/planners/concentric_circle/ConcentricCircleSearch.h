@@ -66,6 +66,9 @@ namespace michi
             Eigen::Vector2d centre{Eigen::Vector2d::Zero()};
             std::vector<Eigen::Vector2d> points;
             std::vector<char> free;
+            /** per point: the free arc holding it, from the circle's crossings with the map's polygons (-1:
+                blocked); empty when the map has none (the arcs are then the runs of free points) */
+            std::vector<int> arc;
             /** per free point: its potential (equation 3), or, for a point that cannot be its piece's minimum, the
                 lower bound that showed it (the attraction alone, above the minimum; 0 for blocked points) */
             std::vector<double> potential;
