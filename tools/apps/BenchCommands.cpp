@@ -333,6 +333,7 @@ namespace michi
                     options.progress = &std::cerr;
                     const VerifyCheckerResult result = verifyChecker(problem, options);
                     std::cout << result.json() << std::endl;
+                    // Exit 1 on anything unsafe, so a script or CI job can gate on a checker's safety.
                     return result.unsafeStates == 0 && result.unsafeMotions == 0 ? 0 : 1;
                 };
             }
