@@ -243,6 +243,8 @@ namespace michi
             std::ostream *log = options.progress;
             std::vector<double> home = problem.fixedValues;
             for (std::size_t i = 0; i < problem.groupVariables.size(); ++i)
+                // Home: the problem's fixed joints, with the small arm at query 0's start (its rest pose, where
+                // approaches begin).
                 home[problem.groupVariables[i]] = problem.queries[0].start[i];
 
             planners::DualArmWorkspace ws(problem.model, makeArmTask(problem, spec.large, "large"),
@@ -259,6 +261,8 @@ namespace michi
             // stirring at B (manipulability criterion) and at A (work space only, as in the paper's first try)
             const planners::StirringMotion stirB = ws.stir(ws.typeBPosition(), ws.typeBConfiguration());
             const planners::StirringMotion stirA = ws.stir(ws.typeAPosition(), ws.typeAConfiguration());
+            // B is the answer of the analysis: a stirring motion that fails there is an error, while a failure at A is
+            // a result.
             if (!stirB.valid)
                 throw std::runtime_error("the stirring motion at the type B position fails: " + stirB.failure);
             const PathReport checkB = checkStirring(problem, small, spec, stirB);

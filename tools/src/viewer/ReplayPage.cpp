@@ -227,6 +227,7 @@ namespace michi
                 const auto &times = options.times[i];
                 bool ordered = times.size() == paths[i].states.size();
                 for (std::size_t k = 0; ordered && k < times.size(); ++k)
+                    // The page plays a path by looking up the clock in these times: they must never run backwards.
                     ordered = std::isfinite(times[k]) && times[k] >= 0. && (k == 0 || times[k] >= times[k - 1]);
                 if (!ordered)
                     throw std::invalid_argument("replay page of " + problem.name + ": path '" + paths[i].label +
@@ -246,6 +247,7 @@ namespace michi
             replay::ShapeTable shapes;
             const replay::RobotBodies robot(problem, shapes, options.fixedValues);
             std::string map;
+            // One shape table for obstacles and robot: a shape both use (or many links share) is written once.
             const std::string obstacles = obstaclesJson(problem, shapes, map);
             const std::string fixedParts = robot.staticPartsJson(shapes);
             std::string pathsJson = "[";
