@@ -20,6 +20,7 @@ namespace michi
 
         std::string PredictedObstacles::copyName(const std::string &name, int copy)
         {
+            // "~" marks a predicted copy: callers tell copies from real obstacles by it (michi replan's change region).
             return name + "~" + std::to_string(copy);
         }
 
@@ -28,6 +29,7 @@ namespace michi
             std::vector<validity::Obstacle> copies;
             for (int i = 0; i < copies_; ++i)
                 copies.push_back(validity::Obstacle{copyName(name, i), shape, pose, {}});
+            // All copies in one add(): the scene rebuilds its broad phase once, not once per copy.
             scene_->add(std::move(copies));
         }
 
@@ -60,6 +62,8 @@ namespace michi
             };
             load(path[0], a.get());
             double arc = 0.;
+            // Only the first lookahead of arc length is checked: interference farther ahead can change before the robot
+            // gets there, and checking it costs time every sensing.
             for (std::size_t i = 1; i < path.size() && arc < lookahead; ++i)
             {
                 load(path[i], b.get());
