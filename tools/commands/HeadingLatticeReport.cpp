@@ -329,6 +329,8 @@ namespace michi
                     ctx.setup->setup();
                     auto started = ompl::time::now();
                     auto status = planner->solve(ob::timedPlannerTerminationCondition(options.timeLimit));
+                    // solve() includes building the lattice: the table reports the search as this time minus
+                    // lastBuildTime().
                     row.first = ompl::time::seconds(ompl::time::now() - started);
                     auto checks = [&]
                     {

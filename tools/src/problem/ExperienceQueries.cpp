@@ -118,6 +118,8 @@ namespace michi
             void readExperienceDataset(const std::string &problemFile, const Problem &problem, const YAML::Node &e,
                                        ExperienceQueries &out)
             {
+                // Two ways to give the sets (a queries file, or ranges of a folder of problems): both at once would
+                // leave it unclear which the benchmark uses.
                 if (e["queries"])
                     throw ProblemError(problemFile, "experience.queries",
                                        "give either queries (a queries file) or dataset (a folder of problems)");

@@ -405,6 +405,7 @@ namespace michi
             if (status != tinyxml2::XML_SUCCESS)
             {
                 std::string message = doc.ErrorStr() ? doc.ErrorStr() : "";
+                // tinyxml2's message may span lines; michi reports every error on one line.
                 std::replace(message.begin(), message.end(), '\n', ' ');
                 throw ProblemError(path, "line " + std::to_string(doc.ErrorLineNum()), "not valid XML: " + message);
             }
