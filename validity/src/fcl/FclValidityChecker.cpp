@@ -208,8 +208,6 @@ namespace michi
             toReals(state, values);
             if (!si_->satisfiesBounds(state) || !isValidConfiguration(values.data()))
             {
-                // OMPL asks for a distance with every answer; an invalid state reports 0 rather than a penetration
-                // depth.
                 dist = 0.;
                 return false;
             }

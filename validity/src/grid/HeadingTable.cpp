@@ -121,8 +121,7 @@ namespace michi
                     if (grid_.cells[static_cast<std::size_t>(j) * grid_.width + i])
                         occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] |= std::uint64_t{1}
                                                                                                 << (i & 63);
-            // Heading-major: entry (i, j, k) is bit i of row (k * height + j), so a walk at one heading reads
-            // neighbouring words.
+            // Heading-major layout: entry (i, j, k) is bit i of row (k * height + j).
             bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
             makeCoreStamps();
             // The core table exists only for a convex footprint (makeCoreStamps); freePose() skips the shortcut
