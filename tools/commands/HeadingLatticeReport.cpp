@@ -186,7 +186,6 @@ namespace michi
                                const std::vector<std::vector<double>> &path, const std::string &dir, double cell)
             {
                 const auto turn = firstTurn(path);
-                // At least 1.2 m, and six cells either side: enough nodes around the turn to see the lattice's pattern.
                 const double half = std::max(1.2, 6. * cell);
                 const double x0 = turn[0] - half, x1 = turn[0] + half, y0 = turn[1] - half, y1 = turn[1] + half;
                 const auto &nodes = lattice.nodes();

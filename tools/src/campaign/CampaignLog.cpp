@@ -42,7 +42,6 @@ namespace michi
             {
                 const std::time_t t = std::time(nullptr);
                 char text[64];
-                // UTC: shards merged from machines in other time zones still agree.
                 std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%S", std::gmtime(&t));
                 return text;
             }
