@@ -145,7 +145,6 @@ namespace michi
                     s.stirSide = r.positive(st["side"], "dual_arm.stirring.side");
                 if (st["step"])
                     s.stirStep = r.positive(st["step"], "dual_arm.stirring.step");
-                // A step longer than the square's side would skip its corners.
                 if (s.stirStep > s.stirSide)
                     r.fail("dual_arm.stirring.step", "expected a step no longer than the side");
             }

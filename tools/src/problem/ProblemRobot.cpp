@@ -170,8 +170,8 @@ namespace michi
                 problem.footprint = r.polygon(r.require(robot, "footprint", "robot"), "robot.footprint");
                 try
                 {
-                    // Only for its checks (at least 3 points, a simple polygon): a self-crossing footprint would give
-                    // the checker a shape with no inside.
+                    // Only for its checks (at least 3 points, a simple polygon): a bad footprint is reported here
+                    // with its key, not later by the checker that builds the prism.
                     validity::triangulatePolygon(problem.footprint);
                 }
                 catch (const std::exception &e)
