@@ -151,7 +151,6 @@ namespace michi
             };
             // a start that attaches to the grid, then a goal in one of its components; a start whose components
             // give no goal in GOALS_PER_START valid, distant candidates (a small pocket) is replaced
-            // Bounded: a start in a small pocket could otherwise draw goals forever.
             const int GOALS_PER_START = 200;
             Query query;
             for (bool found = false; !found;)
