@@ -62,8 +62,6 @@ namespace michi
             };
             load(path[0], a.get());
             double arc = 0.;
-            // Only the first lookahead of arc length is checked: interference farther ahead can change before the robot
-            // gets there, and checking it costs time every sensing.
             for (std::size_t i = 1; i < path.size() && arc < lookahead; ++i)
             {
                 load(path[i], b.get());
