@@ -43,6 +43,8 @@ namespace michi
             TurnMoveTurn m;
             const double dx = x2 - x1, dy = y2 - y1;
             m.move = std::hypot(dx, dy);
+            // No drive, so no heading of travel to face (atan2 of a zero vector means nothing): the motion is one turn
+            // in place.
             if (m.move <= SAME_POSITION)
             {
                 m.move = 0.;
@@ -114,6 +116,8 @@ namespace michi
                 s->setYaw(yaw2);
                 return;
             }
+            // t is a fraction of the cost (the distance): the state at t lies t of the distance along, as OMPL's
+            // planners assume (distance(from, interpolate(t)) = t distance(from, to)).
             double along = t * total;
             const double c1 = turnWeight_ * std::abs(m.turn1);
             if (along < c1 || m.move == 0.)

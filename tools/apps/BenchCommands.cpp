@@ -75,6 +75,8 @@ namespace michi
                     const auto parts = splitComma(text);
                     const bool single = parts.size() == 1 && known(parts[0]) && text == parts[0];
                     const bool pair = parts.size() == 2 && known(parts[0]) && known(parts[1]) &&
+                                      // A pair is FCL and one other: a benchmark context holds FCL and at most one
+                                      // other checker, and every comparison is against FCL.
                                       (parts[0] == "fcl") != (parts[1] == "fcl") && text == parts[0] + "," + parts[1];
                     if (!single && !pair)
                     {
@@ -147,6 +149,8 @@ namespace michi
                         problem.checker = *args.checker;
                     if (args.objective)
                         problem.benchmark.objective = *args.objective;
+                    // Before the context is made: everything drawn from here on (planner samples) follows from the
+                    // seed.
                     ompl::RNG::setSeed(args.seed.value_or(problem.benchmark.seed));
                     const std::size_t query = args.query.value_or(0);
                     PlanningContext ctx = makePlanningContext(problem, query);
@@ -329,6 +333,7 @@ namespace michi
                     options.progress = &std::cerr;
                     const VerifyCheckerResult result = verifyChecker(problem, options);
                     std::cout << result.json() << std::endl;
+                    // Exit 1 on anything unsafe, so a script or CI job can gate on a checker's safety.
                     return result.unsafeStates == 0 && result.unsafeMotions == 0 ? 0 : 1;
                 };
             }

@@ -44,6 +44,7 @@ namespace michi
 
                 std::string version()
                 {
+                    // Recorded in every unit's record, so a merged database says which build produced each run.
                     return std::string(MICHI_VERSION) + " (git " + MICHI_GIT_HASH + ")";
                 }
 
@@ -51,6 +52,8 @@ namespace michi
                 std::string selfPath()
                 {
                     std::error_code ec;
+                    // The very binary that is running, not whatever "michi" comes first on PATH: units and Slurm tasks
+                    // must run the same version as the shard that plans them.
                     const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
                     if (ec)
                         throw std::runtime_error("cannot find the michi executable (/proc/self/exe): " + ec.message());

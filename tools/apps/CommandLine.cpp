@@ -65,6 +65,7 @@ namespace michi
                 catch (const std::exception &)
                 {
                 }
+                // Written as !(v >= lowest) and so on: every comparison with NaN is false, so NaN fails each test.
                 if (!std::isfinite(v) || (lowestIncluded ? !(v >= lowest) : !(v > lowest)) || !(v <= highest))
                     throw UsageError(option + ": expected a number " + range(lowest, highest, lowestIncluded) +
                                      ", got '" + text + "'");
@@ -75,6 +76,7 @@ namespace michi
                                               double highest, bool lowestIncluded, std::size_t size)
             {
                 std::vector<double> values;
+                // getline drops an empty last item: without this check "1,2," would pass as two numbers.
                 bool ok = !text.empty() && text.back() != ',';
                 std::stringstream in(text);
                 for (std::string item; ok && std::getline(in, item, ',');)

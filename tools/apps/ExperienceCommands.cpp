@@ -45,6 +45,7 @@ namespace michi
                     options.out = args.out;
                     options.count = args.count.value_or(options.count);
                     options.training = args.training.value_or(options.training);
+                    // Checked here, against both options: a usage error (exit 2), not a failed run.
                     if (options.training > options.count)
                         throw UsageError("--training: expected at most --count (" + std::to_string(options.count) +
                                          ") queries, got '" + std::to_string(options.training) + "'");

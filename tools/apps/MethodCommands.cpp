@@ -58,6 +58,7 @@ namespace michi
                                 "got '" +
                                 *args.view + "'");
                     }
+                    // Before the problem is loaded or anything runs: a bad --out fails at once, not after a long solve.
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
                     if (args.verbose)  // without --verbose, OMPL's log level is left as it is (as before)
                         setOmplLogLevel(true);
@@ -171,6 +172,7 @@ namespace michi
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
                     setOmplLogLevel(args.verbose);
                     const Problem problem = loadProblem(args.problem);
+                    // Before anything draws from OMPL's generator, so the same seed gives the same samples and plans.
                     ompl::RNG::setSeed(args.seed.value_or(problem.benchmark.seed));
                     DualArmOptions options;
                     options.outDir = args.out;
@@ -221,6 +223,8 @@ namespace michi
 
             Runner addCircles(CLI::App &michi)
             {
+                // Shared with the runner: CLI11 fills args while parsing, and the runner reads them after this function
+                // has returned.
                 auto args = std::make_shared<CirclesArgs>();
                 CLI::App *c = michi.add_subcommand("circles",
                                                    "solve with michi::planners::ConcentricCircle and draw its circles, "

@@ -166,6 +166,7 @@ int main(int argc, char **argv)
         }
         return runners.at(command)();
     }
+    // Before std::exception, which it derives from: a usage error exits 2, a failed run 1.
     catch (const UsageError &e)
     {
         std::cerr << prefix << oneLine(e.what()) << std::endl;
@@ -173,6 +174,7 @@ int main(int argc, char **argv)
     }
     catch (const std::bad_alloc &)
     {
+        // std::bad_alloc's own text ("std::bad_alloc") tells a user nothing.
         std::cerr << prefix << "out of memory" << std::endl;
         return 1;
     }

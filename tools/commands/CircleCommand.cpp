@@ -18,6 +18,7 @@ namespace michi
     {
         std::string runCircles(const Problem &input, const CircleOptions &options)
         {
+            // A copy: --checker changes this run only, not the caller's problem.
             Problem problem = input;
             if (!options.checker.empty())
             {
@@ -37,6 +38,8 @@ namespace michi
             if (!fs::exists(options.outDir))
                 fs::create_directories(options.outDir);
             const auto names = problem.valueNames();
+            // Pictures of every stage are written before the status is looked at: when the search fails they are what
+            // shows why.
             for (std::size_t k = 0; k < planner->stages().size(); ++k)
             {
                 const auto &stage = planner->stages()[k];
@@ -45,6 +48,8 @@ namespace michi
                 picture.title = problem.name + ": concentric circles, " + stage.name + " map";
                 if (stage.name == "surface")
                 {
+                    // The surface stage searches a plane through start and goal in joint space, not two joints' own
+                    // axes.
                     picture.axis1 = "u: along start -> goal in joint space";
                     picture.axis2 = "v: across, on the restriction plane";
                 }

@@ -112,6 +112,8 @@ namespace michi
                 for (std::size_t i = 0; i < states.size(); ++i)
                 {
                     si->getStateSpace()->copyFromReals(b, states[i]);
+                    // Both objectives' costs are computed for every path, whichever objective planned it, so the two
+                    // plans compare on the same scales.
                     const double w = manip.manipulability(b);
                     r.minW = std::min(r.minW, w);
                     r.meanW += w / static_cast<double>(states.size());
@@ -122,6 +124,8 @@ namespace michi
                             r.jointMotion[j] += std::abs(states[i][j] - states[i - 1][j]);
                         mc = manip.combineCosts(mc, manip.motionCost(a, b));
                         lc = lengthObjective.combineCosts(lc, lengthObjective.motionCost(a, b));
+                        // OMPL's own motion validator on each segment: the report says whether a path (or the IK
+                        // stirring motion, which no planner made) is valid as OMPL sees it.
                         if (!si->checkMotion(a, b))
                             ++r.invalidMotions;
                     }
@@ -155,6 +159,8 @@ namespace michi
                     return r;
                 const auto statesOf = [&si](ompl::geometric::PathGeometric path)
                 {
+                    // States about 0.02 apart in joint space: the minimum and mean manipulability are read along the
+                    // path, not only at its few waypoints.
                     path.interpolate(
                         std::max<unsigned int>(2, static_cast<unsigned int>(std::ceil(path.length() / 0.02))));
                     std::vector<std::vector<double>> states;
@@ -167,6 +173,8 @@ namespace michi
                     return states;
                 };
                 ompl::geometric::PathGeometric path = ctx.setup->getSolutionPath();
+                // The raw path is reported too: after simplification both objectives can end on the same straight
+                // line (dual-arm.md), which would hide what the objective did.
                 r.raw = std::make_shared<PathReport>();
                 r.raw->solved = true;
                 r.raw->status = "as planned";
@@ -235,6 +243,8 @@ namespace michi
             std::ostream *log = options.progress;
             std::vector<double> home = problem.fixedValues;
             for (std::size_t i = 0; i < problem.groupVariables.size(); ++i)
+                // Home: the problem's fixed joints, with the small arm at query 0's start (its rest pose, where
+                // approaches begin).
                 home[problem.groupVariables[i]] = problem.queries[0].start[i];
 
             planners::DualArmWorkspace ws(problem.model, makeArmTask(problem, spec.large, "large"),
@@ -251,6 +261,8 @@ namespace michi
             // stirring at B (manipulability criterion) and at A (work space only, as in the paper's first try)
             const planners::StirringMotion stirB = ws.stir(ws.typeBPosition(), ws.typeBConfiguration());
             const planners::StirringMotion stirA = ws.stir(ws.typeAPosition(), ws.typeAConfiguration());
+            // B is the answer of the analysis: a stirring motion that fails there is an error, while a failure at A is
+            // a result.
             if (!stirB.valid)
                 throw std::runtime_error("the stirring motion at the type B position fails: " + stirB.failure);
             const PathReport checkB = checkStirring(problem, small, spec, stirB);
@@ -262,6 +274,8 @@ namespace michi
             std::vector<double> fixedA = ws.typeAConfiguration(), fixedB = stirB.states.front();
             for (std::size_t i = 0; i < problem.groupVariables.size(); ++i)
             {
+                // The large arm at its work pose, the small arm's own values replaced by home: only the small arm moves
+                // in these plans.
                 fixedA[problem.groupVariables[i]] = homeGroup[i];
                 fixedB[problem.groupVariables[i]] = homeGroup[i];
             }
@@ -270,6 +284,8 @@ namespace michi
                      << " s each)" << std::endl;
             const auto goalA = groupValues(ws.typeAConfiguration(), problem.groupVariables);
             const auto goalB = groupValues(stirB.states.front(), problem.groupVariables);
+            // Each approach planned twice, with the manipulability objective and with path length, under the same
+            // planner and time, so the difference is the objective's.
             const PathReport handoverWith = plan(problem, small, spec, fixedA, homeGroup, goalA, true, time);
             const PathReport handoverWithout = plan(problem, small, spec, fixedA, homeGroup, goalA, false, time);
             const PathReport stirStartWith = plan(problem, small, spec, fixedB, homeGroup, goalB, true, time);

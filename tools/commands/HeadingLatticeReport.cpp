@@ -39,6 +39,8 @@ namespace michi
             /** A colour per heading index, around the hue circle. */
             std::string headingColour(unsigned int k, unsigned int count)
             {
+                // Hue follows heading, so neighbouring headings get neighbouring colours and the circle of hues reads
+                // as the turn.
                 const double h = 360. * k / std::max(1u, count);
                 return "hsl(" + num(h, "%.0f") + ",70%,42%)";
             }
@@ -60,6 +62,8 @@ namespace michi
             {
             public:
                 WindowSvg(const Problem &problem, double x0, double y0, double x1, double y1, const std::string &title)
+                    // 640 px along the longer side, whatever the window; y is flipped (SVG's y points down, the map's
+                    // up).
                     : x0_(x0), y1_(y1), scale_(640. / std::max(x1 - x0, y1 - y0))
                 {
                     const double w = (x1 - x0) * scale_, h = (y1 - y0) * scale_;
@@ -170,6 +174,8 @@ namespace michi
             std::vector<double> firstTurn(const std::vector<std::vector<double>> &path)
             {
                 for (std::size_t i = 0; i + 1 < path.size(); ++i)
+                    // A turn in place (same position, another yaw) is where the correction shows: the window is centred
+                    // there.
                     if (std::hypot(path[i][0] - path[i + 1][0], path[i][1] - path[i + 1][1]) < 1e-9 &&
                         std::abs(path[i][2] - path[i + 1][2]) > 1e-6)
                         return path[i];
@@ -286,6 +292,7 @@ namespace michi
             if (problem.kind != Problem::Kind::SE2)
                 throw ProblemError(problem.file, "robot", "michi lattice needs an SE2 robot (robot.type: se2)");
             for (double a : options.angleSteps)
+                // At most pi/2: the planner rounds the step so that a whole number K >= 4 of steps makes a full turn.
                 if (!(a > 0.) || a > M_PI / 2. + 1e-9)
                     throw std::invalid_argument("--angle-steps: " + num(a) + " is outside (0, pi/2]");
             for (double c : options.cellSizes)
@@ -301,6 +308,8 @@ namespace michi
                     Row row;
                     row.cell = cell;
                     row.angle = angle;
+                    // A fresh context and planner per row: no row reuses another's lattice, so every build time is a
+                    // full build.
                     auto ctx = makePlanningContext(problem, 0);
                     auto si = ctx.setup->getSpaceInformation();
                     auto planner = std::make_shared<planners::HeadingLattice>(si);
@@ -319,6 +328,8 @@ namespace michi
                     ctx.setup->setup();
                     auto started = ompl::time::now();
                     auto status = planner->solve(ob::timedPlannerTerminationCondition(options.timeLimit));
+                    // solve() includes building the lattice: the table reports the search as this time minus
+                    // lastBuildTime().
                     row.first = ompl::time::seconds(ompl::time::now() - started);
                     auto checks = [&]
                     {
@@ -351,6 +362,8 @@ namespace michi
                         }
                     }
                     // the next query on the kept graph: query 1 if there is one, else query 0 again
+                    // A second query on the same planner shows the multi-query case: the lattice is kept, and only the
+                    // search (and its heuristic) is redone. reused says whether it really was.
                     const std::size_t next = problem.queries.size() > 1 ? 1 : 0;
                     makePlanningContext(problem, next);  // checks the query's start and goal
                     const unsigned int builds = planner->buildCount();
@@ -358,6 +371,7 @@ namespace michi
                     ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
                     si->getStateSpace()->copyFromReals(start.get(), problem.queries[next].start);
                     si->getStateSpace()->copyFromReals(goal.get(), problem.queries[next].goal);
+                    // Wraps the yaw into [-pi, pi) as the space stores it.
                     si->enforceBounds(start.get());
                     si->enforceBounds(goal.get());
                     pdef->setStartAndGoalStates(start, goal);

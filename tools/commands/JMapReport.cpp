@@ -49,6 +49,8 @@ namespace michi
             validity::MultiPolygon2 neck;
             if (jp.planar && jp.handLength > 0.)
             {
+                // The paper's grown J-map: the arm without its hand among obstacles grown by the hand's length;
+                // grown minus plain is where only the hand can collide (the bottleneck).
                 const auto grownSource = std::make_shared<validity::PlanarIntervalSource>(
                     jp.arm, validity::growObstacles(problem.scene->polygons2d(), jp.handLength), jp.axes, jp.armLinks);
                 grown = validity::JMap::build(*grownSource, settings.map);
@@ -82,6 +84,7 @@ namespace michi
 
             // verification: the checker (conservative mode, all tiles built) against FCL on the same states
             validity::JMapCheckerSettings conservative = settings;
+            // Conservative mode: the map alone answers, so the counts below measure the map, not the FCL fallback.
             conservative.mode = validity::JMapCheckerSettings::Mode::CONSERVATIVE;
             validity::JMapValidityChecker checker(ctx.setup->getSpaceInformation(), ctx.checker, jp.makeSource, jp.axes,
                                                   jp.coversRobot, conservative);
@@ -94,6 +97,7 @@ namespace michi
             const double tileWidth = (jp.axes.hi1 - jp.axes.lo1) / static_cast<double>(checker.tileCount());
             for (std::size_t k = 0; k < checker.tileCount(); ++k)
             {
+                // Every tile built before the timing below: the query times are look-ups, not first-query builds.
                 checker.tile(jp.axes.lo1 + (static_cast<double>(k) + 0.5) * tileWidth);
                 if (log && mapSeconds > 2.)
                     *log << "michi jmap: tile " << k + 1 << "/" << checker.tileCount() << " built ("
@@ -106,6 +110,8 @@ namespace michi
             {
                 if (log)
                     *log << "michi jmap: verifying " << options.verify << " states against FCL" << std::endl;
+                // A generator of its own: the verification states depend on --seed only, not on what drew numbers
+                // before.
                 ompl::RNG rng(options.seed);
                 const std::size_t dim = problem.dimension();
                 std::vector<double> lo(dim), hi(dim), states(options.verify * dim);
@@ -121,6 +127,7 @@ namespace michi
                 std::vector<char> jmapValid(options.verify), fclValid(options.verify);
                 auto start = std::chrono::steady_clock::now();
                 for (std::uint64_t n = 0; n < options.verify; ++n)
+                    // The same states for both checkers, all generated before either is timed.
                     jmapValid[n] = checker.isValidConfiguration(&states[n * dim]);
                 jmapNs = seconds(start) * 1e9 / static_cast<double>(options.verify);
                 start = std::chrono::steady_clock::now();
@@ -129,6 +136,8 @@ namespace michi
                 fclNs = seconds(start) * 1e9 / static_cast<double>(options.verify);
                 for (std::uint64_t n = 0; n < options.verify; ++n)
                 {
+                    // Unsafe: the map calls a colliding state free (must be 0, the map contains every collision). False
+                    // invalid: the price of that containment.
                     unsafe += jmapValid[n] && !fclValid[n];
                     falseInvalid += !jmapValid[n] && fclValid[n];
                     jmapInvalid += !jmapValid[n];

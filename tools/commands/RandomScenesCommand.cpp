@@ -28,6 +28,8 @@ namespace michi
             std::string number(double v)
             {
                 char buffer[64];
+                // std::to_chars without a precision writes the shortest text that reads back as the same double, so the
+                // file's start and goal are exactly the ones checked (verified after writing, below).
                 const auto r = std::to_chars(buffer, buffer + sizeof(buffer), v);
                 return std::string(buffer, r.ptr);
             }
@@ -121,6 +123,7 @@ namespace michi
                 sfs::absolute(sfs::path(options.arm).parent_path() / root["robot"]["urdf"].as<std::string>()));
             const sfs::path out = sfs::weakly_canonical(sfs::absolute(outDir));
             sfs::path reference = urdf.lexically_relative(out);
+            // No relative path between them (another root): the absolute path still works.
             if (reference.empty())
                 reference = urdf;
             YAML::Node robot = YAML::Clone(root["robot"]);
@@ -140,6 +143,8 @@ namespace michi
                 if (loaded.queries.size() != 1 || loaded.queries[0].start != random.problem.queries[0].start ||
                     loaded.queries[0].goal != random.problem.queries[0].goal)
                     throw std::logic_error(name + ": the written start and goal do not read back unchanged");
+                // Checks start and goal with FCL in the scene as written: a file that would fail michi bench is never
+                // committed.
                 makePlanningContext(loaded);
                 written.push_back((sfs::path(outDir) / name).string());
             }

@@ -28,6 +28,7 @@ namespace michi
                 for (std::size_t i = 0; i < obstacles.size(); ++i)
                 {
                     const auto &o = obstacles[i];
+                    // A single key frame is a pose, not a motion: such an obstacle stands where that key frame puts it.
                     if (o.trajectory.size() < 2)
                     {
                         validity::Obstacle s = o;
@@ -57,6 +58,8 @@ namespace michi
                                                                               unsigned int seed, unsigned int e)
             {
                 std::vector<std::vector<validity::TimedPose>> out;
+                // A generator per episode, from the seed and the episode number alone: episode e is the same for every
+                // method and whatever ran before it.
                 ompl::RNG rng(seed * 100003u + e);
                 for (const auto &m : movers)
                 {
@@ -65,6 +68,8 @@ namespace michi
                     const double t0 = m.trajectory.front().time;
                     std::vector<validity::TimedPose> tr = m.trajectory;
                     for (auto &k : tr)
+                        // Shifted start (never before 0) and time stretched by 1 / speed: the same path, driven earlier
+                        // or later, faster or slower.
                         k.time = std::max(0., t0 + shift) + (k.time - t0) / speed;
                     out.push_back(tr);
                 }
@@ -139,6 +144,8 @@ namespace michi
             std::vector<Trace> traces(options.html ? methods.size() : 0);  // the first episode of every method
             for (std::size_t mi = 0; mi < methods.size(); ++mi)
             {
+                // One planner per method, kept across all episodes: what DualRoadmap learns (and LazyPRM's roadmap)
+                // carries over from episode to episode.
                 MethodRun run(problem, statics, movers, settings, methods[mi]);
                 const auto begin = std::chrono::steady_clock::now();
                 for (unsigned int e = 0; e < options.episodes; ++e)

@@ -21,10 +21,17 @@ namespace michi
                 : problem_(problem), movers_(movers), settings_(settings), method_(method)
             {
                 const int copies = static_cast<int>(settings.predictionCopies);
+                // Separate sensed worlds for planning and for execution: the planning thread works in its own scene,
+                // updated only with the snapshot of its Query, while the execution thread's scene follows every
+                // sensing.
                 planSensed_.build(statics, movers, copies, settings.predictionHorizon);
                 execSensed_.build(statics, movers, copies, settings.predictionHorizon);
+                // The movers' true shapes over the short escape horizon (not grown, not the long prediction): what a
+                // crossing or an escape must really avoid.
                 planNow_.build(statics, movers, 3, settings.escapeHorizon, false);
                 moving_.build({}, movers, 3, settings.escapeHorizon, false);
+                // The true world, with the movers on their key frames: only collisions are judged here; no method ever
+                // reads it.
                 world_ = std::make_shared<validity::Scene>();
                 for (const auto &o : statics)
                     world_->add(o);
@@ -62,6 +69,7 @@ namespace michi
                 if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
                 {
                     auto scene = planSensed_.scene;
+                    // DualRoadmap learns of a change from the planning scene's counter, checked at every solve().
                     dual->setSceneChangeCounter(
                         [scene]
                         {
@@ -72,6 +80,7 @@ namespace michi
 
             void MethodRun::setMoverTrajectory(std::size_t k, const std::vector<validity::TimedPose> &trajectory)
             {
+                // Scene has no call that replaces a trajectory: the obstacle is removed and added again with it.
                 world_->remove(movers_[k].name);
                 validity::Obstacle o;
                 o.name = movers_[k].name;
@@ -88,6 +97,7 @@ namespace michi
                 trajectories_ = trajectories;
                 {
                     std::lock_guard<std::mutex> lock(snapshotMutex_);
+                    // Snapshot ids from an earlier episode must not reach this episode's planner.
                     snapshots_.clear();
                 }
                 lastPoses_.clear();
@@ -147,6 +157,8 @@ namespace michi
                             yieldScenes_[k]->setPose(movers_[k].name, validity::Scene::poseAt(trajectories_[k], t));
                             if (!before || ysi->isValid(prev.get()))
                                 continue;
+                            // Waiting one step shifts every later key frame by dt: the mover resumes its path where it
+                            // stopped.
                             for (auto &key : trajectories_[k])
                                 key.time += settings_.dt;
                             setMoverTrajectory(k, trajectories_[k]);
@@ -199,6 +211,7 @@ namespace michi
                         reached = true;
                         break;
                     }
+                    // 1e-9: t is a sum of dt steps and would otherwise miss a sensing time by rounding.
                     if (t >= nextSense - 1e-9)
                     {
                         sense(t);
@@ -214,6 +227,7 @@ namespace michi
                 if (frames != nullptr)
                     frames->push_back(Frame{t, executed, exec.remainingPath(), lastPoses_});
                 exec.stop();
+                // After stop(), wait for the planning thread: its query must not run into the next episode.
                 exec.waitForPlanner();
                 if (trace != nullptr)
                 {
@@ -286,6 +300,8 @@ namespace michi
                     const Eigen::Isometry3d pose = validity::Scene::poseAt(trajectories_[k], t);
                     Eigen::Vector3d v = Eigen::Vector3d::Zero();
                     if (lastPoses_.size() == movers_.size() && t > lastSenseTime_)
+                        // Velocity from the last two sensings (finite differences): the prediction never reads the key
+                        // frames ahead.
                         v = (pose.translation() - lastPoses_[k].translation()) / (t - lastSenseTime_);
                     snap.poses.push_back(pose);
                     snap.velocities.push_back(v);

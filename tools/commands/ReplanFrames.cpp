@@ -29,6 +29,8 @@ namespace michi
                 for (std::size_t i = 0; i < want && !frames.empty(); ++i)
                     chosen.push_back(frames.size() == 1 ? 0
                                                         : i * (frames.size() - 1) / std::max<std::size_t>(1, want - 1));
+                // Fewer frames recorded than asked for: the evenly spread indices repeat, and each picture is drawn
+                // once.
                 chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
                 int n = 0;
                 for (std::size_t idx : chosen)
@@ -43,6 +45,8 @@ namespace michi
                         validity::Obstacle o;
                         o.name = movers[k].name;
                         o.shape = movers[k].shape;
+                        // Each picture shows the movers where they were at the frame's time (as sensed), a still of the
+                        // episode.
                         o.pose = k < f.poses.size() ? f.poses[k] : validity::Scene::poseAt(movers[k].trajectory, 0.);
                         p.scene->add(o);
                     }
@@ -79,6 +83,8 @@ namespace michi
                     std::vector<std::size_t> at;
                     for (std::size_t i = 0; i < n; i += every)
                         at.push_back(i);
+                    // The last step is always kept: the page must end where the episode ended (goal reached or time
+                    // up).
                     if (n > 0 && at.back() != n - 1)
                         at.push_back(n - 1);
                     return at;

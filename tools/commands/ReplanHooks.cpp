@@ -69,6 +69,8 @@ namespace michi
                 {
                     std::vector<Eigen::Vector3d> out;
                     for (const auto &o : scene.obstacles())
+                        // Only the predicted copies ("<mover>~<i>") move between queries; the static scene never
+                        // changes the region.
                         if (o.name.find('~') != std::string::npos)
                             out.emplace_back(o.pose.translation().x(), o.pose.translation().y(),
                                              planarRadius(*o.shape, o.pose));
@@ -111,6 +113,8 @@ namespace michi
             {
                 NonStopHooks h;
                 const auto esi = execCtx_.setup->getSpaceInformation();
+                // The executor knows the world only through these hooks (configurations as plain vectors), so it can be
+                // tested with a fake world and stays free of OMPL.
                 h.sensedWorld = [this]
                 {
                     std::lock_guard<std::mutex> lock(snapshotMutex_);
@@ -236,6 +240,8 @@ namespace michi
                                 toState(esi, q, s.get());
                                 q = toReals(esi, s.get());
                             }
+                            // A deformed path is accepted only if it is free of the predicted world over the lookahead,
+                            // as a new plan would have to be; otherwise the executor replans.
                             return std::isinf(interference(norm));
                         };
                         if (!deformPath(path, *movingChecker, distance, interpolate, accept, ds))
@@ -256,6 +262,8 @@ namespace michi
                     Snapshot snap;
                     {
                         std::lock_guard<std::mutex> lock(snapshotMutex_);
+                        // The world as sensed when this Query was sent: the planner plans in its own copy, so the
+                        // planning thread never sees the scene change under it.
                         snap = snapshots_.at(id);
                     }
                     // DualRoadmap on an SE(2) robot is told where the sensed world changed since its last query (the
@@ -298,6 +306,8 @@ namespace michi
                         {
                             std::lock_guard<std::mutex> lock(escapeMutex_);
                             escapeTargets_.push_back(toReals(psi, s.get()));
+                            // Only the last few escapes matter: firstInterference() looks for them among a path's next
+                            // waypoints.
                             if (escapeTargets_.size() > 8)
                                 escapeTargets_.erase(escapeTargets_.begin());
                         }
@@ -376,6 +386,8 @@ namespace michi
                     if (!solution)
                         return false;
                     og::PathGeometric p(*solution);
+                    // Baselines get smoothing too, inside the measured latency, so methods compare on paths of the same
+                    // kind.
                     if (method_.simplify && p.getStateCount() > 2)
                     {
                         og::PathSimplifier simplifier(psi);
@@ -394,6 +406,7 @@ namespace michi
             {
                 const auto psi = planCtx_.setup->getSpaceInformation();
                 const auto nsi = planNowCtx_.setup->getSpaceInformation();
+                // Inside an obstacle as it is now (not only its prediction): no motion out of it can be certified.
                 if (!nsi->isValid(s))
                     return false;
                 if (!escapeSampler_)
@@ -402,8 +415,12 @@ namespace michi
                 const double extent = psi->getMaximumExtent();
                 for (int i = 0; i < 400 && !cancel; ++i)
                 {
+                    // Nearest first: the radius grows by 1 % of the space's extent every 40 tries, so the escape is as
+                    // short as the samples allow.
                     const double radius = extent * 0.01 * (1. + i / 40);
                     escapeSampler_->sampleUniformNear(near.get(), s, radius);
+                    // The target must be outside the predicted world, and the motion to it free of the obstacles as
+                    // they are now.
                     if (psi->isValid(near.get()) && nsi->checkMotion(s, near.get()))
                     {
                         psi->copyState(s, near.get());

@@ -9,6 +9,8 @@ namespace michi
             std::vector<Method> allMethods()
             {
                 return {
+                    // The last field: smooth the path with OMPL's simplifier. DualRoadmap smooths its own paths
+                    // (paper 002: redundant parts removed), so only the baselines get OMPL's, inside their latency.
                     {"dual", "michi::DualRoadmap", "michi::DualRoadmap", {}, Method::Reuse::DUAL, false},
                     {"rrtconnect", "geometric::RRTConnect", "geometric::RRTConnect", {}, Method::Reuse::SCRATCH, true},
                     {"prm", "geometric::PRM", "geometric::PRM", {}, Method::Reuse::SCRATCH, true},

@@ -22,6 +22,8 @@ namespace michi
                         return std::numeric_limits<double>::quiet_NaN();
                     std::sort(v.begin(), v.end());
                     const std::size_t rank =
+                        // Nearest rank: the percentile is a latency that actually occurred, never an interpolation
+                        // between two.
                         static_cast<std::size_t>(std::ceil(p / 100. * static_cast<double>(v.size())));
                     return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
                 }
@@ -29,6 +31,7 @@ namespace michi
                 std::string num(double v)
                 {
                     if (!std::isfinite(v))
+                        // JSON has no NaN: a figure with no data (no replan found a path) is null.
                         return "null";
                     std::ostringstream s;
                     s << std::setprecision(6) << v;
@@ -94,6 +97,8 @@ namespace michi
                     json << (mi > 1 ? "," : "") << "\n    " << jsonString(methods[mi].label) << ": {\n";
                     writeResults(json, results[mi], "      ");
                     const double ratio =
+                        // Above 1: the baseline's median replan took longer than the first method's (DualRoadmap's),
+                        // charged the same way.
                         percentile(results[mi].replanLatency, 50.) / percentile(results[0].replanLatency, 50.);
                     json << ",\n      \"median_latency_ratio_to_method\": " << num(ratio) << "\n    }";
                 }

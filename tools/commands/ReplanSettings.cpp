@@ -98,6 +98,8 @@ namespace michi
                         fail(file, path, "unknown key (expected " + expected + ")");
                     // the problem file's own number reader: pi forms, finite, the file and key named
                     const double v = problem_file::Reader(file).number(kv.second, path);
+                    // Zero turns these off (no margin, no jitter, no frames) or selects a mode (real_time 0: the
+                    // reproducible model); the others are rates, periods and sizes, which must be positive.
                     const bool mayBeZero = key == "safety_distance" || key == "margin" || key == "timing_jitter" ||
                                            key == "speed_jitter" || key == "real_time" || key == "stop_margin" ||
                                            key == "prediction_horizon" || key == "frames" || key == "escape_horizon" ||
@@ -106,6 +108,8 @@ namespace michi
                         fail(file, path, mayBeZero ? "expected a number >= 0" : "expected a number > 0");
                     *it->second = v;
                 }
+                // Speeds are scaled by up to 1 +- speed_jitter: at 1 or more a mover could stand still or run
+                // backwards.
                 if (s.speedJitter >= 1.)
                     fail(file, "extras.replan.speed_jitter", "expected a fraction below 1");
                 if (s.predictionCopies < 1. || s.predictionCopies > 100. ||
@@ -119,6 +123,7 @@ namespace michi
                 if (s.episodeTime / s.dt > 1e6)
                     fail(file, "extras.replan.dt",
                          "episode_time / dt is above 1,000,000 simulation steps per episode: use a larger dt");
+                // Sensing happens between simulation steps: a period below dt could not be honoured.
                 if (s.sensePeriod < s.dt)
                     fail(file, "extras.replan.sense_period", "expected at least dt");
                 if (s.frames > 10000. || s.frames != std::floor(s.frames))
@@ -135,12 +140,14 @@ namespace michi
                 switch (shape.type())
                 {
                     case validity::Shape::Type::BOX:
+                        // Grown by the margin on every side (box extents are full widths, so twice the margin).
                         return validity::Shape::box(z + Eigen::Vector3d::Constant(2. * m));
                     case validity::Shape::Type::SPHERE:
                         return validity::Shape::sphere(z.x() + m);
                     case validity::Shape::Type::CYLINDER:
                         return validity::Shape::cylinder(z.x() + m, z.z() + 2. * m);
                     case validity::Shape::Type::CAPSULE:
+                        // A capsule's length is its axis segment; the radius growth covers the ends too.
                         return validity::Shape::capsule(z.x() + m, z.z());
                     default:
                         fail(file, key,

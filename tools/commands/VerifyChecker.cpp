@@ -25,6 +25,7 @@ namespace michi
                 {
                     if (c == '"' || c == '\\')
                         out += '\\';
+                    // Control characters are dropped: JSON forbids them raw, and no problem or checker name needs them.
                     if (static_cast<unsigned char>(c) >= 0x20)
                         out += c;
                 }
@@ -49,11 +50,14 @@ namespace michi
             result.problem = problem.name;
             result.checker = options.checker;
             result.seed = options.seed;
+            // Before the context and the sampler exist: the same seed checks the very same states.
             ompl::RNG::setSeed(options.seed);
             ContextOptions contextOptions;
             contextOptions.checker = options.checker;
             const auto built = Clock::now();
             PlanningContext ctx = makePlanningContext(problem, contextOptions);
+            // The context builds the fast checker (tables, maps, sphere models): its cost is reported beside the query
+            // times.
             result.buildSeconds = std::chrono::duration<double>(Clock::now() - built).count();
             const auto si = ctx.setup->getSpaceInformation();
             const ob::StateValidityCheckerPtr fast = si->getStateValidityChecker();
@@ -92,11 +96,15 @@ namespace michi
                 {
                     sampler->sampleUniform(states[i]);
                     sampler->sampleUniformNear(targets[i], states[i], near);
+                    // sampleUniformNear() may step past a bound or past +-pi of a yaw: the motion's end must be a state
+                    // of the space.
                     si->enforceBounds(targets[i]);
                 }
                 // states: the fast checker, then FCL, timed over the whole batch
                 auto t0 = Clock::now();
                 for (std::size_t i = 0; i < n; ++i)
+                    // Both checkers time the same batch one after the other, so load from other jobs on the machine
+                    // falls on both alike.
                     fastValid[i] = fast->isValid(states[i]) ? 1 : 0;
                 auto t1 = Clock::now();
                 for (std::size_t i = 0; i < n; ++i)
@@ -123,6 +131,8 @@ namespace michi
                 t1 = Clock::now();
                 motionSeconds += std::chrono::duration<double>(t1 - t0).count();
                 for (std::size_t i = 0; i < n; ++i)
+                    // Only motions the fast validator accepts are re-checked: a refused motion is conservative, never
+                    // unsafe.
                     if (fastValid[i])
                     {
                         ++result.motionsValid;
@@ -146,6 +156,7 @@ namespace michi
                 result.referenceQueryNs = 1e9 * refSeconds / result.states;
                 result.motionNs = 1e9 * motionSeconds / result.motions;
             }
+            // sink only keeps the fast checker's answers in use, so its timed loop cannot be optimised away.
             (void)sink;
             return result;
         }

@@ -24,6 +24,8 @@ namespace michi
     {
         void writeAtomically(const std::string &text, const std::string &file)
         {
+            // Beside the target, on the same file system: rename() replaces the file in one step there, so a reader (or
+            // a resumed campaign) sees the old file or the whole new one, never half of it.
             const std::string temporary = file + ".tmp";
             {
                 std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -49,6 +51,8 @@ namespace michi
         {
             std::string quoted = "'";
             for (char c : text)
+                // Inside single quotes the shell takes everything literally except the quote itself: close, add an
+                // escaped quote, reopen.
                 quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
             return quoted + "'";
         }
@@ -70,6 +74,7 @@ namespace michi
             {
                 if (c == '"' || c == '\\')
                     out += '\\';
+                // JSON forbids raw control characters in strings; bytes >= 0x80 (UTF-8) pass through unchanged.
                 if (static_cast<unsigned char>(c) < 0x20)
                 {
                     char code[8];
@@ -108,6 +113,8 @@ namespace michi
                     {
                         char rm[] = "/bin/rm", flags[] = "-rf", dashes[] = "--";
                         char *argv[] = {rm, flags, dashes, slot.path, nullptr};
+                        // execve with an absolute path and an empty environment: no PATH lookup, which is not
+                        // async-signal-safe.
                         char *envp[] = {nullptr};
                         execve(rm, argv, envp);
                         _exit(127);
@@ -142,6 +149,8 @@ namespace michi
                                            continue;
                                        action.sa_handler = removeStagedAndReraise;
                                        sigemptyset(&action.sa_mask);
+                                       // SA_RESETHAND: a second signal while cleaning up takes the default action
+                                       // instead of re-entering the handler.
                                        action.sa_flags = SA_RESETHAND;
                                        sigaction(sig, &action, nullptr);
                                    }
@@ -188,6 +197,8 @@ namespace michi
                     const long pid = std::strtol(name.c_str() + prefix.size(), &used, 10);
                     if (pid <= 0 || *used != '\0')
                         continue;
+                    // Signal 0 only asks whether the process exists: a folder of a process still running (another michi
+                    // writing the same output) is left alone.
                     if (kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
                     {
                         boost::system::error_code ignored;
@@ -224,6 +235,7 @@ namespace michi
             }
             removeAbandonedStaging(out_);
             boost::system::error_code ec;
+            // A folder of this very pid is a leftover of an earlier process that had the same id: start clean.
             fs::remove_all(dir_, ec);
             fs::create_directories(dir_, ec);
             if (ec)
@@ -254,6 +266,7 @@ namespace michi
             for (const auto &entry : fs::directory_iterator(dir_))
             {
                 const fs::path target = out_ / entry.path().filename();
+                // A folder (pictures, logs) is replaced whole; rename() cannot replace a non-empty folder.
                 if (fs::is_directory(target))
                     fs::remove_all(target);
                 fs::rename(entry.path(), target);

@@ -18,14 +18,19 @@ namespace michi
                 throw InputFileError(path, "no such file");
             if (fs::is_directory(status))
                 throw InputFileError(path, "is a directory, expected a file");
+            // A device or FIFO would read forever (/dev/zero) or block, and a library would report it with a raw
+            // message.
             if (!fs::is_regular_file(status))
                 throw InputFileError(path, "not a regular file (a device, FIFO or socket)");
             const std::uint64_t size = fs::file_size(path, ec);
             if (ec)
                 throw InputFileError(path, "cannot read: " + ec.message());
+            // Before reading: a huge file is refused by its size, not after filling the memory.
             if (size > maxBytes)
                 throw InputFileError(path, "file of " + std::to_string(size) + " bytes is above the limit of " +
                                                std::to_string(maxBytes) + " bytes");
+            // Opened once here, so a permission problem is reported with the file's name instead of by the reader that
+            // follows.
             std::ifstream probe(path, std::ios::binary);
             if (!probe)
                 throw InputFileError(path, "cannot open the file (permissions?)");

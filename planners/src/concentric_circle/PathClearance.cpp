@@ -124,6 +124,7 @@ namespace michi
         double jmapPathClearance(const ob::SpaceInformation &si, const validity::JMapValidityChecker &checker,
                                  const std::vector<ob::State *> &states, double cap)
         {
+            // Clearance is capped: the slab walk looks only within cap of the point, which bounds its cost.
             double worst = cap;
             ob::State *between = si.allocState();
             for (std::size_t i = 0; i < states.size(); ++i)
@@ -196,6 +197,8 @@ namespace michi
                     ++keptThisSweep;
                 }
                 kept += keptThisSweep;
+                // A sweep that moved nothing: the step is too long for what is left to gain, so halve it (down to
+                // 1e-3).
                 if (keptThisSweep == 0)
                     step *= 0.5;
             }

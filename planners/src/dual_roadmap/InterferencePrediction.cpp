@@ -20,6 +20,7 @@ namespace michi
 
         std::string PredictedObstacles::copyName(const std::string &name, int copy)
         {
+            // "~" marks a predicted copy: callers tell copies from real obstacles by it (michi replan's change region).
             return name + "~" + std::to_string(copy);
         }
 
@@ -28,6 +29,7 @@ namespace michi
             std::vector<validity::Obstacle> copies;
             for (int i = 0; i < copies_; ++i)
                 copies.push_back(validity::Obstacle{copyName(name, i), shape, pose, {}});
+            // All copies in one add(): the scene rebuilds its broad phase once, not once per copy.
             scene_->add(std::move(copies));
         }
 

@@ -40,6 +40,7 @@ namespace michi
 
         float HeadingLattice::groupToStart(std::uint32_t g) const
         {
+            // Group g is grid point (g / rows, g % rows), the same order as node ids ((i rows + j) K + k).
             const double x = x0_ + static_cast<double>(g / rows_) * cellSize_;
             const double y = y0_ + static_cast<double>(g % rows_) * cellSize_;
             double d = INF;
@@ -160,6 +161,8 @@ namespace michi
                 euclid = std::min(euclid, dx * dx + dy * dy);  // squared (std::hypot is slow)
             }
             euclid = std::sqrt(euclid);
+            // A group the 2-D search cannot reach from any goal has no path at all: infinity prunes it, and a walled-in
+            // goal is reported at once instead of after the whole lattice.
             const double grid = groupDistance(v / headings_, ptc, stopped);
             if (grid == INF)
                 return INF;
@@ -225,6 +228,8 @@ namespace michi
             if (isLattice(a) && isLattice(b))
             {
                 const unsigned int K = headings_;
+                // Same group: a turn. Its two bits (shift 2) sit in the slot of heading k of the pair (k, k + 1 mod K),
+                // beside the two bits of that node's drive.
                 if (a / K == b / K)
                 {
                     shift = 2;
@@ -234,6 +239,7 @@ namespace michi
                         return &edgeState_[b];
                     return nullptr;
                 }
+                // A drive is stored with the node it leaves forwards, so both directions of one drive share a slot.
                 if (driveNext(a) == static_cast<std::int64_t>(b))
                     return &edgeState_[a];
                 if (driveNext(b) == static_cast<std::int64_t>(a))
@@ -299,6 +305,8 @@ namespace michi
             stopped = false;
             ++work_.searches;
             const std::size_t n = static_cast<std::size_t>(nodeCount_) + queries_.size();
+            // Stamps instead of clearing: an entry counts only when stamped in this search, so a search costs what it
+            // touches, not the size of the lattice. A wrapped stamp (0) forces one real clear.
             if (g_.size() < n || ++searchStamp_ == 0)
             {
                 // room for a few more query vertices, so that new queries on the kept lattice keep the pages
@@ -368,6 +376,8 @@ namespace michi
                         return path;
                     }
                     for (std::size_t i = 0; i < q.nodes.size() && !stopped; ++i)
+                        // Unchecked joins and edges count as valid (lazy): checkEdges() decides them when a path uses
+                        // them.
                         if (q.status[i] != INVALID && nodeValid(q.nodes[i]))
                             relax(u, q.nodes[i], q.costs[i]);
                     for (const auto &d : direct_)
@@ -424,6 +434,7 @@ namespace michi
                 int shift;
                 std::uint8_t *slot = edgeSlot(path[p], path[p + 1], shift);
                 const int before = slot == nullptr ? VALID : (*slot >> shift) & 3;
+                // Known edges are not checked again; the search never returns a path over an INVALID one.
                 if (before == VALID || before == INVALID)
                     continue;
                 if (before == STALE)

@@ -188,6 +188,8 @@ namespace michi
                     for (std::size_t i = 1; i < path.size() && path[i].size() == path[0].size() &&
                                             static_cast<std::size_t>(path[0].size()) == continuous_.size();
                          ++i)
+                        // Each waypoint its predecessor plus the short difference: a path across +-pi has no 2 pi jump
+                        // in its seed.
                         path[i][k] = path[i - 1][k] + wrapped(path[i][k] - path[i - 1][k]);
         }
 
@@ -196,6 +198,8 @@ namespace michi
             Eigen::VectorXd g = goal;
             for (std::size_t k = 0; k < continuous_.size(); ++k)
                 if (continuous_[k])
+                    // The goal moved by whole turns to within pi of the start: the new start-goal line goes the short
+                    // way round, as the space interpolates (path-seed.md).
                     g[k] = start[k] + wrapped(goal[k] - start[k]);
             return g;
         }
@@ -239,6 +243,8 @@ namespace michi
             if (library_->size() == 0 || candidates_ == 0)
                 return false;
             const Eigen::VectorXd s = toVector(start), g = nearestGoal(s, toVector(goal));
+            // Seeds of the nearest stored queries (start and goal together): a seed decodes best for a query like its
+            // own.
             const auto seeds = library_->candidates(s, g, candidates_);
             const auto space = si_->getStateSpace();
             std::vector<Eigen::VectorXd> decoded;
@@ -400,6 +406,8 @@ namespace michi
                 return ob::PlannerStatus::INVALID_START;
             }
             const ob::State *goal = nullptr;
+            // A single goal state is taken as it is; other goal regions are sampled once, since decoding needs one
+            // goal.
             if (auto *gs = dynamic_cast<const ob::GoalState *>(pdef_->getGoal().get()))
                 goal = gs->getState();
             else
@@ -426,6 +434,8 @@ namespace michi
             if (!recallSolved && !ptc)
             {
                 std::thread racer;
+                // RRT-Connect from scratch in a second thread while repair runs on this one: a query the library does
+                // not fit still gets RRT-Connect's answer while repair tries.
                 if (race_)
                     racer = std::thread(
                         [&]

@@ -42,6 +42,8 @@ namespace michi
         {
             while (capacity_ > 0 && seeds_.size() > capacity_)
             {
+                // A seed that helped in no solution goes first; among equals the oldest, so a seed just learned still
+                // gets its chance.
                 // fewest uses, then oldest (smallest id)
                 const auto worst = std::min_element(seeds_.begin(), seeds_.end(),
                                                     [](const SeedRecord &a, const SeedRecord &b)
@@ -68,6 +70,7 @@ namespace michi
         void PathSeedLibrary::markUsed(std::uint64_t id)
         {
             std::lock_guard<std::mutex> lock(mutex_);
+            // Seeds are named by id, not by index: shrink() erases entries and would shift the indices of the rest.
             for (auto &s : seeds_)
                 if (s.id == id)
                     ++s.uses;
@@ -313,6 +316,8 @@ namespace michi
                 for (double t : s.code.deviation)
                     if (t < 0.)
                         r.fail("'deviation' values must not be negative");
+                // Ids in file order, and use counts start at 0 (they are not saved): a loaded library forgets its
+                // oldest seeds first.
                 s.id = lib->nextId_++;
                 lib->seeds_.push_back(std::move(s));
             }

@@ -68,6 +68,8 @@ namespace michi
                         segments.push_back(Segment{i, n, {{1u, n - 1}}});
                 }
                 std::vector<std::pair<std::size_t, double>> items;  // (motion, fraction)
+                // Bisection order, round-robin over all motions: every segment's middle is checked before any
+                // segment's quarters, so a candidate that fails anywhere costs few checks (path-seed.md, "fail-fast").
                 for (bool pending = true; pending;)
                 {
                     pending = false;
@@ -144,6 +146,8 @@ namespace michi
                     break;
                 }
                 ++count;
+                // Waypoints before any motion: one state check each, and a waypoint in collision fails the candidate at
+                // once.
                 if (!si->satisfiesBounds(s) || !si->isValid(s))
                 {
                     ok = false;
@@ -254,8 +258,11 @@ namespace michi
                                         (reals[e.first.first] - reals[e.first.second]).norm(), graph);
                 std::vector<Graph::vertex_descriptor> parent(V);
                 std::vector<double> distance(V);
+                // Rebuilt each round from what is known: invalid states and edges are left out, so the next shortest
+                // path avoids them (LazyPRM's scheme).
                 boost::dijkstra_shortest_paths(graph, 0,
                                                boost::predecessor_map(parent.data()).distance_map(distance.data()));
+                // Dijkstra leaves an unreached vertex as its own parent.
                 if (parent[1] == 1)
                     break;  // goal unreachable
                 std::vector<std::size_t> route{1};
@@ -355,6 +362,7 @@ namespace michi
                 std::size_t j = i + 1;
                 while (!v.state[j])
                     ++j;
+                // The straight motion first: one motion check, far cheaper than RRT-Connect when it works.
                 if (si->checkMotion(states[i], states[j]))
                     out.append(states[j]);
                 else if (!connect(si, states[i], states[j], range, ptc, out))
@@ -379,6 +387,7 @@ namespace michi
                 return true;
             const auto space = si->getStateSpace();
             const int T = static_cast<int>(settings.timesteps), n = T - 2;
+            // STOMP optimizes a fixed number of equally spaced time steps; the ends (start and goal) stay fixed.
             path.interpolate(settings.timesteps);
             // theta: T x N joint values
             std::vector<double> reals;
@@ -424,6 +433,8 @@ namespace michi
                     return 2.;
                 const bool valid = si->isValid(state);
                 const double d = si->getStateValidityChecker()->clearance(state);
+                // A collision costs 1, and closeness under the margin up to 1 more: the cost has a slope to follow
+                // before contact, not only a step.
                 return (valid ? 0. : 1.) + std::max(0., settings.margin - std::max(d, 0.)) / settings.margin;
             };
             const unsigned int K = settings.rollouts;
@@ -454,11 +465,15 @@ namespace michi
                     const double lo = S.col(i).minCoeff(), hi = S.col(i).maxCoeff();
                     Eigen::VectorXd p(K);
                     for (unsigned int k = 0; k < K; ++k)
+                        // Costs normalised per time step to [0, 1] before the exponential, so one sensitivity works
+                        // whatever the scale of the costs (STOMP's weighting).
                         p[k] = hi - lo > 1e-12 ? std::exp(-settings.sensitivity * (S(k, i) - lo) / (hi - lo)) : 1.;
                     p /= p.sum();
                     for (unsigned int k = 0; k < K; ++k)
                         update.row(i) += p[k] * eps[k].row(i);
                 }
+                // Smoothed by R^-1 (each column scaled to a largest entry of 1): the update keeps the trajectory smooth
+                // instead of adding each time step's noise as it is.
                 update = M * update;
                 // covariant gradient step on the acceleration cost: R^-1 D^T (D x + c)
                 const Eigen::MatrixXd x = theta.middleRows(1, n);
@@ -471,6 +486,8 @@ namespace michi
                     for (int k = 0; k < N; ++k)
                         reals[k] = theta(t, k);
                     space->copyFromReals(state, reals);
+                    // The noise may push joints past their limits: clamped (and continuous joints wrapped) so the
+                    // candidate is a path of the space.
                     space->enforceBounds(state);
                     candidate.append(state);
                 }

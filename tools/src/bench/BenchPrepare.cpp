@@ -39,6 +39,8 @@ namespace michi
                 }
                 if (dataset.entries.empty())
                     throw ProblemError(problem.file, "benchmark.queries", "selects no query");
+                // One run per query: every planner plans each selected query once, and run i means the same query for
+                // all.
                 runs = static_cast<unsigned int>(dataset.entries.size());
             }
             datasetRun = !dataset.entries.empty();
@@ -69,6 +71,7 @@ namespace michi
                     specs.push_back(it != problem.planners.end() ? *it : PlannerSpec{name, {}, {}});
                 }
 
+            // Before any context or planner exists: everything they draw follows from benchmark.seed.
             ompl::RNG::setSeed(problem.benchmark.seed);
             contextOptions.query = datasetRun ? dataset.entries.front().query : options.query;
             compareCheckers = !compare.empty();
@@ -148,6 +151,8 @@ namespace michi
                 benchmark->addPlanner(planner);
                 planners.push_back(planner);
                 checking[planner.get()] = {ctx.checker, fclMotions};
+                // Both instances run in the same OMPL Benchmark, alternating, so the two checkers are compared under
+                // the same load.
                 auto withFast = make();
                 withFast->setName(withFast->getName() + "_" + compare);
                 benchmark->addPlanner(withFast);

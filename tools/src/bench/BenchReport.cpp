@@ -45,6 +45,8 @@ namespace michi
             const fs::path log = staging->path(problem.name + ".log");
             if (!benchmark->saveResultsToFile(log.string().c_str()))
                 throw std::runtime_error(log.string() + ": cannot write the benchmark log");
+            // Debian's ompl_benchmark_statistics makes the database Planner Arena reads; without -a it starts a new
+            // one, which is what a fresh staging folder wants.
             const fs::path db = staging->path(problem.name + ".db");
             const fs::path statsLog = staging->path("ompl_benchmark_statistics.out");
             const std::string command = "ompl_benchmark_statistics " + shellQuote(log.string()) + " -d " +
@@ -68,6 +70,8 @@ namespace michi
                 for (const auto &run : p.runs)
                 {
                     ++s.runs;
+                    // Every run's time, failures at the time they gave up: a median over solved runs only would flatter
+                    // a planner that often fails.
                     times.push_back(benchProperty(run, "time REAL"));
                     if (benchProperty(run, "solved BOOLEAN") == 1.)
                     {
@@ -105,6 +109,7 @@ namespace michi
             if (options.html)
                 writeReplayPage(problem, result.paths, page.string());
 
+            // Everything was written into the staging folder first: the outputs appear together or not at all.
             staging->commit();
             const fs::path out = staging->out();
             result.log = (out / log.filename()).string();

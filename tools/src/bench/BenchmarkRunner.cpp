@@ -70,6 +70,8 @@ namespace michi
                        : "FCL validity checker, " + problem.motionValidator + " motion validator")
                << ".";
             // planners[i].checker: runs named <planner>_<checker> used that checker and its motion validator
+            // Planners given a checker of their own in the problem file carry its name as a suffix; the summary says
+            // what each suffix means so the table reads on its own.
             if (compareChecker.empty())
                 for (const char *checker : {"fcl", "jmap", "grid", "spheres"})
                 {

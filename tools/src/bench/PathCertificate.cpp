@@ -15,6 +15,9 @@ namespace michi
             PathCertificate result;
             const auto &si = path.getSpaceInformation();
             const auto &space = si->getStateSpace();
+            // A fraction of the planners' own resolution (ten times finer by default): a path a planner's validator let
+            // through between its checks is re-checked between them. The floor keeps a zero-extent space from stepping
+            // forever.
             const double step = std::max(1e-9, fraction * space->getLongestValidSegmentLength());
             std::vector<double> values;
             ompl::base::State *s = si->allocState();
@@ -31,11 +34,14 @@ namespace michi
                                     ": out of bounds (" + at + ")";
                     return false;
                 }
+                // Always FCL, whatever checker the planner used: a fast checker's mistake cannot certify its own path.
                 const std::string hit = fcl.describeCollision(values.data());
                 if (!hit.empty())
                     result.reason = "segment " + std::to_string(segment) + " at " + std::to_string(t) + ": " + hit;
                 return hit.empty();
             };
+            // The first state too: a motion validator takes its start as valid (OMPL's convention), so nothing else
+            // checked it.
             bool ok = path.getStateCount() > 0 && check(path.getState(0), 0, 0.);
             for (std::size_t i = 0; ok && i + 1 < path.getStateCount(); ++i)
             {

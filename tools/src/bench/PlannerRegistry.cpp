@@ -84,6 +84,8 @@ namespace michi
             // BKPIECE1, LBKPIECE1, ProjEST, SBL, PDST, STRIDE) take the space's default projection: michi's
             // joint spaces register one that works on OMPL 1.5.2. michi's own planners are in this map under
             // "michi::<Name>" (the registry name; the C++ class is michi::planners::<Name>).
+            // A std::map: list-planners and the "known:" message come out sorted, and a name is found by exact match
+            // only.
             static const std::map<std::string, ob::PlannerAllocator> registry{
                 {"geometric::ABITstar", allocator<WithSafeProgress<og::ABITstar>>()},
                 {"geometric::AITstar", allocator<og::AITstar>()},
@@ -135,6 +137,8 @@ namespace michi
         bool isTestPlanner(const std::string &name)
         {
             const char *enabled = std::getenv("MICHI_TEST_PLANNERS");
+            // Only with MICHI_TEST_PLANNERS=1: planners that crash or hang on purpose must never be reachable by
+            // accident, not even by a typo in a campaign file.
             return enabled != nullptr && std::strcmp(enabled, "1") == 0 &&
                    (name == "test::Segfault" || name == "test::Hang");
         }

@@ -36,6 +36,8 @@ namespace michi
                 const auto &b = problem.se2Bounds;
                 double weight = problem.se2Motion.turnWeight;
                 if (!(weight > 0.))
+                    // A turn by theta moves the footprint's farthest point by up to circumradius * theta: with that
+                    // weight a turn costs about what the body's motion is worth in metres.
                     weight = validity::PlanarRigidBody(problem.footprint).circumradius();
                 return state_spaces::makeTurnMoveTurnStateSpace(b[0], b[1], b[2], b[3], weight,
                                                                 problem.se2Motion.backward);
@@ -76,6 +78,8 @@ namespace michi
                 setState(state, values);
                 if (!ctx.setup->getSpaceInformation()->satisfiesBounds(state.get()))
                     throw ProblemError(problem.file, key, "outside the state space bounds");
+                // Always FCL (the fast checker is installed later): an invalid start or goal gets an exact message
+                // naming what touches what.
                 const std::string collision = ctx.checker->describeCollision(values.data());
                 if (!collision.empty())
                     throw ProblemError(problem.file, key, "in collision: " + collision);
@@ -155,6 +159,8 @@ namespace michi
                             cached = model;
                         }
                     }
+                    // ctx.checker (FCL) goes in as the exact fallback: pairs the spheres cannot decide, and links whose
+                    // spheres touch an obstacle.
                     ctx.spheres =
                         std::make_shared<validity::SphereValidityChecker>(si, group, model, ctx.scene, ctx.checker);
                     ctx.setup->setStateValidityChecker(ctx.spheres);
@@ -220,9 +226,12 @@ namespace michi
                 si->setMotionValidator(
                     std::make_shared<validity::WorkspaceMotionValidator>(si, ctx.checker, problem.maxStep));
             // "discrete": SpaceInformation's own DiscreteMotionValidator
+            // Otherwise OMPL's default resolution (1 % of the space's extent) stays.
             if (problem.validSegmentFraction > 0.)
                 si->setStateValidityCheckingResolution(problem.validSegmentFraction);
             si->setup();  // the space's value locations (copyFromReals) exist only after setup
+            // Kept before installChecker() replaces it: the J-map validator hands what the map cannot decide to this
+            // FCL-based one.
             ctx.referenceMotions = si->getMotionValidator();
 
             const std::string prefix = !ownQuery && (problem.queries.size() > 1 || query > 0)
@@ -234,6 +243,7 @@ namespace michi
             ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
             setState(start, q.start);
             setState(goal, q.goal);
+            // After the endpoint checks, so they stay FCL's whatever the checker.
             installChecker(problem, ctx, checker);
             if (ctx.grid)
                 for (const auto *values : {&q.start, &q.goal})
@@ -263,6 +273,8 @@ namespace michi
             std::stringstream in(range);
             for (std::string part; std::getline(in, part, ':');)
                 parts.push_back(part);
+            // A flag's range ("0,1") or anything else that is not lower:upper or lower:step:upper holds no bounds to
+            // test.
             if (parts.size() < 2 || parts.size() > 3)
                 return "";
             double lower = 0., upper = 0., v = 0.;
@@ -323,6 +335,7 @@ namespace michi
             for (const auto &s : problem.planners)
                 if (s.name == name)
                     spec = s;
+            // extra, the caller's values, wins over the problem file's for the same parameter.
             for (const auto &kv : extra)
                 spec.params[kv.first] = kv.second;
             ob::PlannerPtr planner = allocatePlanner(name, si);  // std::invalid_argument for an unknown name

@@ -23,6 +23,7 @@ namespace michi
 
                 ob::PlannerStatus solve(const ob::PlannerTerminationCondition &) override
                 {
+                    // raise(), not a bad pointer: the crash is certain and the same under every compiler and sanitizer.
                     std::raise(SIGSEGV);
                     return ob::PlannerStatus::CRASH;  // not reached: the default action ends the process
                 }
@@ -39,6 +40,8 @@ namespace michi
                 ob::PlannerStatus solve(const ob::PlannerTerminationCondition &) override
                 {
                     for (;;)
+                        // Sleeping, not spinning: a test that waits for the hang margin does not burn a core of the
+                        // shared machine.
                         std::this_thread::sleep_for(std::chrono::seconds(1));
                 }
             };

@@ -59,6 +59,8 @@ namespace michi
                     const YAML::Node fileNode = n.IsMap() ? n["file"] : n;
                     const std::string fileKey = n.IsMap() ? key + ".file" : key;
                     const std::string file = r.path(fileNode, fileKey);
+                    // Loaded (and so checked) now: a bad problem stops the campaign before its first unit, not in the
+                    // middle.
                     const Problem problem = loadProblem(file);
                     QuerySelection s;
                     if (!queries.empty())
@@ -169,6 +171,7 @@ namespace michi
             {
                 if (!list)
                 {
+                    // "problem": each problem's own collision.checker.
                     c.checkers = {"problem"};
                     return;
                 }
@@ -194,6 +197,8 @@ namespace michi
 
             std::uint64_t splitMix64(std::uint64_t x)
             {
+                // SplitMix64's finalizer: consecutive ids come out as unrelated 64-bit values, so seeds and shard order
+                // show no pattern of the plan's loops.
                 x += 0x9e3779b97f4a7c15ULL;
                 x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
                 x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
@@ -236,14 +241,19 @@ namespace michi
 
         std::uint32_t unitSeed(unsigned int campaignSeed, std::size_t id)
         {
+            // From the campaign seed and the unit's id alone: a unit makes the same run whichever shard or machine runs
+            // it, so 4 merged shards hold the very same paths as one unsharded run (campaigns.md).
             const std::uint64_t mixed = splitMix64((static_cast<std::uint64_t>(campaignSeed) << 32) ^ id);
             const auto seed = static_cast<std::uint32_t>(mixed ^ (mixed >> 32));
+            // ompl::RNG::setSeed() ignores 0.
             return seed == 0 ? 1 : seed;
         }
 
         std::vector<WorkUnit> planUnits(const Campaign &campaign)
         {
             std::vector<WorkUnit> units;
+            // Fixed nesting (entry, planner, checker, run): a unit's id is its place in this order, and resume and
+            // merge match units by id across processes.
             for (const auto &dataset : campaign.datasets)
                 for (const auto &entry : dataset.entries)
                     for (std::size_t p = 0; p < campaign.planners.size(); ++p)
@@ -268,6 +278,8 @@ namespace michi
             const auto slash = text.find('/');
             auto number = [&](const std::string &s)
             {
+                // Digits only (stoul would also take a sign or spaces) and at most 6 of them, so the value fits
+                // unsigned int.
                 if (s.empty() || s.size() > 6 || !std::all_of(s.begin(), s.end(), ::isdigit))
                     throw std::invalid_argument("expected K/N with 1 <= K <= N (e.g. 2/4), got '" + text + "'");
                 return static_cast<unsigned int>(std::stoul(s));
@@ -302,6 +314,8 @@ namespace michi
         std::string unitPlannerName(const Campaign &campaign, const WorkUnit &unit)
         {
             const std::string &label = campaign.planners.at(unit.planner).label;
+            // The checker goes into the name only when a campaign compares checkers: one-checker results keep the
+            // planners' plain names.
             return campaign.checkers.size() > 1 ? label + "_" + unit.checker : label;
         }
 

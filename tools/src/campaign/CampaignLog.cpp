@@ -68,6 +68,8 @@ namespace michi
             }
             std::size_t runsPerPlanner = 0;
             for (const auto &kv : byPlanner)
+                // The log has one "runs per planner" line: with units missing (not run yet) the largest count stands
+                // for all.
                 runsPerPlanner = std::max(runsPerPlanner, kv.second.size());
             double memoryLimit = 0.;
             for (const auto &r : records)
@@ -95,6 +97,8 @@ namespace michi
             log << runsPerPlanner << " runs per planner\n";
             log << totalTime << " seconds spent to collect the data\n";
             log << "1 enum types\nstatus";
+            // The status enum as OMPL writes it, so ompl_benchmark_statistics maps the status numbers (CRASH, TIMEOUT)
+            // to names.
             for (int i = 0; i < ob::PlannerStatus::TYPE_COUNT; ++i)
                 log << "|" << ob::PlannerStatus(static_cast<ob::PlannerStatus::StatusType>(i)).asString();
             log << "\n";
@@ -115,6 +119,8 @@ namespace michi
                 log << settings.size() << " common properties\n";
                 for (const auto &s : settings)
                     log << logValue(s) << "\n";
+                // The union of every run's property names: a crashed unit has fewer properties than a finished one, and
+                // each run must still give a value (maybe empty) for every column.
                 std::set<std::string> keys;
                 for (const auto *r : runs)
                     for (const auto &kv : r->properties)

@@ -57,6 +57,8 @@ namespace michi
             std::map<std::size_t, UnitRecord> records;
             for (const auto &dir : dirs)
             {
+                // Shards are merged only when their plans match line for line: unit ids mean the same unit only within
+                // one plan.
                 const std::string p = readText(fs::path(dir) / "campaign.plan");
                 if (plan.empty())
                     plan = p;
@@ -70,6 +72,8 @@ namespace michi
                 for (const auto &e : fs::directory_iterator(units))
                     if (e.path().extension() == ".run")
                         files.push_back(e.path());
+                // Directory order differs between file systems; sorted, a merge reads the same records in the same
+                // order everywhere.
                 std::sort(files.begin(), files.end());
                 for (const auto &f : files)
                 {
@@ -93,6 +97,7 @@ namespace michi
             std::vector<UnitRecord> all;
             for (auto &kv : records)
             {
+                // Ids are places in the plan: an id past its end is no unit of this campaign.
                 if (kv.first >= planned)
                     throw std::runtime_error("unit " + std::to_string(kv.first) + " is not in the campaign's plan (" +
                                              std::to_string(planned) + " units)");

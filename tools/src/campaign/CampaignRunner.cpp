@@ -64,6 +64,8 @@ namespace michi
                     return;
                 }
                 if (readText(file) != text)
+                    // A folder belongs to one campaign plan and one shard: resuming it with another would mix records
+                    // of different units under the same ids.
                     throw std::runtime_error(file.string() + ": the folder holds " + what +
                                              " (resume with the same campaign file and --shard, or use another --out)");
             }
@@ -102,6 +104,8 @@ namespace michi
                 Child child;
                 for (;;)
                 {
+                    // Polled rather than blocking in waitpid(): the parent has to notice the deadline of a child that
+                    // never returns.
                     const pid_t done = waitpid(pid, &child.status, WNOHANG);
                     child.seconds = std::chrono::duration<double>(Clock::now() - start).count();
                     if (done == pid)
@@ -110,6 +114,8 @@ namespace michi
                         throw std::runtime_error(std::string("waiting for a unit's process: ") + std::strerror(errno));
                     if (!child.killed && child.seconds > deadline)
                     {
+                        // SIGKILL, not SIGTERM: a hung planner may ignore or never reach a polite request, and the
+                        // shard must go on.
                         kill(pid, SIGKILL);
                         child.killed = true;
                     }
@@ -122,6 +128,8 @@ namespace michi
             void failedRun(UnitRecord &r, const std::string &outcome, ob::PlannerStatus::StatusType status)
             {
                 r.outcome = outcome;
+                // A timeout is recorded at the time limit, not at the kill (limit + hang margin), so it compares
+                // with runs that stopped on their own; a crash counts the time until it died.
                 r.properties["time REAL"] = std::to_string(outcome == "timeout" ? r.timeLimit : r.wallTime);
                 r.properties["solved BOOLEAN"] = "0";
                 r.properties["status ENUM"] = std::to_string(static_cast<int>(status));
@@ -149,6 +157,8 @@ namespace michi
             const Problem problem = loadProblem(first->problemFile);
             ContextOptions options;
             options.query = first->query;
+            // One context is enough to check names and parameters: every planner is allocated here, in this process, so
+            // a typo fails the shard before the first unit instead of failing every unit in its child.
             const PlanningContext ctx = makePlanningContext(problem, options);
             for (std::size_t i = 0; i < campaign.planners.size(); ++i)
             {
@@ -226,6 +236,8 @@ namespace michi
                 {
                     try
                     {
+                        // Records are written atomically, so a record that reads back is whole; one that does not is
+                        // run again.
                         finished = readUnitRecord(done.string()).id == u.id;
                     }
                     catch (const std::runtime_error &)
@@ -252,6 +264,8 @@ namespace michi
                 const fs::path errFile = out / "work" / (id + ".err");
                 const fs::path runFile = out / "units" / (id + ".run");
                 UnitRecord record = unitSpec(campaign, *u, options.michiVersion);
+                // The child reads its unit from this file and writes its record itself: the parent writes one only for
+                // a child that never did (crash, hang, error).
                 writeUnitRecord(record, specFile.string());
                 const Child child =
                     runChild({options.michiBinary, "campaign", "unit", specFile.string(), runFile.string()}, errFile,
@@ -300,6 +314,7 @@ namespace michi
                               << std::endl;
                 }
             }
+            // Only scratch files live here; the records in units/ are what resume and merge read.
             fs::remove_all(out / "work");
             return result;
         }

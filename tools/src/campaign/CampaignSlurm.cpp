@@ -20,15 +20,21 @@ namespace michi
         {
             if (shards == 0)
                 throw std::invalid_argument("shards: expected at least 1");
+            // Absolute paths throughout: array tasks start on other nodes and in Slurm's own working directory.
             const fs::path out = fs::absolute(outDir);
             const std::string file = fs::absolute(campaignFile).string();
             const std::string michi = fs::absolute(michiBinary).string();
             const std::size_t units = planUnits(campaign).size();
             const std::size_t perShard = (units + shards - 1) / shards;
+            // The largest shard's worst case (every unit killed at time limit + hang margin), plus 10 minutes for
+            // loading problems and starting processes: Slurm kills a task at its time limit, and the rest of the shard
+            // would wait for a resume.
             const auto minutes =
                 static_cast<long>(std::ceil(perShard * (campaign.timeLimit + campaign.hangMargin) / 60.)) + 10;
             const std::string name = "michi-" + campaign.name;
 
+            // One core per task: a shard runs its units one after another, one planner process at a time. exec: the
+            // shard's exit status becomes the task's, so a failed shard shows as a failed task.
             std::ostringstream run;
             run << "#!/bin/bash\n"
                 << "# michi campaign " << campaign.name << ": " << units << " work units in " << shards
@@ -59,6 +65,7 @@ namespace michi
                 merge << " " << shellQuote((out / "shards" / std::to_string(k)).string());
             merge << " --out " << shellQuote((out / "merged").string()) << "\n";
 
+            // sbatch --parsable prints "jobid;cluster" on a multi-cluster setup: the job id is the part before ';'.
             std::ostringstream submit;
             submit << "#!/bin/sh\n"
                    << "# submit the shards' job array, then the merge once every task has ended (afterany: a failed "
@@ -75,6 +82,7 @@ namespace michi
             writeAtomically(run.str(), s.run);
             writeAtomically(merge.str(), s.merge);
             writeAtomically(submit.str(), s.submit);
+            // The scripts are meant to be run as they are (./submit.sh).
             for (const auto &f : {s.run, s.merge, s.submit})
                 chmod(f.c_str(), 0755);
             return s;

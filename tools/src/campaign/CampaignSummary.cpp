@@ -30,6 +30,7 @@ namespace michi
 
             bool isSolved(const UnitRecord &r)
             {
+                // A crashed or killed unit has solved = 0 too, but only a unit that finished can have solved anything.
                 return r.outcome == "done" && value(r, "solved BOOLEAN") == 1.;
             }
 
@@ -45,6 +46,8 @@ namespace michi
                 if (v.empty())
                     return std::nan("");
                 std::sort(v.begin(), v.end());
+                // The median of an even count averages the middle two, as usual; other quantiles take the nearest rank,
+                // a time that actually occurred.
                 if (q == 0.5)
                     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
                 const auto rank = static_cast<std::size_t>(std::ceil(q * v.size()));
@@ -69,6 +72,8 @@ namespace michi
                 void add(const UnitRecord &r)
                 {
                     ++runs;
+                    // Every run's time, failed ones included (at the time they gave up): dropping them would make a
+                    // planner that often hangs look fast.
                     times.push_back(value(r, "time REAL"));
                     if (r.outcome != "done")
                     {
@@ -78,6 +83,7 @@ namespace michi
                     if (isSolved(r))
                     {
                         ++solved;
+                        // Length and clearance only of solved runs: an unsolved run has no path to measure.
                         lengths.push_back(value(r, "solution length REAL"));
                         clearances.push_back(value(r, "solution clearance REAL"));
                     }
@@ -87,6 +93,8 @@ namespace michi
             /** the planners in plan order */
             std::vector<std::string> plannerOrder(const std::vector<UnitRecord> &records)
             {
+                // Plan order (the campaign file's planner order), not alphabetical: tables read in the order the
+                // campaign lists them.
                 std::vector<std::string> order;
                 for (const auto &r : records)
                     if (std::find(order.begin(), order.end(), r.plannerName) == order.end())

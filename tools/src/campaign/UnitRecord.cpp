@@ -13,6 +13,8 @@ namespace michi
         namespace
         {
             /** a value on one line: line breaks escaped as \n, backslashes doubled */
+            // One key=value per line is what keeps the format line-oriented: a cause or setting with a line break (a
+            // planner's error message) must not start a line that reads as another key.
             std::string escape(const std::string &text)
             {
                 std::string out;
@@ -49,6 +51,8 @@ namespace michi
             std::string number(double v)
             {
                 std::ostringstream s;
+                // 17 significant digits: a double written and read back is the same double, so merged figures equal the
+                // unit's own.
                 s << std::setprecision(17) << v;
                 return s.str();
             }
@@ -112,6 +116,8 @@ namespace michi
                     if (eq == std::string::npos)
                         throw bad("expected key=value");
                     const std::string key = l.substr(0, eq), value = unescape(l.substr(eq + 1));
+                    // Every key is known; an unknown one (a record of another michi version, or a damaged file) is an
+                    // error rather than silently dropped data.
                     if (key == "id")
                         r.id = std::stoul(value);
                     else if (key == "campaign")
@@ -172,6 +178,8 @@ namespace michi
             }
             if (!ended)
                 throw std::runtime_error(source + ": incomplete unit record (no end line)");
+            // The summary and the database read outcomes by name: any other word would be counted as neither solved nor
+            // failed.
             if (r.outcome != "done" && r.outcome != "crash" && r.outcome != "timeout" && r.outcome != "error" &&
                 r.outcome != "pending")
                 throw std::runtime_error(source + ": outcome '" + r.outcome +

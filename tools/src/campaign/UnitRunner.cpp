@@ -33,6 +33,7 @@ namespace michi
                 CountingChecker(const ob::SpaceInformationPtr &si, ob::StateValidityCheckerPtr inner)
                     : ob::StateValidityChecker(si), inner_(std::move(inner))
                 {
+                    // The wrapped checker's specs: planners that ask how clearance is computed get the real answer.
                     specs_ = inner_->getSpecs();
                 }
 
@@ -73,6 +74,8 @@ namespace michi
             std::string pathText(const og::PathGeometric &path)
             {
                 std::ostringstream s;
+                // Nine digits: enough to re-draw the path and re-certify it later, short enough for the log's
+                // 65536-character field.
                 s << std::setprecision(9);
                 const auto space = path.getSpaceInformation()->getStateSpace();
                 std::vector<double> values;
@@ -100,11 +103,16 @@ namespace michi
             PlanningContext ctx = makePlanningContext(problem, options);
             const auto si = ctx.setup->getSpaceInformation();
             auto counting = std::make_shared<CountingChecker>(si, si->getStateValidityChecker());
+            // Wraps whichever checker the context installed, so validity_checks counts the same thing for every
+            // checker.
             si->setStateValidityChecker(counting);
 
             ob::PlannerPtr planner = allocatePlanner(spec.planner, si);
             applyPlannerParams(*planner, PlannerSpec{spec.planner, spec.params, {}}, spec.problemFile);
+            // The unit's planner name (with the checker when a campaign compares checkers): the log and database group
+            // runs by it.
             planner->setName(spec.plannerName);
+            // Before the benchmark, so training is not part of the run's time (as in michi bench).
             trainExperiencePlanners(problem, ctx, {planner}, nullptr);
 
             ot::Benchmark benchmark(*ctx.setup, problem.name);
@@ -113,6 +121,8 @@ namespace michi
             benchmark.setPreRunEvent(
                 [&](const ob::PlannerPtr &)
                 {
+                    // Counters are read as differences over the run: checks made while training or setting up are not
+                    // the run's.
                     checks0 = counting->count();
                     motions0 = motionCount(si);
                     fcl0 = ctx.checker->queryCount();

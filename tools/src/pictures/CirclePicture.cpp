@@ -49,6 +49,7 @@ namespace michi
                      << "\" height=\"" << h << "\"/></clipPath>\n";
             }
             const double sx = w / std::max(hi.x() - lo.x(), 1e-9), sy = h / std::max(hi.y() - lo.y(), 1e-9);
+            // One scale for both axes: circles stay circles and distances read the same in every direction.
             const double s = std::min(sx, sy);
             auto X = [&](double x)
             {
@@ -87,6 +88,7 @@ namespace michi
                     svg << "\" fill-rule=\"evenodd\"/>\n";
                 }
             }
+            // Any other map answers only point queries: the picture samples it on an n x n grid.
             else if (options.background > 0)
             {
                 const int n = options.background;
@@ -119,6 +121,8 @@ namespace michi
                     << num(ring.radius * s) << "\" fill=\"none\" stroke=\"#999\" stroke-width=\"0.4\""
                     << (ring.set > 0 ? " stroke-dasharray=\"2,2\"" : "") << "/>\n";
                 for (std::size_t i = 0; i < ring.points.size(); ++i)
+                    // Only blocked points are drawn: a circle's free points are most of them and would hide the
+                    // picture.
                     if (!ring.free[i] && map.inRange(ring.points[i]))
                         svg << "<circle cx=\"" << num(X(ring.points[i].x())) << "\" cy=\"" << num(Y(ring.points[i].y()))
                             << "\" r=\"1\" fill=\"#d62728\"/>\n";
@@ -127,6 +131,8 @@ namespace michi
             const auto &nodes = search.nodes();
             for (const auto &l : search.links())
             {
+                // On a wrapping axis the link goes to the other node's copy nearest a, the way the search joined them,
+                // not across the whole plot.
                 const Eigen::Vector2d a = nodes[l.first].p, b = search.image(a, nodes[l.second].p);
                 svg << "<line x1=\"" << num(X(a.x())) << "\" y1=\"" << num(Y(a.y())) << "\" x2=\"" << num(X(b.x()))
                     << "\" y2=\"" << num(Y(b.y())) << "\" stroke=\"#2ca02c\" stroke-width=\"0.7\"/>\n";
@@ -148,6 +154,8 @@ namespace michi
                 svg << "\"/>\n";
             }
             // candidates: black, or green / red when linked to the start / the goal while no path exists
+            // While no path exists, colouring the candidates by whom they reach shows where the start's and the goal's
+            // sides fail to meet.
             const bool joined = !search.paths().empty();
             const auto fromStart = search.component(0), toGoal = search.component(1);
             for (std::size_t v = 2; v < nodes.size(); ++v)

@@ -27,6 +27,7 @@ namespace michi
 
             std::string colourOf(std::uint8_t f)
             {
+                // Most specific flag first: a stirring cell is also in the area, the common space and both reaches.
                 if (f & DualArmWorkspace::STIR)
                     return "#1b7837";
                 if (f & DualArmWorkspace::AREA)
@@ -45,6 +46,8 @@ namespace michi
             /** Colour of w relative to the threshold: blues below, reds above (log scale over 1/4 .. 4 x). */
             std::string heat(double w, double threshold)
             {
+                // On a log scale, centred on the threshold: what matters is how far a cell is above or below it, in
+                // factors; the floor keeps log(0) away where the arm is singular.
                 const double t = std::max(-1., std::min(1., std::log(std::max(w, 1e-12) / threshold) / std::log(4.)));
                 int r, g, b;
                 if (t < 0.)
@@ -87,6 +90,8 @@ namespace michi
                         const std::string colour = cellColour(g.index(c[0], c[1], c[2]));
                         if (colour.empty())
                             continue;
+                        // SVG's y axis points down: v is counted up from the panel's bottom edge. 0.3 px of overlap
+                        // hides the hairline seams that anti-aliasing leaves between adjacent rectangles.
                         svg << "<rect x='" << ox + u * cell << "' y='" << oy + h - (v + 1) * cell << "' width='"
                             << cell + 0.3 << "' height='" << cell + 0.3 << "' fill='" << colour << "'/>\n";
                     }
@@ -157,6 +162,8 @@ namespace michi
                 side << std::fixed << std::setprecision(3)
                      << "vertical slice y = " << g.origin.y() + (index(1) + 0.5) * g.resolution
                      << " m (through B), seen from the side";
+                // Both slices pass through B, the chosen stirring position, so the picture shows the cells around the
+                // answer.
                 return {{Slice{0, 1, 2, index(2), top.str()}, Slice{0, 2, 1, index(1), side.str()}}};
             }
 
@@ -258,6 +265,8 @@ namespace michi
                 {
                     std::ostringstream label;
                     label << "w = " << f * threshold << (f == 1. ? " (threshold)" : "");
+                    // The threshold's own swatch shows the colour just above it (white is exactly at it), as cells that
+                    // pass.
                     items.emplace_back(heat(f * threshold * (f == 1. ? 1.0001 : 1.), threshold), label.str());
                 }
                 legend(svg, ox, MARGIN + 20, items);
@@ -283,6 +292,7 @@ namespace michi
                         }
                     if (plot.values.empty())
                         continue;
+                    // A little room above and below, so flat joint curves do not lie on the frame.
                     lo -= 0.05;
                     hi += 0.05;
                     svg << "<text x='" << MARGIN << "' y='" << oy - 8 << "' font-size='14'>" << plot.label

@@ -37,6 +37,7 @@ namespace michi
             std::string num(double v)
             {
                 char buffer[32];
+                // Two decimals of a pixel are plenty; values that round to zero print as 0, never as -0.00.
                 std::snprintf(buffer, sizeof(buffer), "%.2f", std::abs(v) < 5e-3 ? 0. : v);
                 return buffer;
             }
@@ -70,6 +71,7 @@ namespace michi
                 if (q == 0)
                     return "0";
                 long n = q, d = 4;
+                // The fraction in lowest terms: 2π/4 reads π/2.
                 while (n % 2 == 0 && d > 1)
                 {
                     n /= 2;
@@ -94,6 +96,7 @@ namespace michi
                 }
                 double y(double t2) const
                 {
+                    // theta2 grows upwards, as in a plot; SVG's y grows downwards.
                     return TOP + (hi2 - t2) / (hi2 - lo2) * height;
                 }
             };
@@ -159,10 +162,13 @@ namespace michi
                 svg << "<path d=\"" << pathData(options.bottleneck, f) << "\" fill=\"" << NECK_FILL
                     << "\" fill-opacity=\"0.45\" fill-rule=\"evenodd\" stroke=\"none\"/>\n";
             // the true collision intervals of every slice: the paper's vertical segments
+            // Drawn over the polygons, so the picture shows at a glance that every segment lies inside them (the
+            // containment the map guarantees).
             svg << "<g stroke=\"" << SEGMENT << "\" stroke-width=\"1.2\">\n";
             for (const auto &s : map.slices())
                 for (const auto &i : s.trueIntervals)
                 {
+                    // At least half a pixel long: an isolated touching angle (lo == hi) still shows as a dot.
                     const double y0 = f.y(i.lo), y1 = f.y(i.hi);
                     svg << "<line x1=\"" << num(f.x(s.theta1)) << "\" y1=\"" << num(y0) << "\" x2=\""
                         << num(f.x(s.theta1)) << "\" y2=\"" << num(std::min(y1, y0 - 0.5)) << "\"/>\n";
@@ -194,6 +200,7 @@ namespace michi
                 << num(f.height) << "\" fill=\"none\" stroke=\"#333\"/>\n";
             auto ticks = [](double lo, double hi)
             {
+                // Ticks at pi/4 would crowd an axis wider than a full turn: pi/2 there.
                 const double step = hi - lo > 2. * M_PI ? M_PI / 2 : M_PI / 4;
                 std::vector<double> out;
                 for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9; t += step)

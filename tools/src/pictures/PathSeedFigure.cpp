@@ -58,6 +58,8 @@ namespace michi
                     p.states.emplace_back(x.data(), x.data() + x.size());
                 return p;
             };
+            // Decoded for its own start and goal, the seed should give the original path back: the error measures what
+            // the encoding loses.
             const auto same = planners::decodePath(code, states.front(), states.back());
             double error = 0.;
             for (std::size_t i = 0; i < same.size(); ++i)
@@ -73,6 +75,7 @@ namespace michi
                 st = std::vector<double>(x.data(), x.data() + x.size());
                 decodedPath.append(st.get());
             }
+            // A decoded path is only a guess for the new query; whether it is valid says if it could be used as it is.
             const bool valid = decodedPath.check();
 
             // draw with the held-out query's start and goal as the problem's query 0

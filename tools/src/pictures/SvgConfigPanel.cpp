@@ -34,6 +34,8 @@ namespace michi
                         if (!pieces.back().empty())
                         {
                             const Vec2 jump = (p - pieces.back().back()).cwiseAbs();
+                            // A jump of more than half a turn is the path crossing the wrap (it moves the short way):
+                            // start a new piece, or the line would cut across the whole panel.
                             if ((c.wraps[0] && jump.x() > M_PI) || (c.wraps[1] && jump.y() > M_PI))
                                 pieces.emplace_back();
                         }
@@ -53,6 +55,7 @@ namespace michi
                         const PlanningContext ctx = makePlanningContext(problem, options);
                         return makeJMapChecker(problem, ctx, problem.jmap)->unitedPolygons();
                     }
+                    // A picture without the J-map beats no picture: the panel then shows the joint limits only.
                     catch (const std::exception &)
                     {
                         return {};
@@ -82,6 +85,7 @@ namespace michi
                         if (query)
                             for (const auto *v : {&query->start, &query->goal})
                                 e.add((*v)[i], (*v)[i]);
+                        // Half a unit of room around the data, so the states do not sit on the frame.
                         lower[i] = e.empty() ? -1. : e.xMin - 0.5;
                         upper[i] = e.empty() ? 1. : e.xMax + 0.5;
                     }

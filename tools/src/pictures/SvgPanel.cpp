@@ -22,7 +22,11 @@ namespace michi
                                      {"fill", "#fcfcfc"},
                                      {"stroke", "#444"}});
                 const Extent &w = t.world();
+                // One step for both axes (about six ticks on the longer one), so the grid squares show the panel's
+                // equal scale.
                 const double step = niceStep(std::max(w.width(), w.height()), 6.);
+                // As many decimals as the step needs: niceStep gives 1, 2 or 5 times a power of ten, one significant
+                // digit.
                 const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
                 svg.open("g", {{"class", "axes"}, {"font-size", "10"}, {"fill", "#333"}});
                 for (double v = std::ceil(w.xMin / step) * step; v <= w.xMax + 1e-9 * step; v += step)
@@ -61,6 +65,8 @@ namespace michi
                              {"transform", "rotate(-90 " + ly + " " + my + ")"}},
                             yLabel);
                 svg.close();
+                // Content is clipped to the panel: a path or obstacle beyond the frame must not draw over the
+                // neighbouring panel.
                 svg.open("clipPath", {{"id", id + "-clip"}});
                 svg.element(
                     "rect",
@@ -79,6 +85,7 @@ namespace michi
                             Attributes attributes)
             {
                 std::string data;
+                // All shapes in one path element: a map of thousands of cells stays one element of the SVG.
                 for (const auto &shape : shapes)
                     t.appendPathData(shape, data);
                 if (data.empty())

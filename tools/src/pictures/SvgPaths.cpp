@@ -16,6 +16,8 @@ namespace michi
 
                 double wrapDifference(double from, double to)
                 {
+                    // The short way round, in [-pi, pi], as OMPL's SO(2) interpolates: the picture follows the motion
+                    // the planner checked, not the long way across the axis.
                     return std::remainder(to - from, 2. * M_PI);
                 }
 
@@ -57,6 +59,8 @@ namespace michi
                         for (std::size_t k = 0; k + 1 < states_.size(); ++k)
                         {
                             const double share = length() > 0. ? segmentLength(k) / length() : 0.;
+                            // Steps in proportion to each segment's share of the length, and every waypoint kept: the
+                            // trace bends exactly at the path's states.
                             const std::size_t steps = std::max<std::size_t>(1, std::ceil(share * count));
                             for (std::size_t j = 0; j < steps; ++j)
                                 result.push_back(interpolate(k, static_cast<double>(j) / steps));
@@ -123,6 +127,8 @@ namespace michi
                     const auto &path = paths[p];
                     for (std::size_t k = 0; k < path.states.size(); ++k)
                         checkValues(path.states[k], dimension, "path '" + path.label + "': state " + std::to_string(k));
+                    // Poses evenly spaced by length: the drawn robots show how far the path goes, not how many
+                    // waypoints it has.
                     const PathSampler sampler(path.states, robot.wraps());
                     sampled.push_back({path.label, PALETTE[p % PALETTE_SIZE], sampler.evenlySpaced(POSES_PER_PATH),
                                        sampler.dense(TRACE_SAMPLES), path.states});

@@ -84,6 +84,8 @@ namespace michi
                 Eigen::Isometry3d sideView()
                 {
                     Eigen::Isometry3d view = Eigen::Isometry3d::Identity();
+                    // Rows: view x = world x, view y = world z, view z = -world y; a proper rotation, so nothing is
+                    // mirrored.
                     view.linear() << 1., 0., 0., 0., 0., 1., 0., -1., 0.;
                     return view;
                 }
@@ -152,6 +154,7 @@ namespace michi
                         longest = std::max({longest, frames.back().width(), frames.back().height()});
                     }
                     Layout layout;
+                    // One scale for every world panel: a metre is as long in the side view as in the top view.
                     const double scale = PLOT_SIZE / longest;  // pixels per metre
                     double x = MARGIN_LEFT, panelHeight = 0.;
                     for (const auto &frame : frames)
@@ -162,6 +165,8 @@ namespace michi
                     }
                     if (config)
                     {
+                        // The configuration panel is square and as tall as the world panels, within bounds: its axes
+                        // are radians, not metres, so it cannot share their scale.
                         const double side = std::clamp(panelHeight, MIN_CSPACE_SIZE, PLOT_SIZE);
                         layout.config.emplace(config->limits, x, PANEL_TOP, side / config->limits.width(),
                                               side / config->limits.height());
@@ -203,6 +208,7 @@ namespace michi
             const std::vector<SampledPath> sampled = samplePaths(paths, robot, problem.dimension());
             const std::vector<WorldView> views = buildWorldViews(problem, robot, sampled, q);
             std::optional<ConfigView> config;
+            // A configuration-space panel only for two planned joints: the plane of (theta1, theta2), as in the J-map.
             if (problem.kind == Problem::Kind::ARM && problem.dimension() == 2)
                 config = buildConfigView(problem, robot, sampled, q);
             const auto legend = legendEntries(problem, views.front(), sampled, q != nullptr);
@@ -220,6 +226,8 @@ namespace michi
 
         bool svgToPng(const std::string &svg, const std::string &png, int width)
         {
+            // Rendered to a temporary file and renamed: a failed or interrupted rsvg-convert never leaves a broken PNG
+            // behind.
             const std::string tmp = png + ".tmp";
             const std::string command = "rsvg-convert -w " + std::to_string(width) + " -f png -o " + shellQuote(tmp) +
                                         " " + shellQuote(svg) + " > /dev/null 2>&1";

@@ -19,8 +19,12 @@ namespace michi
                 const std::size_t n = problem.dimension();
                 if (problem.kind == Problem::Kind::SE2)
                 {
+                    // Yaw wraps: paths are sampled the short way round, as OMPL's SE(2) interpolates them, not across
+                    // the whole axis.
                     wraps_ = {false, false, true};
                     for (const auto &p : problem.footprint)
+                        // The heading tick scales with the robot, so it reads the same on a small robot and a large
+                        // one.
                         headingLength_ = std::max(headingLength_, p.norm());
                     return;
                 }
@@ -35,6 +39,7 @@ namespace michi
                     groupJoints.insert(model.jointIndex(joint.name));
                 }
                 findMovedLinks(groupJoints);
+                // An arm that leaves the x-y plane gets a side view as well: a top view alone would hide its height.
                 spatial_ = movesOutOfPlane(groupJoints);
             }
 
@@ -68,6 +73,7 @@ namespace michi
 
             Values RobotGeometry::fullConfiguration(const Values &values) const
             {
+                // Joints outside the planned group are drawn at the problem's fixed values, as the checker sees them.
                 Values q = problem_.fixedValues;
                 q.resize(problem_.model->variableCount(), 0.);
                 for (std::size_t i = 0; i < values.size(); ++i)
@@ -106,6 +112,8 @@ namespace michi
                 for (const auto &joint : model.joints())
                     if (joint.parentLink >= 0)
                         children[joint.parentLink].push_back(joint.childLink);
+                // Down to the tip: links below the last planned joint (a hand, a tool) still move with it, and the
+                // skeleton should end where the arm ends, not at the last joint.
                 while (children[end].size() == 1)
                     end = children[end].front();
                 const auto chain = model.chainTo(end);
@@ -125,6 +133,8 @@ namespace michi
                         (joint.parentLink >= 0 ? poses[joint.parentLink] : model.basePose()) * joint.origin;
                     const double z = std::abs((frame.linear() * joint.axis).z());
                     const bool prismatic = joint.type == validity::RobotJoint::Type::PRISMATIC;
+                    // A revolute joint stays in the plane only about a vertical axis; a prismatic one only along a
+                    // horizontal axis.
                     if (prismatic ? z > 1e-9 : z < 1. - 1e-9)
                         return true;
                 }

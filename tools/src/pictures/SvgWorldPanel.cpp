@@ -39,6 +39,8 @@ namespace michi
                         for (const auto &frame : obstacle.trajectory)
                             route.push_back((view * frame.pose.translation()).head<2>());
                         v.routes.push_back(route);
+                        // At most MAX_KEY_FRAMES outlines per moving obstacle, first and last included: a long
+                        // trajectory would otherwise paint over the whole panel.
                         for (std::size_t i : spreadIndices(obstacle.trajectory.size(), MAX_KEY_FRAMES))
                             v.keyFrames.push_back(obstacle.shape->footprint(view * obstacle.trajectory[i].pose));
                     }
@@ -90,6 +92,7 @@ namespace michi
             {
                 WorldView v;
                 addScene(problem.scene.get(), view, v);
+                // Links no planned joint moves look the same in every state: any values place them.
                 const Values reference = query ? query->start : Values(problem.dimension(), 0.);
                 v.fixedLinks = robot.fixedLinks(reference, view);
                 if (query)
@@ -155,6 +158,7 @@ namespace michi
                         {{"class", "trace"}, {"stroke", colour}, {"stroke-width", "2"}, {"stroke-linejoin", "round"}});
                     svg.close();
                 }
+                // Start and goal last, so they stay visible on top of every path.
                 if (v.start)
                     drawRobotSolid(svg, t, *v.start, "start", START_COLOUR);
                 if (v.goal)

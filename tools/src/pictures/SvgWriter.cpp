@@ -17,10 +17,12 @@ namespace michi
                     value = 0.;  // drops the sign of -0
                 char buffer[64];
                 const auto result =
+                    // to_chars, not a stream: no locale can turn the decimal point into a comma in the SVG.
                     std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::fixed, decimals);
                 std::string text(buffer, result.ptr);
                 if (text.find('.') != std::string::npos)
                 {
+                    // Trailing zeros dropped: pictures with thousands of coordinates stay small.
                     while (text.back() == '0')
                         text.pop_back();
                     if (text.back() == '.')
@@ -47,6 +49,7 @@ namespace michi
                         case '"':
                             escaped += "&quot;";
                             break;
+                        // Single quotes too, so the text is safe in an attribute value quoted either way.
                         case '\'':
                             escaped += "&apos;";
                             break;

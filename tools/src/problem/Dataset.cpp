@@ -19,6 +19,7 @@ namespace michi
         {
             std::size_t index(const std::string &text, const std::string &whole)
             {
+                // Digits only (stoul would take a sign or spaces) and at most 9, so the index fits any size_t.
                 if (text.empty() || text.size() > 9 ||
                     !std::all_of(text.begin(), text.end(),
                                  [](char c)
@@ -80,11 +81,14 @@ namespace michi
             for (const auto &e : fs::directory_iterator(folder))
                 if (fs::is_regular_file(e.path()) && e.path().extension() == ".yaml")
                     files.push_back(e.path().string());
+            // Directory order differs between file systems: sorted, entry i is the same problem on every machine, which
+            // the experience sets (training: 0-49) rely on.
             std::sort(files.begin(), files.end());
             if (files.empty())
                 throw std::runtime_error(folder + ": holds no problem file (*.yaml)");
             Dataset d;
             d.name = fs::path(folder).filename().string();
+            // A folder given with a trailing '/' has an empty (or ".") last component: name it by its parent's name.
             if (d.name.empty() || d.name == ".")
                 d.name = fs::path(folder).parent_path().filename().string();
             for (const auto &f : files)
@@ -111,6 +115,7 @@ namespace michi
                     const std::string k = key + (values == &q.start ? "start" : "goal");
                     ob::ScopedState<> state(space);
                     space->copyFromReals(state.get(), *values);
+                    // Wraps continuous joints into [-pi, pi) first, as the planners will see the state.
                     space->enforceBounds(state.get());
                     if (!si->satisfiesBounds(state.get()))
                         throw ProblemError(problem.file, k, "outside the state space bounds (" + entry.label + ")");

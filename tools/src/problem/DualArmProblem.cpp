@@ -22,6 +22,8 @@ namespace michi
 
                 void keys(const YAML::Node &n, const std::string &key, const std::set<std::string> &known) const
                 {
+                    // Checked here: Reader::keys() skips a node that is not a mapping, leaving that report to its
+                    // caller.
                     if (!n.IsMap())
                         fail(key, "expected a mapping");
                     Reader::keys(n, key, known);
@@ -50,6 +52,7 @@ namespace michi
                     const Eigen::Vector3d v = vector(n, key);
                     if (v.norm() < 1e-9)
                         fail(key, "expected a non-zero direction");
+                    // Directions are normalized here, so a file may write [0, 0, -2] for straight down.
                     return v.normalized();
                 }
             };
@@ -81,6 +84,7 @@ namespace michi
                 r.keys(h, hk, {"tool_axis", "along", "perpendicular_to"});
                 if (h["tool_axis"])
                     arm.hand.toolAxis = r.unit(h["tool_axis"], hk + ".tool_axis");
+                // Two hand constraints at once would contradict each other (or one would be silently ignored).
                 if (static_cast<bool>(h["along"]) == static_cast<bool>(h["perpendicular_to"]))
                     r.fail(hk, "give exactly one of along and perpendicular_to");
                 if (h["along"])
@@ -171,6 +175,8 @@ namespace michi
             if (problem.groupVariables != small.variables())
                 r.fail("robot.group", "expected the small arm's joints (root to '" + spec.small.tip +
                                           "', in chain order): the approach motions are planned for it");
+            // Arms that share a joint cannot be placed independently: the work-space analysis moves one with the other
+            // fixed.
             for (int v : large.variables())
                 if (small.owns(v))
                     r.fail("dual_arm.large.tip", "the two arms share joint '" +

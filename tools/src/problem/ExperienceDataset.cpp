@@ -44,6 +44,7 @@ namespace michi
         validity::ScenePtr copyScene(const validity::Scene &scene)
         {
             auto copy = std::make_shared<validity::Scene>();
+            // A copy the dataset's scenes can be swapped into: the problem's own scene stays as loaded.
             copy->add(scene.obstacles());
             return copy;
         }
@@ -63,6 +64,7 @@ namespace michi
                 throw ProblemError(
                     source.file, "request.start_state",
                     "the robot's other joints differ from " + problem.file + "'s (a dataset's problems share them)");
+            // The context's scene object is kept (its checkers hold it): its obstacles are replaced, not the scene.
             for (const auto &obstacle : ctx.scene->obstacles())
                 ctx.scene->remove(obstacle.name);
             ctx.scene->add(source.scene->obstacles());

@@ -61,6 +61,7 @@ namespace michi
                     if (problem.kind == Problem::Kind::ARM)
                     {
                         const auto &j = problem.model->variableJoint(problem.groupVariables[i]);
+                        // A continuous joint has no limits: any value names an angle.
                         if (j.type != validity::RobotJoint::Type::CONTINUOUS && (x < j.lower || x > j.upper))
                         {
                             std::ostringstream msg;
@@ -107,6 +108,7 @@ namespace michi
                 setState(s, values);
                 if (!ctx.setup->getSpaceInformation()->satisfiesBounds(s.get()))
                     return "outside the state space bounds";
+                // Bounds first: describeCollision() looks at geometry only and would call an out-of-bounds state fine.
                 const std::string collision = ctx.checker->describeCollision(values.data());
                 return collision.empty() ? "" : "in collision: " + collision;
             }
@@ -116,6 +118,8 @@ namespace michi
             void readExperienceDataset(const std::string &problemFile, const Problem &problem, const YAML::Node &e,
                                        ExperienceQueries &out)
             {
+                // Two ways to give the sets (a queries file, or ranges of a folder of problems): both at once would
+                // leave it unclear which the benchmark uses.
                 if (e["queries"])
                     throw ProblemError(problemFile, "experience.queries",
                                        "give either queries (a queries file) or dataset (a folder of problems)");
@@ -186,6 +190,7 @@ namespace michi
                 }
                 catch (const YAML::Exception &)
                 {
+                    // Not a number: -1 lets the one check below give the one message for both mistakes.
                     out.trainingTime = -1.;
                 }
                 if (!(out.trainingTime > 0.))
@@ -284,6 +289,8 @@ namespace michi
         {
             std::ostringstream out;
             out << header;
+            // Six decimals, the precision generateExperienceQueries() rounds to: the values written are the values it
+            // checked.
             out << std::setprecision(6) << std::fixed;
             auto list = [&](const char *name, const std::vector<Query> &qs)
             {
@@ -444,6 +451,8 @@ namespace michi
                                   << problem.experience.library << " (not its format); it starts empty" << std::endl;
             if (learners.empty() || problem.experience.training.empty())
                 return 0;
+            // Solved once and handed to every learner: experience planners compared in one benchmark learn from the
+            // same paths.
             const auto paths = solveTrainingQueries(problem, ctx, progress);
             for (auto *learner : learners)
                 for (const auto &path : paths)
@@ -454,6 +463,8 @@ namespace michi
         void checkHeldOutQueries(const Problem &problem, const PlanningContext &ctx)
         {
             const auto &heldOut = problem.experience.heldOut;
+            // Checked before the first run (as michi bench checks everything it can): a bad held-out query is an error
+            // in the queries file, not a run that fails.
             for (std::size_t i = 0; i < heldOut.size(); ++i)
             {
                 const std::string key = "experience.held_out[" + std::to_string(i) + "]";
@@ -478,6 +489,7 @@ namespace michi
             setState(start, query.start);
             setState(goal, query.goal);
             const auto pdef = ctx.setup->getProblemDefinition();
+            // addStartState() appends: without this, the previous run's start would stay as a second start state.
             pdef->clearStartStates();
             pdef->addStartState(start);
             pdef->setGoalState(goal);

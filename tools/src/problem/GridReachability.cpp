@@ -47,6 +47,7 @@ namespace michi
                     const int c = open.front();
                     open.pop_front();
                     const int i = c / ny_, j = c % ny_;
+                    // 4-connected: each join is one straight motion along an axis that the motion validator checks.
                     const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
                     for (int k = 0; k < 4; ++k)
                     {

@@ -159,6 +159,7 @@ namespace michi
                     }
                     if (n.IsMap())
                     {
+                        // An absent field is 0, as in a ROS message written with defaults left out.
                         Eigen::Vector3d v = Eigen::Vector3d::Zero();
                         for (int i = 0; i < 3; ++i)
                         {
@@ -196,6 +197,7 @@ namespace michi
                     const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
                     if (quat.norm() == 0.)
                         return Eigen::Quaterniond::Identity();
+                    // Normalizing a nearly zero quaternion would turn rounding noise into an arbitrary rotation.
                     if (quat.norm() < 1e-6)
                         fail(key, "quaternion of nearly zero norm");
                     return quat.normalized();
@@ -207,6 +209,8 @@ namespace michi
                     if (!n.IsMap())
                         fail(key, "expected a pose {position: [x, y, z], orientation: [x, y, z, w]}");
                     Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+                    // Pose and Transform name their fields differently; either is accepted so both message types read
+                    // the same.
                     for (const char *name : {"position", "translation"})
                         if (n[name])
                             t.translation() = vector3(n[name], key + "." + name);
@@ -225,6 +229,7 @@ namespace michi
                     r.fail(key, "expected a primitive {type, dimensions}");
                 std::string type = r.text(r.require(p, "type", key), key + ".type");
                 std::transform(type.begin(), type.end(), type.begin(), ::tolower);
+                // shape_msgs/SolidPrimitive's constants: BOX = 1, SPHERE = 2, CYLINDER = 3, CONE = 4, PRISM = 5.
                 static const std::map<std::string, std::string> numbers{
                     {"1", "box"}, {"2", "sphere"}, {"3", "cylinder"}, {"4", "cone"}, {"5", "prism"}};
                 if (numbers.count(type))
@@ -252,9 +257,11 @@ namespace michi
                 if (type == "cylinder")
                 {
                     expect(2, "[height, radius]");
+                    // MoveIt orders a cylinder's dimensions [height, radius]; Shape::cylinder takes (radius, length).
                     return Shape::cylinder(d[1], d[0]);
                 }
                 if (type == "cone" || type == "prism")
+                    // Refused, not skipped: a scene read without one of its obstacles would let paths pass through it.
                     r.fail(key + ".type", "primitive type '" + type + "' is not supported (box, sphere, cylinder)");
                 r.fail(key + ".type", "unknown primitive type '" + type + "' (expected box, sphere, cylinder)");
             }
@@ -274,6 +281,7 @@ namespace michi
                 {
                     const std::string k = key + ".triangles[" + std::to_string(i) + "]";
                     const YAML::Node t =
+                        // A shape_msgs/MeshTriangle {vertex_indices: [a, b, c]}, or the bare list.
                         triangles[i].IsMap() ? r.require(triangles[i], "vertex_indices", k) : triangles[i];
                     const auto idx = r.numbers(t, k);
                     if (idx.size() != 3)
@@ -281,6 +289,7 @@ namespace michi
                     Eigen::Vector3i face;
                     for (int c = 0; c < 3; ++c)
                     {
+                        // numbers() reads doubles: an index must also be a whole number.
                         if (idx[c] < 0 || idx[c] >= static_cast<double>(points.size()) || idx[c] != std::floor(idx[c]))
                             r.fail(k, "vertex index " + std::to_string(idx[c]) + " outside [0, " +
                                           std::to_string(points.size()) + ")");
@@ -360,6 +369,8 @@ namespace michi
                             r.flag(values[i], key + ".default_entry_values[" + std::to_string(i) + "]");
                 }
                 std::set<std::pair<std::string, std::string>> allowed;
+                // MoveIt's matrix may name world objects too; michi keeps pairs of robot links (the robot's
+                // self-collision pairs).
                 for (const auto &e : entries)
                     if (e.second && isLink(e.first.first) && isLink(e.first.second))
                         allowed.insert(e.first);
@@ -368,6 +379,8 @@ namespace michi
                         for (const auto &link : model.links())
                         {
                             const auto pair = std::minmax(d.first, link.name);
+                            // A default applies only where no explicit entry names the pair, as MoveIt looks the
+                            // default up last.
                             if (link.name != d.first && !entries.count(pair))
                                 allowed.insert(pair);
                         }
@@ -392,6 +405,7 @@ namespace michi
             if (status != tinyxml2::XML_SUCCESS)
             {
                 std::string message = doc.ErrorStr() ? doc.ErrorStr() : "";
+                // tinyxml2's message may span lines; michi reports every error on one line.
                 std::replace(message.begin(), message.end(), '\n', ' ');
                 throw ProblemError(path, "line " + std::to_string(doc.ErrorLineNum()), "not valid XML: " + message);
             }
@@ -432,6 +446,8 @@ namespace michi
                 const auto found = groupElements.find(group);
                 if (found == groupElements.end())
                     throw ProblemError(path, elementKey(user), "subgroup '" + group + "': no such group");
+                // resolving holds the groups being expanded: meeting one again means a cycle, which would recurse
+                // forever.
                 if (!resolving.insert(group).second)
                     throw ProblemError(path, elementKey(user), "group '" + group + "' contains itself");
                 std::set<int> variables;
@@ -450,6 +466,7 @@ namespace michi
                         srdfJoint(path, c, model);  // checked, not planned
                     else if (kind == "link")
                     {
+                        // MoveIt's rule: a group's <link> brings in the joint above that link.
                         const int link = srdfLink(path, c, "name", model);
                         if (model.links()[link].parentJoint >= 0)
                             addJoint(model.links()[link].parentJoint);
@@ -459,6 +476,8 @@ namespace michi
                         const int base = srdfLink(path, c, "base_link", model);
                         const int tip = srdfLink(path, c, "tip_link", model);
                         const std::vector<int> toBase = model.chainTo(base), toTip = model.chainTo(tip);
+                        // The chain's joints are those on the path from the root to tip that are not also above base:
+                        // the base's path must be a prefix of the tip's.
                         if (toBase.size() > toTip.size() || !std::equal(toBase.begin(), toBase.end(), toTip.begin()))
                             throw ProblemError(path, elementKey(c),
                                                "tip_link '" + model.links()[tip].name + "' is not below base_link '" +
@@ -494,6 +513,8 @@ namespace michi
             MoveItScene scene;
 
             // frames objects may be given in
+            // An empty frame id, world and /world all mean the planning frame; objects given in the robot's root link
+            // frame are placed through the robot's base pose.
             std::map<std::string, Eigen::Isometry3d> frames{{"", Eigen::Isometry3d::Identity()},
                                                             {"world", Eigen::Isometry3d::Identity()},
                                                             {"/world", Eigen::Isometry3d::Identity()}};
@@ -535,6 +556,8 @@ namespace michi
             if (const YAML::Node state = root["robot_state"])
                 if (state.IsMap() &&
                     r.optionalSize(state["attached_collision_objects"], "robot_state.attached_collision_objects") > 0)
+                    // Refused rather than ignored: an attached object moves with the robot and would otherwise be
+                    // missing from every check.
                     r.fail("robot_state.attached_collision_objects", "attached objects are not supported");
 
             const YAML::Node world = root["world"];
@@ -542,6 +565,8 @@ namespace michi
             {
                 if (!world.IsMap())
                     r.fail("world", "expected a mapping (collision_objects, octomap)");
+                // An empty octomap is accepted (every PlanningScene message has the field); a non-empty one
+                // holds obstacles michi cannot read.
                 if (const YAML::Node octomap = world["octomap"])
                     if (octomap.IsMap() && octomap["octomap"] && octomap["octomap"]["data"] &&
                         octomap["octomap"]["data"].size() > 0)
@@ -560,12 +585,16 @@ namespace michi
                     if (const YAML::Node op = o["operation"])
                     {
                         const std::string operation = r.text(op, key + ".operation");
+                        // One scene file with nothing before it: REMOVE, APPEND and MOVE would refer to objects that do
+                        // not exist.
                         if (operation != "0" && operation != "ADD" && operation != "add")
                             r.fail(key + ".operation", "operation '" + operation + "' is not supported (only ADD)");
                     }
                     std::string frameId;
                     if (o["header"] && o["header"].IsMap() && o["header"]["frame_id"])
                         frameId = r.text(o["header"]["frame_id"], key + ".header.frame_id");
+                    // Frame, then the object's pose, then each shape's pose within the object (an absent object
+                    // pose, as in older messages, is the identity).
                     const Eigen::Isometry3d objectPose =
                         frame(frameId, key + ".header.frame_id") *
                         (o["pose"] ? r.pose(o["pose"], key + ".pose") : Eigen::Isometry3d::Identity());
@@ -584,6 +613,7 @@ namespace michi
                         {
                             const std::string index = "[" + std::to_string(k) + "]";
                             Obstacle obstacle;
+                            // Object ids are unique (checked above), so these names are unique in the scene too.
                             obstacle.name = id + "/" + prefix + std::to_string(k);
                             obstacle.shape = primitives
                                                  ? readPrimitive(r, o[shapesName][k], key + "." + shapesName + index)
@@ -625,6 +655,7 @@ namespace michi
             if (!goals || goals.IsNull() || (goals.IsSequence() && goals.size() == 0))
                 r.fail("goal_constraints", "missing (required): a joint-space goal in goal_constraints[0]");
             r.sequence(goals, "goal_constraints");
+            // goal_constraints lists alternatives; michi plans to the first.
             const YAML::Node goal = goals[0];
             if (!goal.IsMap())
                 r.fail("goal_constraints[0]", "expected a mapping (joint_constraints)");
@@ -648,6 +679,7 @@ namespace michi
             std::vector<double> values;
             for (const auto &joint : joints)
             {
+                // A start state lists joints in any order and often more than the group's: values are found by name.
                 const auto found = std::find(names.begin(), names.end(), joint);
                 if (found == names.end())
                     throw ProblemError(file, key, "no value for joint '" + joint + "' of the planned group");

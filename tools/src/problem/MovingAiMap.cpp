@@ -158,6 +158,8 @@ namespace michi
             std::vector<validity::Obstacle> obstacles;
             for (int r = 0; r < map.height; ++r)
             {
+                // Through movingAiCellCentre(), as the scenarios' starts and goals: cells and queries share one row
+                // convention.
                 const double y = movingAiCellCentre(map, 0, r, resolution, origin).y();
                 int c = 0;
                 while (c < map.width)
@@ -173,6 +175,8 @@ namespace michi
                     while (c < map.width && map.blocked(c, r))
                         ++c;
                     validity::Obstacle o;
+                    // The cells_r prefix is how the replay page recognises a map's cells and draws them as one textured
+                    // plane (replay::isMapCell), as for PGM maps.
                     o.name = "cells_r" + std::to_string(r) + "_c" + std::to_string(start);
                     o.shape = validity::Shape::box(Eigen::Vector3d((c - start) * resolution, resolution, height));
                     o.pose.translation() =

@@ -21,6 +21,7 @@ namespace michi
             out << "#";
             for (const auto &n : names)
                 out << " " << n;
+            // 17 significant digits: a path read back with readPathFile() holds the very same doubles.
             out << "\n" << std::setprecision(17);
             for (const auto &s : states)
             {
@@ -48,6 +49,8 @@ namespace michi
                 double v;
                 while (fields >> v)
                     state.push_back(v);
+                // A field that is not a number stops the read before the end of the line (not eof): such a line is an
+                // error, not a shorter state.
                 if (!fields.eof() || (!states.empty() && state.size() != states.front().size()) || state.empty())
                     throw std::runtime_error(file + ":" + std::to_string(number) + ": malformed state");
                 states.push_back(state);

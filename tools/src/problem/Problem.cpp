@@ -84,10 +84,13 @@ namespace michi
                         firstRequestKey = "queries[" + std::to_string(i) + "].request";
                     }
             MoveItRequest request;
+            // Read before the robot: without robot.group, the request's group_name decides which joints are planned.
             if (!firstRequestKey.empty() && (type == "urdf" || type == "arm"))
                 request = readMoveItRequest(r.path(firstRequest, firstRequestKey));
 
             const YAML::Node sceneNode = root["scene"];
+            // A MovingAI map knows its own extent, so an SE2 robot's bounds may be left out; they are taken from the
+            // map below.
             const bool gridMap = sceneNode && sceneNode.IsMap() && sceneNode["movingai"];
             if (type == "urdf" || type == "arm")
                 readArm(r, robot, problem, request);
@@ -128,6 +131,8 @@ namespace michi
                               readConfiguration(r, r.require(q[i], "goal", key), key + ".goal", problem)});
                 }
             }
+            // Query order: the top-level request or start/goal is query 0, then the file's queries, then the map's
+            // scenarios, so query 0 is what michi plan and the pictures use by default.
             problem.queries.insert(problem.queries.end(), gridMapInfo.queries.begin(), gridMapInfo.queries.end());
             if (!requestQuery.empty())
                 problem.queries.insert(problem.queries.begin(), requestQuery.front());

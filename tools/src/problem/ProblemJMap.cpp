@@ -27,8 +27,11 @@ namespace michi
             const auto &model = *problem.model;
             const int axis1 = problem.groupVariables[0], axis2 = problem.groupVariables[1];
             std::vector<double> configuration = ctx.fixedValues;  // the context's (the problem's unless overridden)
+            // The two axes are the map's coordinates: their values here are placeholders; the other joints keep the
+            // context's.
             configuration[axis1] = 0.;
             configuration[axis2] = 0.;
+            // With more planned joints the map covers the arm only (a pre-filter); FCL checks the rest (jmap.md).
             jp.coversRobot = problem.groupVariables.size() == 2;
             try
             {
@@ -104,6 +107,8 @@ namespace michi
                                const validity::JMapCheckerSettings &settings)
             {
                 const double range2 = jp.axes.hi2 - jp.axes.lo2;
+                // The worst case: every 2 mrad step of theta2 a distance query, in every column of every slice (columns
+                // + 1 for the true intervals at the slice centre).
                 const double perColumn = std::ceil(range2 / 0.002);
                 const double maxQueries =
                     static_cast<double>(settings.map.slices) * (settings.map.columns + 1) * perColumn;

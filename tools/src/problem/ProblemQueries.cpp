@@ -19,6 +19,8 @@ namespace michi
                     for (std::size_t i = 0; i < values.size(); ++i)
                     {
                         const auto &joint = problem.model->variableJoint(problem.groupVariables[i]);
+                        // 1e-9 of slack: a value written at the limit with a few digits (or computed, pi/2) may
+                        // round just past it.
                         if (joint.type != validity::RobotJoint::Type::CONTINUOUS &&
                             (values[i] < joint.lower - 1e-9 || values[i] > joint.upper + 1e-9))
                         {
@@ -51,6 +53,8 @@ namespace michi
                     r.fail(key, "a MoveIt request needs a urdf robot");
                 const MoveItRequest request = readMoveItRequest(r.path(node, key));
                 const Reader rr(request.file);
+                // Without robot.group, the first request's group_name chose the planned group; every later request must
+                // plan the same group, or its joint values would be read for the wrong joints.
                 if (!robot["group"] && !request.groupName.empty() && request.groupName != problem.group)
                     rr.fail("group_name", "'" + request.groupName + "' differs from the planned group '" +
                                               problem.group + "' (the first request's)");
@@ -71,6 +75,9 @@ namespace michi
                 checkConfiguration(rr, query.goal, "goal_constraints[0].joint_constraints", problem, false);
                 if (!first)
                     return query;
+                // The first request's start also fixes the joints outside the group (the rest of the robot where the
+                // request puts it), unless robot.fixed_joints names them; later requests' values for those joints are
+                // not read.
                 const YAML::Node fixed = robot["fixed_joints"];
                 for (std::size_t i = 0; i < request.startNames.size(); ++i)
                 {

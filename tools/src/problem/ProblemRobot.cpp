@@ -16,9 +16,12 @@ namespace michi
                 const std::string urdf = r.path(r.require(robot, "urdf", "robot"), "robot.urdf");
                 problem.model = validity::RobotModel::fromUrdfFile(urdf);  // UrdfError names the URDF
                 const auto &model = *problem.model;
+                // Nothing to plan: every state space and checker below assumes at least one value.
                 if (model.variableCount() == 0)
                     r.fail("robot.urdf", "robot '" + model.name() + "' has no movable joint");
                 if (robot["base_pose"])
+                    // Before anything reads the model: every link pose, bound and picture is in the world frame through
+                    // the base pose.
                     problem.model->setBasePose(r.pose(robot["base_pose"], "robot.base_pose"));
 
                 auto checkJoint = [&](const std::string &joint, const std::string &key)
@@ -57,6 +60,7 @@ namespace michi
                     for (const auto &pair : srdf.disabledCollisions)
                         problem.model->allowCollision(pair.first, pair.second);
                     for (const auto &g : srdf.groups)
+                        // emplace() keeps an existing entry, which is what makes robot.groups win.
                         problem.groups.emplace(g.first, g.second);
                 }
                 const std::string groupSources = robot["srdf"] ? "robot.groups or robot.srdf" : "robot.groups";
@@ -78,6 +82,7 @@ namespace michi
                 }
                 else
                 {
+                    // No group anywhere: plan every movable joint, in the model's configuration order.
                     problem.groups["all"] = model.variableNames();
                     problem.group = "all";
                 }
@@ -165,6 +170,8 @@ namespace michi
                 problem.footprint = r.polygon(r.require(robot, "footprint", "robot"), "robot.footprint");
                 try
                 {
+                    // Only for its checks (at least 3 points, a simple polygon): a bad footprint is reported here
+                    // with its key, not later by the checker that builds the prism.
                     validity::triangulatePolygon(problem.footprint);
                 }
                 catch (const std::exception &e)
@@ -172,6 +179,7 @@ namespace michi
                     r.fail("robot.footprint", e.what());
                 }
                 problem.footprintHeight = r.number(robot, "height", "robot", 1.);
+                // A map problem may leave the bounds out: the map's extent gives them later.
                 if (mapBounds && !robot["bounds"])
                     return;
                 const YAML::Node bounds = r.require(robot, "bounds", "robot");

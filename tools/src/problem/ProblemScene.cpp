@@ -25,6 +25,7 @@ namespace michi
                     int kinds = 0;
                     for (const char *kind : {"box", "sphere", "cylinder", "capsule", "polygon", "mesh"})
                         kinds += o[kind] ? 1 : 0;
+                    // Two shapes in one obstacle are refused, not resolved by whichever the code reads first.
                     if (kinds > 1)
                         r.fail(key, "more than one shape given (one of box, sphere, cylinder, capsule, polygon, mesh)");
                     for (const char *kind : {"cylinder", "capsule"})
@@ -72,6 +73,8 @@ namespace michi
                             return Shape::meshFromFile(file, scale);
                         }
                     }
+                    // Errors already naming file and key pass through; the others (a bad size, an unreadable mesh) get
+                    // this key.
                     catch (const ProblemError &)
                     {
                         throw;
@@ -85,6 +88,8 @@ namespace michi
 
                 void readMoveItSceneKey(const Reader &r, const YAML::Node &node, Problem &problem)
                 {
+                    // A robot model is passed so that objects in its root link's frame can be placed and the
+                    // allowed-collision matrix can name its links.
                     const std::string path = r.path(node, "scene.moveit");
                     const MoveItScene moveit =
                         readMoveItScene(path, problem.model.get());  // errors name the scene file
@@ -157,6 +162,8 @@ namespace michi
                     int bucket = -1, lastBucket = -1;
                     auto bucketNumber = [&](const YAML::Node &n, const std::string &k)
                     {
+                        // The bounds check comes before the cast: converting a double out of int's range is undefined
+                        // behaviour.
                         const double b = r.number(n, k);
                         // MovingAI buckets are path lengths / 4: a few thousand at most; a cast of 2^31 would wrap
                         if (b < 0. || b != std::floor(b) || b > 1e6)
@@ -185,6 +192,7 @@ namespace michi
                         if (info.queries.size() >= count)
                             break;
                         const std::string line = "line " + std::to_string(s.line);
+                        // A .scen file written for another map would put starts and goals in the wrong cells.
                         if (s.mapWidth != map.width || s.mapHeight != map.height)
                             throw ProblemError(scenFile, line,
                                                "map size " + std::to_string(s.mapWidth) + " x " +
@@ -199,6 +207,7 @@ namespace michi
                         const Eigen::Vector2d a = movingAiCellCentre(map, s.startX, s.startY, resolution, origin);
                         const Eigen::Vector2d b = movingAiCellCentre(map, s.goalX, s.goalY, resolution, origin);
                         info.queries.push_back(
+                            // MovingAI scenarios give cells only: start and goal face yaw 0, at their cells' centres.
                             Query{{a.x(), a.y(), 0.},
                                   {b.x(), b.y(), 0.},
                                   boost::filesystem::path(scenFile).filename().string() + " " + line});
@@ -249,6 +258,8 @@ namespace michi
                                 validity::TimedPose tp;
                                 tp.time = r.number(r.require(traj[k], "t", tk), tk + ".t");
                                 YAML::Node poseNode = YAML::Clone(traj[k]);
+                                // Reader::pose() rejects keys other than the pose's own, so the key frame's time is
+                                // taken off first.
                                 poseNode.remove("t");
                                 tp.pose = r.pose(poseNode, tk);
                                 obstacle.trajectory.push_back(tp);
@@ -289,6 +300,8 @@ namespace michi
                         {
                             r.fail(key + ".ros", e.what());
                         }
+                        // A rotated map's cells do not line up with the x-y axes: the grid checker then keeps cells of
+                        // its own.
                         if (ros.yaw == 0.)
                         {
                             problem.grid.mapResolution = ros.resolution;  // grid checker cells aligned with the map's
@@ -325,6 +338,7 @@ namespace michi
                     readMoveItSceneKey(r, moveit, problem);
                 if (const YAML::Node movingai = scene["movingai"])
                     readMovingAiKey(r, movingai, problem, gridMap);
+                // A misspelt key would otherwise be ignored, and the scene would silently lose its obstacles.
                 for (const auto &kv : scene)
                 {
                     const std::string k = kv.first.as<std::string>();

@@ -36,8 +36,11 @@ namespace michi
                     }
                     if (n["tiles"])
                         settings.tiles = static_cast<int>(r.count(n["tiles"], key + ".tiles"));
+                    // Every tile needs at least one slice of its own (each gets slices / tiles, rounded up).
                     if (settings.tiles > settings.map.slices)
                         r.fail(key + ".tiles", "must not exceed slices");
+                    // The line walk's circle radius: it trades tightness for vertex count; containment does not depend
+                    // on it (jmap.md).
                     settings.map.tolerance = r.number(n, "tolerance", key, settings.map.tolerance);
                     if (!(settings.map.tolerance > 0.))
                         r.fail(key + ".tolerance", "expected a positive number of radians");
@@ -61,6 +64,8 @@ namespace michi
                     if (n["headings"])
                     {
                         settings.headings = r.count(n["headings"], key + ".headings");
+                        // The table holds a bit per cell and heading: 1024 headings of a 2064 x 2064 table (64room)
+                        // would be over half a GB.
                         if (settings.headings < 1 || settings.headings > 1024)
                             r.fail(key + ".headings", "expected a number of heading bins in 1..1024");
                     }
@@ -72,6 +77,8 @@ namespace michi
                 if (!list)
                 {
                     for (const char *name :
+                         // No list: one OMPL baseline of each kind (bidirectional tree, roadmap, asymptotically optimal
+                         // tree, informed batch search), so every benchmark has a reference.
                          {"geometric::RRTConnect", "geometric::PRM", "geometric::RRTstar", "geometric::BITstar"})
                         problem.planners.push_back(PlannerSpec{name, {}, {}});
                     return;
@@ -105,6 +112,8 @@ namespace michi
                         {
                             if (!params.IsMap())
                                 r.fail(key + ".params", "expected a mapping of parameter name to value");
+                            // Kept as text: OMPL's ParamSet parses each value with the planner's own setter
+                            // (applyPlannerParams).
                             for (const auto &kv : params)
                                 spec.params[kv.first.as<std::string>()] =
                                     r.text(kv.second, key + ".params." + kv.first.as<std::string>());
@@ -141,6 +150,8 @@ namespace michi
                     else if (k == "runs")
                         s.runs = r.count(kv.second, key);
                     else if (k == "seed")
+                        // At least 1: ompl::RNG::setSeed() ignores a seed of 0 (with a warning), which would leave runs
+                        // unseeded.
                         s.seed = r.count(kv.second, key);
                     else if (k == "simplify")
                         s.simplify = r.flag(kv.second, key);
@@ -180,6 +191,8 @@ namespace michi
                     const std::string k = kv.first.as<std::string>(), key = "collision." + k;
                     if (k == "valid_segment_fraction")
                     {
+                        // OMPL's resolution for its discrete motion validator: a fraction of the space's extent, so it
+                        // lies in (0, 1).
                         problem.validSegmentFraction = r.number(kv.second, key);
                         if (problem.validSegmentFraction <= 0. || problem.validSegmentFraction >= 1.)
                             r.fail(key, "expected a number in (0, 1)");

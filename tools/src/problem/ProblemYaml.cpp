@@ -191,6 +191,8 @@ namespace michi
             unsigned int Reader::count(const YAML::Node &n, const std::string &key) const
             {
                 const double v = number(n, key);
+                // Checked as a double first: a cast of a negative, fractional or huge value to unsigned would wrap
+                // silently.
                 if (!(v >= 1.) || v != std::floor(v) || v > 1e9)
                     fail(key, "expected a positive integer");
                 return static_cast<unsigned int>(v);
@@ -198,6 +200,7 @@ namespace michi
 
             bool Reader::flag(const YAML::Node &n, const std::string &key) const
             {
+                // Only these two spellings: a misspelt value is an error instead of a silent false.
                 if (!n.IsScalar() || (n.Scalar() != "true" && n.Scalar() != "false"))
                     fail(key, "expected true or false");
                 return n.Scalar() == "true";
@@ -206,6 +209,8 @@ namespace michi
             std::string Reader::path(const YAML::Node &n, const std::string &key) const
             {
                 const fs::path p = fs::path(text(n, key));
+                // Relative to the problem file, not the working directory: a problem folder works from wherever michi
+                // runs.
                 const fs::path full = p.is_absolute() ? p : fs::path(file_).parent_path() / p;
                 if (!fs::exists(full))
                     fail(key, "file '" + full.string() + "' does not exist");
@@ -235,6 +240,7 @@ namespace michi
                 if (n["rpy"])
                 {
                     const auto r = numbers(n["rpy"], key + ".rpy", 3);
+                    // R = Rz(yaw) Ry(pitch) Rx(roll), URDF's convention: roll, pitch, yaw about fixed axes.
                     t.linear() = (Eigen::AngleAxisd(r[2], Eigen::Vector3d::UnitZ()) *
                                   Eigen::AngleAxisd(r[1], Eigen::Vector3d::UnitY()) *
                                   Eigen::AngleAxisd(r[0], Eigen::Vector3d::UnitX()))
@@ -243,6 +249,7 @@ namespace michi
                 else if (n["orientation"])
                 {
                     const auto q = numbers(n["orientation"], key + ".orientation", 4);
+                    // Files give [x, y, z, w] as ROS does; Eigen's constructor takes w first.
                     const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
                     if (quat.norm() < 1e-9)
                         fail(key + ".orientation", "quaternion has zero norm");
@@ -284,6 +291,7 @@ namespace michi
                 {
                     std::size_t used = 0;
                     const double v = std::stod(text, &used);
+                    // stod stops at the first character it cannot read: "1.5m" must be an error, not 1.5.
                     if (used != text.size() || !std::isfinite(v))
                         throw std::invalid_argument(text);
                     return sign * v;
@@ -295,6 +303,8 @@ namespace michi
                 {
                     if (before.back() != '*')
                         throw std::invalid_argument(text);
+                    // Recursive, so factor and divisor may carry their own sign or be plain numbers ("-0.5*pi",
+                    // "pi/-4").
                     factor = parseNumber(before.substr(0, before.size() - 1));
                 }
                 if (!after.empty())

@@ -33,6 +33,8 @@ namespace michi
                 {
                     centre = Eigen::Vector2d(rng.uniformReal(options.lo.x(), options.hi.x()),
                                              rng.uniformReal(options.lo.y(), options.hi.y()));
+                    // Even a polygon of the largest radius stays outside the keep-clear disk, so the arm's base is
+                    // never buried.
                     if ((centre - options.keepClearCentre).norm() - options.maxRadius >= options.keepClearRadius)
                         break;
                     if (attempt > 10000)
@@ -47,6 +49,8 @@ namespace michi
                 for (int i = 0; i < sides; ++i)
                     angles[i] = 0.5 * angles[i] + 0.5 * (2. * M_PI * i / sides);
                 std::vector<Eigen::Vector2d> outline;
+                // One vertex per angle, in angle order around the centre: the outline is star-shaped about the centre
+                // and so never crosses itself (the triangulation of a prism needs a simple polygon).
                 for (double a : angles)
                     outline.push_back(centre + rng.uniformReal(options.minRadius, options.maxRadius) *
                                                    Eigen::Vector2d(std::cos(a), std::sin(a)));
@@ -118,6 +122,7 @@ namespace michi
                 o.shape = validity::Shape::prism(outlines[i], options.zMin, options.zMax);
                 scene.scene->add(std::move(o));
             }
+            // The template's experience queries belong to its own scene; they would not hold in this one.
             scene.experience = ExperienceQueries{};
 
             // start and goal: uniform states in the joint limits that FCL calls valid; for two joints, also linked

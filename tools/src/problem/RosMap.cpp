@@ -38,6 +38,7 @@ namespace michi
                 if (const YAML::Node n = doc["negate"])
                 {
                     const std::string v = n.IsScalar() ? n.Scalar() : "";
+                    // 0/1 as map_server documents it, and true/false as YAML writes a boolean.
                     if (v == "0" || v == "false" || v == "False")
                         negate = false;
                     else if (v == "1" || v == "true" || v == "True")
@@ -77,6 +78,7 @@ namespace michi
                 for (std::size_t i = 0; i < blocked.size(); ++i)
                 {
                     const double v = static_cast<double>(image.grey[i]) / image.maxValue;
+                    // map_server's convention: dark pixels are occupied, unless negate flips it.
                     const double p = negate ? v : 1. - v;
                     bool unknown;
                     if (mode == "scale")

@@ -17,6 +17,9 @@ namespace michi
 
         double TurnMoveTurnBodies::displacementBound(const double *from, const double *to) const
         {
+            // realsDistance() weighs a turn by turn_weight per radian, but a footprint point moves circumradius per
+            // radian: the ratio (never below 1, moves count in full) turns the cost into a bound on how far any point
+            // moves.
             const double scale = std::max(1., body_->circumradius() / space_->getTurnWeight());
             return scale * space_->realsDistance(from, to);
         }

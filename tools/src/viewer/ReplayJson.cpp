@@ -23,12 +23,16 @@ namespace michi
                 }
                 if (decimals > 0)
                 {
+                    // Trailing zeros dropped: most coordinates are short numbers, and every byte counts against the
+                    // page's 5 MB bound.
                     while (n > 0 && buffer[n - 1] == '0')
                         --n;
                     if (n > 0 && buffer[n - 1] == '.')
                         --n;
                 }
                 std::string text(buffer, n);
+                // A value that rounds to zero from below prints as -0; the same page should not differ by a sign that
+                // means nothing.
                 if (text == "-0")
                     text = "0";
                 out += text;
@@ -39,6 +43,8 @@ namespace michi
                 if (!std::isfinite(value))
                     value = 0.;
                 char buffer[64];
+                // Ten significant digits for times and key frames, which the page interpolates between and must not
+                // drift.
                 const int n = std::snprintf(buffer, sizeof buffer, "%.10g", value);
                 out.append(buffer, n);
             }

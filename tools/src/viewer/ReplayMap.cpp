@@ -14,6 +14,8 @@ namespace michi
             bool isMapCell(const Problem &problem, const validity::Obstacle &obstacle)
             {
                 return problem.grid.mapResolution > 0. && obstacle.trajectory.empty() && obstacle.shape &&
+                       // The boxes cellObstacles() makes for a map's rows of occupied cells (named
+                       // cells_r<row>_c<col>), and nothing else.
                        obstacle.shape->type() == validity::Shape::Type::BOX && obstacle.name.rfind("cells_r", 0) == 0;
             }
 
@@ -57,6 +59,8 @@ namespace michi
                 std::vector<char> occupied(static_cast<std::size_t>(width * height), 0);
                 auto cellIndex = [&](double v, double lo, long n)
                 {
+                    // Rounded to the nearest cell border: box edges lie on borders up to rounding, so floor or ceil
+                    // could shift a run.
                     return std::clamp(std::lround((v - lo) / res), 0L, n);
                 };
                 for (const auto &box : boxes)
@@ -79,6 +83,8 @@ namespace michi
                 char current = 0;
                 long run = 0;
                 bool first = true;
+                // Run-length encoded, alternating free and occupied and starting with free: a 512 x 512 map is a few
+                // thousand numbers, not a quarter of a million.
                 for (char c : occupied)
                 {
                     if (c != current)

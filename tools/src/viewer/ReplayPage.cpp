@@ -30,6 +30,8 @@ namespace michi
                 std::vector<validity::Obstacle> cells;
                 for (const auto &obstacle : problem.scene->obstacles())
                 {
+                    // A map's cells go into one textured plane (mapJson) instead of thousands of boxes: the page stays
+                    // small and fast.
                     if (replay::isMapCell(problem, obstacle))
                     {
                         cells.push_back(obstacle);
@@ -79,6 +81,8 @@ namespace michi
                     segment.push_back(space->distance(a.get(), b.get()));
                     length += segment.back();
                 }
+                // Frames evenly spaced in state-space distance: a long segment gets more frames than a short one, so
+                // the robot moves at a steady speed.
                 const double step = length / static_cast<double>(std::max<std::size_t>(frames, 1));
                 double travelled = 0.;
                 for (std::size_t i = 0; i + 1 < states.size(); ++i)
@@ -102,6 +106,8 @@ namespace michi
                             space->copyToReals(values, s.get());
                             f.states.push_back(values);
                         }
+                        // Every path shares one speed in state space (the longest takes the whole duration): a shorter
+                        // path arrives sooner, so the page also compares lengths.
                         f.times.push_back((travelled + fraction * d) / speed);
                     }
                     travelled += d;
@@ -174,6 +180,8 @@ namespace michi
                 std::string out;
                 std::size_t from = 0;
                 std::size_t used = 0;
+                // Searching the template only (from advances past each value put in): a value that holds "@MICHI_..."
+                // itself, such as three.js or a problem's name, is never expanded again.
                 for (std::size_t at = text.find("@MICHI_"); at != std::string::npos; at = text.find("@MICHI_", from))
                 {
                     const std::size_t end = text.find('@', at + 1);
@@ -219,6 +227,7 @@ namespace michi
                 const auto &times = options.times[i];
                 bool ordered = times.size() == paths[i].states.size();
                 for (std::size_t k = 0; ordered && k < times.size(); ++k)
+                    // The page plays a path by looking up the clock in these times: they must never run backwards.
                     ordered = std::isfinite(times[k]) && times[k] >= 0. && (k == 0 || times[k] >= times[k - 1]);
                 if (!ordered)
                     throw std::invalid_argument("replay page of " + problem.name + ": path '" + paths[i].label +
@@ -232,11 +241,13 @@ namespace michi
             for (std::size_t i = 0; i < paths.size(); ++i)
                 if (!timed(i))
                     longest = std::max(longest, pathLength(space, paths[i].states));
+            // Timed paths (replan's executed motion) keep their own clock and do not set the common speed.
             const double speed = longest > 0. ? longest / options.duration : 1.;
 
             replay::ShapeTable shapes;
             const replay::RobotBodies robot(problem, shapes, options.fixedValues);
             std::string map;
+            // One shape table for obstacles and robot: a shape both use (or many links share) is written once.
             const std::string obstacles = obstaclesJson(problem, shapes, map);
             const std::string fixedParts = robot.staticPartsJson(shapes);
             std::string pathsJson = "[";
@@ -276,6 +287,7 @@ namespace michi
         {
             using namespace replay_assets;
             std::string title;
+            // The title is HTML text: a name with '<' or '&' must not open a tag or an entity.
             for (char c : problem.name)
                 title += c == '<' ? "&lt;" : c == '&' ? "&amp;" : std::string(1, c);
             return fill(std::string(PAGE_HTML, PAGE_HTML_SIZE),

@@ -31,6 +31,8 @@ namespace michi
                 for (std::size_t l = 0; l < links.size(); ++l)
                 {
                     const bool end = static_cast<int>(l) == geometry_.endLink();
+                    // Only moved links are bodies (posed per frame); the others are drawn once as static parts. The end
+                    // link is kept even without geometry: the page's end-effector trace follows it.
                     if (!moved[l] || (links[l].collisions.empty() && !end))
                         continue;
                     Body body;
@@ -56,6 +58,8 @@ namespace michi
                     return result;
                 }
                 const auto linkPoses = problem_.model->forwardKinematics(fullConfiguration(values));
+                // Poses only of the links that are bodies, in bodies_' order: the page reads 7 numbers per body per
+                // frame.
                 for (int l : links_)
                     result.push_back(linkPoses[l]);
                 return result;

@@ -36,6 +36,7 @@ namespace michi
                         mesh.vertices.emplace_back(p.x(), p.y(), zMax);
                     for (const auto &t : validity::triangulatePolygon(outline))
                     {
+                        // Bottom cap with the order reversed so that it faces down, the top cap faces up.
                         mesh.triangles.emplace_back(t[0], t[2], t[1]);
                         mesh.triangles.emplace_back(n + t[0], n + t[1], n + t[2]);
                     }
@@ -76,6 +77,8 @@ namespace michi
                     {
                         const Eigen::Vector3d c = ((vertices[i] - lo) / cell).array().floor();
                         const long long key =
+                            // Cell coordinates stay below cellsPerSide + 1 (far less than 4096), so this key is unique
+                            // per cell.
                             (static_cast<long long>(c.x()) * 4096 + static_cast<long long>(c.y())) * 4096 +
                             static_cast<long long>(c.z());
                         auto it = cells.find(key);
@@ -96,6 +99,7 @@ namespace michi
                     for (const auto &t : triangles)
                     {
                         const Eigen::Vector3i r(remap[t[0]], remap[t[1]], remap[t[2]]);
+                        // Two corners merged into one cell: the triangle has no area left to draw.
                         if (r[0] != r[1] && r[1] != r[2] && r[0] != r[2])
                             mesh.triangles.push_back(r);
                     }
@@ -176,6 +180,8 @@ namespace michi
 
             int ShapeTable::index(const validity::ShapePtr &shape)
             {
+                // A link's shapes are drawn once per path, and obstacles may share a shape: each shape goes into the
+                // page once, and everything that uses it refers to its index.
                 const auto it = indices_.find(shape.get());
                 if (it != indices_.end())
                     return it->second;
@@ -183,6 +189,7 @@ namespace michi
                     json_ += ',';
                 appendShape(json_, *shape);
                 indices_.emplace(shape.get(), count_);
+                // Kept alive so the address used as a key cannot be reused by another shape while the table lives.
                 kept_.push_back(shape);
                 return count_++;
             }

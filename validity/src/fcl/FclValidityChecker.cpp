@@ -16,6 +16,7 @@ namespace michi
         {
             struct CollisionData
             {
+                // A default request stops at the first contact: a boolean answer needs no more.
                 fcl::CollisionRequestd request;
                 fcl::CollisionResultd result;
                 const fcl::CollisionObjectd *query{nullptr};
@@ -26,12 +27,14 @@ namespace michi
             bool collisionCallback(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *raw)
             {
                 auto *data = static_cast<CollisionData *>(raw);
+                // The broad phase calls back until a call returns true; one contact answers a validity query.
                 if (data->done)
                     return true;
                 fcl::collide(o1, o2, data->request, data->result);
                 if (data->result.isCollision())
                 {
                     data->done = true;
+                    // The manager may pass the query object as either argument: the obstacle is the other one.
                     data->hit = &Scene::obstacleName(o1 == data->query ? o2 : o1);
                 }
                 return data->done;
@@ -60,7 +63,10 @@ namespace michi
                     data->robotPoint = result.nearest_points[queryFirst ? 0 : 1];
                     data->otherPoint = result.nearest_points[queryFirst ? 1 : 0];
                 }
+                // Reporting the best distance so far lets the broad phase skip every obstacle whose bounding box is
+                // farther away.
                 dist = data->best;
+                // In contact (or penetrating): no nearer obstacle can change the answer, so the broad phase may stop.
                 return data->best <= 0.;
             }
 
@@ -92,7 +98,11 @@ namespace michi
                     for (std::size_t b = 0; b < poses.size(); ++b)
                         for (std::size_t k = 0; k < objects[b].size(); ++k)
                         {
+                            // World pose of the shape = body pose in the world times the shape's fixed origin in the
+                            // body frame.
                             objects[b][k]->setTransform(poses[b] * origins[b][k]);
+                            // setTransform() does not move the world bounding box, and the scene's broad phase only
+                            // looks at that box: without this the query would test the previous configuration's box.
                             objects[b][k]->computeAABB();
                         }
                 }
@@ -143,6 +153,8 @@ namespace michi
                         free_.pop_back();
                     }
                 }
+                // Made outside the lock: building the FCL objects is the slow part, and other threads' queries should
+                // not wait on it.
                 if (!objects)
                     objects = std::make_unique<BodyObjects>(bodies_);
                 objects->pose(bodies_, values);
@@ -167,6 +179,7 @@ namespace michi
             : ompl::base::StateValidityChecker(si), bodies_(std::move(bodies)), scene_(std::move(scene))
         {
             pool_ = std::make_unique<ObjectPool>(*bodies_);
+            // EXACT: clearance() is FCL's distance to the nearest obstacle, not an estimate or a bound.
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
             if (si->getStateSpace()->getDimension() != bodies_->dimension())
                 throw std::invalid_argument(
@@ -181,6 +194,7 @@ namespace michi
 
         bool FclValidityChecker::isValid(const ompl::base::State *state) const
         {
+            // OMPL's convention: a state outside the bounds is invalid whatever the geometry (and costs no kinematics).
             if (!si_->satisfiesBounds(state))
                 return false;
             std::vector<double> values;
@@ -220,6 +234,9 @@ namespace michi
             const auto &objects = lease.objects();
             const auto &bodies = bodies_->bodies();
             {
+                // Shared lock only while the scene is read: a thread moving an obstacle takes it exclusively, so a
+                // query never sees half of a move. The self pairs below read no scene, so they run after the lock is
+                // released.
                 auto lock = scene_->lockShared();
                 for (std::size_t b = 0; b < objects.size(); ++b)
                     for (const auto &object : objects[b])
@@ -296,8 +313,11 @@ namespace michi
                         data.request.rel_err = relativeError;
                         data.request.gjk_solver_type = fcl::GST_INDEP;
                         data.query = object.get();
+                        // Seeded with the best distance over the previous bodies, so the broad phase of each body
+                        // prunes against the nearest obstacle found so far, not from infinity.
                         data.best = best.distance;
                         scene_->manager().distance(object.get(), &data, distanceCallback);
+                        // obstacle stays null when no obstacle of this body beat the seed: nothing new to record.
                         if (data.obstacle != nullptr && data.best < best.distance)
                         {
                             best.distance = data.best;
@@ -309,6 +329,7 @@ namespace michi
                         }
                     }
             }
+            // Self-distance stays out of clearance(): OMPL's clearance is about the environment (foundation.md).
             if (includeSelf)
                 for (const auto &pair : bodies_->selfCheckPairs())
                     for (const auto &a : objects[pair.first])
@@ -340,6 +361,8 @@ namespace michi
             const double inf = std::numeric_limits<double>::infinity();
             const auto lease = pool_->acquire(values);
             const auto &objects = lease.objects();
+            // Skipped bodies and pairs read +inf: an entry that was not computed must never look like a near obstacle
+            // to a caller that takes a minimum.
             obstacle.assign(objects.size(), inf);
             {
                 auto lock = scene_->lockShared();
@@ -352,6 +375,8 @@ namespace michi
                         DistanceData data;
                         data.request.gjk_solver_type = fcl::GST_INDEP;
                         data.query = object.get();
+                        // Every shape of the body shares one running minimum, so later shapes prune against the nearest
+                        // obstacle of the earlier ones.
                         data.best = obstacle[b];
                         scene_->manager().distance(object.get(), &data, distanceCallback);
                         obstacle[b] = std::min(obstacle[b], data.best);

@@ -33,11 +33,14 @@ namespace michi
             si_->getStateSpace()->copyToReals(to, s2);
             checker_->bodies()->bodyDisplacementBounds(from.data(), to.data(), bounds);
             const double largest = bounds.empty() ? 0. : *std::max_element(bounds.begin(), bounds.end());
+            // n equal steps of the motion: no point of any body moves more than maxStep_ between two consecutive
+            // checks.
             return std::max(1u, static_cast<unsigned int>(std::ceil(largest / maxStep_)));
         }
 
         bool WorkspaceMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
         {
+            // s1 is taken as valid (OMPL's convention for motion validators); the end state is the cheapest rejection.
             if (!si_->isValid(s2))
             {
                 countMotion(invalid_);
@@ -47,6 +50,7 @@ namespace michi
             // intermediate states in bisection order, so a collision in the middle is found early
             ompl::base::State *state = si_->allocState();
             std::queue<std::pair<unsigned int, unsigned int>> intervals;
+            // Steps 0 and n are s1 and s2, already settled above.
             intervals.emplace(1, n - 1);
             bool ok = true;
             while (ok && !intervals.empty())
@@ -73,6 +77,8 @@ namespace michi
             const unsigned int n = stepCount(s1, s2);
             ompl::base::State *state = si_->allocState();
             bool ok = true;
+            // In order from s1, and up to s2 (not checked beforehand here), so the first invalid step gives the last
+            // valid time.
             for (unsigned int i = 1; i <= n && ok; ++i)
             {
                 si_->getStateSpace()->interpolate(s1, s2, static_cast<double>(i) / n, state);

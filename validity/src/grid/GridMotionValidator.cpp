@@ -47,6 +47,8 @@ namespace michi
             std::vector<Piece> out;
             if (!turnMoveTurn_)
             {
+                // The end yaw is left unwrapped (start plus the short turn), so the walk crosses ±pi without a jump;
+                // bins are taken modulo the heading count below.
                 out.push_back(Piece{a[0], a[1], a[2], b[0], b[1], a[2] + so2Turn(a[2], b[2]), 0., 1.});
                 return out;
             }
@@ -60,6 +62,8 @@ namespace michi
                 out.push_back(Piece{a[0], a[1], a[2], a[0], a[1], a[2] + m.turn1, 0., 1.});
                 return out;
             }
+            // Each piece's share of the motion is its share of the cost, as TurnMoveTurnStateSpace::interpolate()
+            // spends it, so a contact's t is the motion's own.
             const double f1 = c1 / total, f2 = (c1 + m.move) / total;
             out.push_back(Piece{a[0], a[1], a[2], a[0], a[1], a[2] + m.turn1, 0., f1});
             out.push_back(Piece{a[0], a[1], m.heading, b[0], b[1], m.heading, f1, f2});
@@ -88,6 +92,8 @@ namespace michi
                 long long remaining = 0;
                 for (int k = 0; k < 3; ++k)
                 {
+                    // Too far to convert to an integer cell: refused (conservative), never walked with overflowed
+                    // indices.
                     if (!std::isfinite(p[k]) || !std::isfinite(q[k]) || std::abs(p[k]) > 1e12 || std::abs(q[k]) > 1e12)
                     {
                         visited_.fetch_add(visited, std::memory_order_relaxed);
@@ -108,9 +114,12 @@ namespace michi
                         tMax[k] = tDelta[k] = inf;
                         continue;
                     }
+                    // Amanatides-Woo voxel walk: tDelta is the piece fraction per cell along axis k, tMax the fraction
+                    // at which the next cell border of that axis is crossed.
                     tDelta[k] = 1. / std::abs(d);
                     tMax[k] = step[k] > 0 ? (static_cast<double>(idx[k] + 1) - p[k]) / d
                                           : (p[k] - static_cast<double>(idx[k])) / -d;
+                    // Every border crossing enters one new entry: remaining counts the entries still to visit.
                     remaining += std::llabs(end[k] - idx[k]);
                 }
                 double u = 0.;
@@ -118,6 +127,7 @@ namespace michi
                 {
                     ++visited;
                     const double t = piece.t0 + std::min(1., u) * (piece.t1 - piece.t0);
+                    // % of a negative number is negative in C++: shifted into 0..headings-1.
                     const int k = static_cast<int>(((idx[2] % table.headings()) + table.headings()) % table.headings());
                     bool free = idx[0] >= 0 && idx[1] >= 0 && idx[0] < g.width && idx[1] < g.height;
                     if (free && !table.valid(static_cast<int>(idx[0]), static_cast<int>(idx[1]), k))
@@ -144,6 +154,7 @@ namespace michi
                     if (remaining == 0)
                         break;
                     int axis = -1;
+                    // The axis whose next border comes first: the segment leaves the entry there.
                     for (int a = 0; a < 3; ++a)
                         if (idx[a] != end[a] && (axis < 0 || tMax[a] < tMax[axis]))
                             axis = a;
@@ -168,6 +179,7 @@ namespace michi
                                           table.circumradius() * std::abs(piece.yaw1 - piece.yaw0));
             const double spacing = EXACT_SPACING * table.grid().resolution;
             const int n = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+            // A span too long for the exact test within bounded work is refused, not passed unchecked.
             if (n > 100000)
                 return false;
             const double margin = length / (2. * n);

@@ -50,10 +50,14 @@ namespace michi
                 int k = -1;
                 for (int q = 0; q < n; ++q)
                 {
+                    // A free cell adds no parabola to the lower envelope (v: the parabolas' vertices, z: where each
+                    // takes over).
                     if (f[q] == inf)
                         continue;
                     while (k >= 0)
                     {
+                        // Where the parabola from q crosses the last one kept; if that is left of where the last took
+                        // over, the last one is never the lowest and is dropped.
                         const double s =
                             ((f[q] + q * double(q)) - (f[v[k]] + v[k] * double(v[k]))) / (2. * q - 2. * v[k]);
                         if (s <= z[k])
@@ -91,8 +95,12 @@ namespace michi
             if (settings.resolution > 0.)
                 return settings.resolution;
             const double extent = std::max(bounds[1] - bounds[0], bounds[3] - bounds[2]);
+            // Table cells are the map's cells split a whole number of times, so a map cell is exactly a set of table
+            // cells.
             const double base = settings.mapResolution > 0. ? settings.mapResolution : extent / 200.;
             const double width = minimumWidth(footprint);
+            // At most a quarter of the robot's smaller width: the stamps grow the footprint by a whole cell, and
+            // coarser cells close passages the robot fits through (checking.md, 64room).
             double divisions = std::max(1., std::ceil(base / (0.25 * width) - 1e-9));
             // at most 6 million table cells: with 16 headings 7 bytes a cell (bits, occupancy, distance), 42 MB
             const double cells = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) / (base * base);
@@ -107,6 +115,7 @@ namespace michi
                                                  const GridCheckerSettings &settings)
             : ob::StateValidityChecker(si), footprint_(std::move(footprint)), scene_(std::move(scene))
         {
+            // APPROXIMATE: clearance() is a lower bound from the distance transform, not FCL's exact distance.
             specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;
             se2_ = dynamic_cast<const ob::SE2StateSpace *>(si->getStateSpace().get()) != nullptr;
             if (!se2_ && si->getStateSpace()->getDimension() != 3)
@@ -125,8 +134,11 @@ namespace michi
             double radius = 0.;
             for (const auto &p : footprint_)
                 radius = std::max(radius, p.norm());
+            // The grid reaches a footprint radius and two cells beyond the bounds: a robot anywhere in the bounds never
+            // reads past the grid, where freePose() would call it blocked.
             const double pad = radius + 2. * res;
             const Eigen::Vector2d o = settings.origin;
+            // Whole cells from the map's origin, so the table's cells line up with the map's.
             const double i0 = std::floor((bounds[0] - pad - o.x()) / res),
                          i1 = std::ceil((bounds[1] + pad - o.x()) / res);
             const double j0 = std::floor((bounds[2] - pad - o.y()) / res),
@@ -135,7 +147,11 @@ namespace michi
                 throw std::invalid_argument("GridValidityChecker: a grid of " + std::to_string(i1 - i0) + " x " +
                                             std::to_string(j1 - j0) +
                                             " cells is too large; set collision.grid.resolution");
+            // A cell is occupied when an obstacle overlaps it shrunk by this much, so a map's box on cell edges
+            // occupies exactly its cells, not their neighbours too (checking.md).
             tolerance_ = 1e-6 * res;
+            // On a grid map the occupied cells are the obstacles exactly, so the exact footprint test is exact; a
+            // polygon scene is only rasterised, and the table alone answers.
             exact_ = settings.mapResolution > 0.;
             const Eigen::Vector2d origin(o.x() + i0 * res, o.y() + j0 * res);
             OccupancyGrid grid =
@@ -158,6 +174,8 @@ namespace michi
             const OccupancyGrid &g = table_->grid();
             const int w = g.width, h = g.height;
             const double inf = std::numeric_limits<double>::infinity();
+            // Separable: the squared distance is a 1-D transform down each column, then one along each row of the
+            // results.
             std::vector<double> column(static_cast<std::size_t>(w) * h);
             {
                 std::vector<double> f(h), d(h), z(h + 1);
@@ -171,6 +189,7 @@ namespace michi
                         column[static_cast<std::size_t>(j) * w + i] = d[j];
                 }
             }
+            // float, not double: a 2064 x 2064 table already needs 17 MiB of distances (checking.md).
             distance_.assign(static_cast<std::size_t>(w) * h, std::numeric_limits<float>::infinity());
             std::vector<double> f(w), d(w), z(w + 1);
             std::vector<int> v(w);
@@ -262,6 +281,8 @@ namespace michi
         {
             const auto start = std::chrono::steady_clock::now();
             const OccupancyGrid &g = table_->grid();
+            // The same grid as the constructor's (resolution, origin, size, tolerance), so update() can compare cell by
+            // cell and recompute only the entries near changed cells.
             const OccupancyGrid now = rasterizeScene(*scene_, g.resolution, g.origin, g.width, g.height, tolerance_);
             const CellBox box = table_->update(now);
             if (!box.empty())

@@ -85,6 +85,7 @@ namespace michi
                 throw std::invalid_argument("HeadingTable: empty or inconsistent occupancy grid");
             if (footprint.size() < 3)
                 throw std::invalid_argument("HeadingTable: the footprint needs at least 3 points");
+            // Bin k holds the yaws within half a step of k * step_ (headingBin rounds to the nearest bin centre).
             step_ = TWO_PI / headings_;
             inverseStep_ = 1. / step_;
             inverseResolution_ = 1. / grid_.resolution;
@@ -94,6 +95,7 @@ namespace michi
             tolerance_ = tolerance;
             // a convex footprint is one piece (its hull, with as many corners); any other is its triangles
             const auto hull = convexHull(footprint);
+            // At most 16 corners: freePose() keeps a piece's rotated corners in fixed arrays of 16.
             if (hull.size() == footprint.size() && hull.size() <= 16)
                 pieces_.push_back(hull);
             else
@@ -110,6 +112,8 @@ namespace michi
                 }
                 originInside_ = originInside_ || inside;
             }
+            // Bit rows padded to whole 64-bit words, so that every row starts on a word and a row range is a few word
+            // masks.
             wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
             occupiedBits_.assign(wordsPerRow_ * grid_.height, 0);
             for (int j = 0; j < grid_.height; ++j)
@@ -117,8 +121,11 @@ namespace michi
                     if (grid_.cells[static_cast<std::size_t>(j) * grid_.width + i])
                         occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] |= std::uint64_t{1}
                                                                                                 << (i & 63);
+            // Heading-major layout: entry (i, j, k) is bit i of row (k * height + j).
             bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
             makeCoreStamps();
+            // The core table exists only for a convex footprint (makeCoreStamps); freePose() skips the shortcut
+            // otherwise.
             if (!coreStamps_.empty())
                 blockedBits_.assign(bits_.size(), 0);
             blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
@@ -145,6 +152,8 @@ namespace michi
                         allValid = allValid && v;
                         allInvalid = allInvalid && !v;
                     }
+                    // The cell summaries use the same padded row layout as occupiedBits_: bit c of the flat array is
+                    // cell (i, j).
                     const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ * 64 + static_cast<std::size_t>(i);
                     const std::uint64_t bit = std::uint64_t{1} << (c & 63);
                     cellAllValid_[c >> 6] = allValid ? (cellAllValid_[c >> 6] | bit) : (cellAllValid_[c >> 6] & ~bit);
@@ -192,6 +201,8 @@ namespace michi
             }
             if (certainlyBlocked(x, y, yaw))
                 return false;
+            // The footprint grown by the caller's margin (a motion's spacing) and the table's tolerance, in cells; the
+            // 1e-9 turns a touch at round-off into a collision.
             const double m = (margin + tolerance_) * inv + 1e-9;
             const double c = std::cos(yaw), s = std::sin(yaw);
             const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
@@ -213,6 +224,7 @@ namespace michi
                 // cells beyond the grid may hold obstacles the grid does not know: not free
                 if (umin - m < 0. || vmin - m < 0. || umax + m >= grid_.width || vmax + m >= grid_.height)
                     return false;
+                // Row j's grown band [j - m, j + 1 + m] meets [vmin, vmax] exactly for these j.
                 const int j0 = static_cast<int>(std::ceil(vmin - m - 1.)), j1 = static_cast<int>(std::floor(vmax + m));
                 for (int j = std::max(0, j0); j <= j1; ++j)
                 {
@@ -236,6 +248,7 @@ namespace michi
                     }
                     if (!(xa <= xb))
                         continue;
+                    // The same for columns: cell i's grown span [i - m, i + 1 + m] meets the piece's x range [xa, xb].
                     const int i0 = std::max(0, static_cast<int>(std::ceil(xa - m - 1.)));
                     const int i1 = std::min(grid_.width - 1, static_cast<int>(std::floor(xb + m)));
                     const std::uint64_t *row = occupiedBits_.data() + static_cast<std::size_t>(j) * wordsPerRow_;
@@ -243,6 +256,8 @@ namespace michi
                     {
                         std::uint64_t mask = ~std::uint64_t{0};
                         if (w == i0 >> 6)
+                            // Masks trim the first and last words to columns i0..i1; (i1 & 63) == 63 is special because
+                            // a shift by 64 is undefined.
                             mask &= ~std::uint64_t{0} << (i0 & 63);
                         if (w == i1 >> 6 && (i1 & 63) != 63)
                             mask &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
@@ -318,6 +333,7 @@ namespace michi
 
         int HeadingTable::headingBin(double yaw) const
         {
+            // Nearest bin centre; fmod then maps any number of turns (and negative yaws) into 0..headings_-1.
             const double b = std::floor(yaw / step_ + 0.5);
             if (!std::isfinite(b))
                 return 0;
@@ -337,6 +353,9 @@ namespace michi
             // samples of the bin so that a footprint point moves at most 0.05 cells between one and the next
             const int samples = std::max(1, static_cast<int>(std::ceil(step_ * circumradius_ / (0.1 * r))));
             const double sweep = circumradius_ * (step_ / samples) / 2.;  // >= 2 R sin(step / (4 samples))
+            // Grown by a whole cell: half for the robot's pose anywhere in its entry's cell, half for the obstacle
+            // anywhere in its cell (checking.md). sweep covers the yaws between samples, so every pose of the entry and
+            // bin is inside.
             const double grow = r + sweep + tolerance + 1e-9 * (1. + circumradius_);
             reach_[0] = reach_[2] = std::numeric_limits<int>::max();
             reach_[1] = reach_[3] = std::numeric_limits<int>::min();
@@ -373,6 +392,8 @@ namespace michi
                             const double c = std::min(ymax, std::max(ymin, dy * r));
                             if (!rowInterval(hull, c, xa, xb))
                                 continue;
+                            // Lattice offsets inside the grown piece, with 1e-9 of slack so a point on its border
+                            // blocks (conservative).
                             const int x0 = static_cast<int>(std::ceil(xa / r - 1e-9));
                             const int x1 = static_cast<int>(std::floor(xb / r + 1e-9));
                             if (x0 <= x1)
@@ -384,6 +405,8 @@ namespace michi
                 for (auto &row : rows)
                 {
                     auto &iv = row.second;
+                    // Offsets from every sample and triangle, merged into disjoint spans per row: computeRegion() then
+                    // tests each span once.
                     std::sort(iv.begin(), iv.end());
                     for (const auto &v : iv)
                         if (!stamp.empty() && stamp.back().dy == row.first && v.first <= stamp.back().x1 + 1)
@@ -415,6 +438,8 @@ namespace michi
             {
                 std::int32_t *p = prefix.data() + static_cast<std::size_t>(j - r0) * (w + 1);
                 const std::uint8_t *c = grid_.cells.data() + static_cast<std::size_t>(j) * w;
+                // Prefix sums per row: "is any cell of [a, b) occupied" becomes p[b] > p[a], one comparison per stamp
+                // span.
                 for (int i = 0; i < w; ++i)
                     p[i + 1] = p[i] + (c[i] ? 1 : 0);
             }
@@ -488,6 +513,8 @@ namespace michi
             CellBox box;
             if (changed.empty())
                 return box;
+            // reach_ is the bounding box of every heading's stamp (x0, x1, dy min, dy max), so this box holds every
+            // entry whose stamp can touch a changed cell.
             box.i0 = std::max(0, changed.i0 - reach_[1]);
             box.i1 = std::min(grid_.width - 1, changed.i1 - reach_[0]);
             box.j0 = std::max(0, changed.j0 - reach_[3]);
@@ -535,6 +562,7 @@ namespace michi
                     if ((grid.cells[c] != 0) != (grid_.cells[c] != 0))
                         (grid.cells[c] ? on : off).emplace_back(i, j);
                 }
+            // The union of both boxes holds every entry that may have changed; refresh() hands it to its caller.
             CellBox a = setOccupied(on, true), b = setOccupied(off, false);
             if (a.empty())
                 return b;

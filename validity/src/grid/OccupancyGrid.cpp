@@ -12,6 +12,7 @@ namespace michi
         int OccupancyGrid::column(double x) const
         {
             const double c = std::floor((x - origin.x()) / resolution);
+            // Clamped before the cast: a far (or infinite) coordinate would overflow int; callers test inside() anyway.
             return static_cast<int>(std::max(-1e9, std::min(1e9, c)));
         }
 
@@ -42,12 +43,14 @@ namespace michi
                 for (const auto &polygon : shadow)
                 {
                     const Box2 bounds = bg::return_envelope<Box2>(polygon);
+                    // One cell of slack around the envelope: the per-cell test below decides, with the tolerance.
                     const int i0 = std::max(0, grid.column(bounds.min_corner().x()) - 1);
                     const int i1 = std::min(width - 1, grid.column(bounds.max_corner().x()) + 1);
                     const int j0 = std::max(0, grid.row(bounds.min_corner().y()) - 1);
                     const int j1 = std::min(height - 1, grid.row(bounds.max_corner().y()) + 1);
                     // an axis-aligned rectangle (a map's run of cells) needs no polygon test
                     const bool rectangle = polygon.inners().empty() && polygon.outer().size() == 5 &&
+                                           // A four-corner polygon as large as its envelope is that envelope.
                                            std::abs(bg::area(polygon)) >=
                                                (1. - 1e-12) * (bounds.max_corner().x() - bounds.min_corner().x()) *
                                                    (bounds.max_corner().y() - bounds.min_corner().y());
@@ -57,6 +60,8 @@ namespace michi
                             std::uint8_t &cell = grid.cells[static_cast<std::size_t>(j) * width + i];
                             if (cell)
                                 continue;
+                            // The cell shrunk by the tolerance: a box of a map that ends exactly on a cell edge
+                            // occupies its own cells, not the neighbours it touches.
                             const double x0 = origin.x() + i * r + tolerance, x1 = origin.x() + (i + 1) * r - tolerance;
                             const double y0 = origin.y() + j * r + tolerance, y1 = origin.y() + (j + 1) * r - tolerance;
                             if (x1 < bounds.min_corner().x() || x0 > bounds.max_corner().x() ||

@@ -23,6 +23,7 @@ namespace michi
                 std::vector<std::pair<Point2, Point2>> edges;
                 auto addRing = [&](const Polygon2::ring_type &ring)
                 {
+                    // Boost.Geometry rings are closed (the last point repeats the first), so ring.size() - 1 edges.
                     for (std::size_t i = 0; i + 1 < ring.size(); ++i)
                     {
                         const Point2 &p = ring[i], &q = ring[i + 1];
@@ -30,11 +31,14 @@ namespace michi
                         if (p.x() == q.x())
                         {
                             if (p.y() != q.y())
+                                // A vertical edge has zero width in x and belongs to no slab: it is kept apart and
+                                // tested directly.
                                 verticals_.push_back({p.x(), std::min(p.y(), q.y()), std::max(p.y(), q.y())});
                         }
                         else if (p.x() < q.x())
                             edges.emplace_back(p, q);
                         else
+                            // Stored left to right, so every edge covers the slabs from its first to its second x.
                             edges.emplace_back(q, p);
                     }
                 };
@@ -63,12 +67,16 @@ namespace michi
                     const double m = (e.second.y() - e.first.y()) / (e.second.x() - e.first.x());
                     const Line line{m, e.first.y() - m * e.first.x(), e.first.x(), e.first.y()};
                     std::size_t k = std::lower_bound(xs_.begin(), xs_.end(), e.first.x()) - xs_.begin();
+                    // Both ends are vertex x values, so the edge spans whole slabs exactly: [lower_bound(first x),
+                    // second x].
                     for (; k < slabs && xs_[k + 1] <= e.second.x(); ++k)
                         perSlab[k].push_back(line);
                 }
                 start_.push_back(0);
                 for (std::size_t k = 0; k < slabs; ++k)
                 {
+                    // Sorted at the slab's middle: edges of a slab never cross inside it, so their order there holds
+                    // over the whole slab (at the borders they may meet at a shared vertex).
                     const double mid = 0.5 * (xs_[k] + xs_[k + 1]);
                     std::sort(perSlab[k].begin(), perSlab[k].end(),
                               [mid](const Line &a, const Line &b)
@@ -79,6 +87,7 @@ namespace michi
                     start_.push_back(static_cast<std::uint32_t>(lines_.size()));
                 }
                 // uniform bins in x -> first slab that can hold x
+                // About four bins per slab: slabOf() then walks on average a slab or less from its bin's first slab.
                 const std::size_t bins = std::max<std::size_t>(64, 4 * slabs);
                 binScale_ = bins / (xs_.back() - xs_.front());
                 binSlab_.resize(bins + 1);
@@ -93,6 +102,7 @@ namespace michi
 
             bool inside(double x, double y) const
             {
+                // Written with ! so that a NaN coordinate is outside rather than undefined behaviour in slabOf().
                 if (xs_.empty() || !(x >= xs_.front() && x <= xs_.back()))
                     return false;
                 const std::size_t k = slabOf(x);
@@ -123,6 +133,8 @@ namespace michi
                     {
                         const Line &l = lines_[e];
                         const double ya = l.at(xa), yb = l.at(xb);
+                        // The edge lies wholly above or below y by at least the best distance so far: it cannot be
+                        // nearer.
                         if (std::min(ya, yb) - y >= best || y - std::max(ya, yb) >= best)
                             continue;
                         best = std::min(best, pointSegment(x, y, xa, ya, xb, yb));
@@ -147,6 +159,7 @@ namespace michi
                 const double none = std::numeric_limits<double>::infinity();
                 if (xs_.empty())
                     return none;
+                // A motion that starts inside a polygon touches it at once.
                 if (inside(x0, y0))
                     return 0.;
                 const double xmin = std::min(x0, x1), xmax = std::max(x0, x1);
@@ -168,6 +181,8 @@ namespace michi
                             best = std::min(best, t);
                     }
                     else if (std::max(y0, y1) >= v->y0 && std::min(y0, y1) <= v->y1 && dy != 0.)
+                        // A vertical motion along a vertical edge's line: it first meets the edge's near end (clamped
+                        // to 0 when it starts on the edge).
                         best = std::min(best, std::clamp(((dy > 0. ? v->y0 : v->y1) - y0) / dy, 0., 1.));
                 }
                 const std::size_t slabs = xs_.size() - 1;
@@ -196,11 +211,14 @@ namespace michi
                             continue;
                         double x = xa;
                         if (std::abs(fa - fb) > 0. && xb > xa)
+                            // f is linear in x within the slab: its zero by linear interpolation.
                             x = xa + std::clamp(fa / (fa - fb), 0., 1.) * (xb - xa);
                         double t = 0.;
                         if (dx != 0.)
                             t = (x - x0) / dx;
                         else if (dy != 0.)
+                            // A vertical motion: within the slab it is a single x, where the edge's height gives the
+                            // contact.
                             t = (l.at(x0) - y0) / dy;
                         best = std::min(best, std::clamp(t, 0., 1.));
                     }
@@ -215,6 +233,8 @@ namespace michi
                 double x0, y0;  ///< the left end (exact at the vertex)
                 double at(double x) const
                 {
+                    // Exact at the left vertex: m x + c there may round off by an ulp, and edges meeting at a vertex
+                    // must agree on it for the parity and rank searches.
                     return x == x0 ? y0 : m * x + c;
                 }
             };
@@ -229,6 +249,8 @@ namespace michi
                 std::size_t b = static_cast<std::size_t>((x - xs_.front()) * binScale_);
                 b = std::min(b, binSlab_.size() - 1);
                 std::size_t k = binSlab_[b];
+                // A bin can straddle slab borders; its entry is the first slab it touches, so walk right to the slab
+                // holding x.
                 while (k + 1 < slabs && xs_[k + 1] < x)
                     ++k;
                 return k;
@@ -253,6 +275,8 @@ namespace michi
             {
                 // number of edges below y: binary search over the slab's sorted edges
                 const std::uint32_t first = start_[k], lo = rankBelow(k, x, y);
+                // Even-odd rule: an odd number of edges below the point (in its slab) means it is inside a polygon
+                // (holes included).
                 if ((lo - first) % 2 == 1)
                     return true;
                 // on an edge (up to rounding): the boundary belongs to the collision region
@@ -287,12 +311,15 @@ namespace michi
                 throw std::invalid_argument("J-map: slices must be >= 1, got " + std::to_string(settings.slices));
             const auto t0 = std::chrono::steady_clock::now();
             const JMapAxes &axes = source.axes();
+            // Each slice stands for its whole θ1 cell, not only its centre value (jmap.md "Intervals"), so the cells
+            // tile the axis without gaps.
             const double step = (axes.hi1 - axes.lo1) / settings.slices;
             std::vector<JMapSlice> slices(settings.slices);
             for (int i = 0; i < settings.slices; ++i)
             {
                 JMapSlice &s = slices[i];
                 s.lo = axes.lo1 + i * step;
+                // The last cell ends exactly at the axis limit, whatever the rounding of i * step.
                 s.hi = i + 1 == settings.slices ? axes.hi1 : axes.lo1 + (i + 1) * step;
                 s.theta1 = 0.5 * (s.lo + s.hi);
                 if (settings.trueIntervals)
@@ -303,9 +330,12 @@ namespace michi
                 {
                     const double lo = s.lo + k * (s.hi - s.lo) / columns;
                     const double hi = k + 1 == columns ? s.hi : s.lo + (k + 1) * (s.hi - s.lo) / columns;
+                    // Intervals that hold every collision for every θ1 in the column (inflated by how far the links can
+                    // move over the column's half width), not only at its centre.
                     s.columns.push_back(source.cellIntervals(lo, hi));
                     all.insert(all.end(), s.columns.back().begin(), s.columns.back().end());
                 }
+                // The slice's intervals: the union of its columns', so they contain every collision in the whole cell.
                 s.intervals = mergeIntervals(std::move(all));
             }
             std::shared_ptr<JMap> map(new JMap());
@@ -367,6 +397,7 @@ namespace michi
                                        {
                                            return value < s.lo;
                                        });
+            // The last slice whose lower end is at or below theta1; values below the first slice map to slice 0.
             return it == slices_.begin() ? 0 : static_cast<std::size_t>(it - slices_.begin()) - 1;
         }
     }  // namespace validity

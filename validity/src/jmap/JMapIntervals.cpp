@@ -21,12 +21,16 @@ namespace michi
 
             double chord(double angle)
             {
+                // How far a point at unit distance from the axis moves when turned by angle: the chord, not the arc.
+                // Capped at pi so the value bounds every turn up to angle (the chord shrinks again past half a turn).
                 return 2. * std::sin(0.5 * std::min(std::abs(angle), M_PI));
             }
 
             /** \brief Push \e alpha +- acos(c) (when |c| <= 1, up to rounding) into \e out. */
             void pushAcos(double alpha, double c, std::vector<double> &out)
             {
+                // A tangency computed with rounding can land just past +-1; it is still a critical angle, so clamp
+                // rather than drop.
                 if (c > 1. + 1e-12 || c < -1. - 1e-12)
                     return;
                 const double a = std::acos(std::max(-1., std::min(1., c)));
@@ -84,6 +88,8 @@ namespace michi
                             const double beta = angleOf(ends[e]);
                             // the end point meets the disk of radius rho about v
                             if (d > 0.)
+                                // Law of cosines: |R(phi) e - v| = rho when cos(phi + beta - alpha) = (re^2 + d^2 -
+                                // rho^2) / (2 re d).
                                 pushAcos(alpha - beta, (re * re + d * d - rho * rho) / (2. * re * d), out);
                             // the end point meets the edge's line offset by +-rho
                             const Eigen::Vector2d edge = w - v;
@@ -92,12 +98,16 @@ namespace michi
                             const Eigen::Vector2d mm = Eigen::Vector2d(-edge.y(), edge.x()).normalized();
                             const double cm = mm.dot(v), mu = angleOf(mm);
                             for (double side : {-1., 1.})
+                                // The turned end's height along the edge normal, re cos(phi + beta - mu), equals the
+                                // edge line's cm +- rho.
                                 pushAcos(mu - beta, (cm + side * rho) / re, out);
                         }
                         // the segment is parallel to the edge
                         if (segment && (w - v).norm() > 0.)
                         {
                             const double gamma = angleOf(w - v);
+                            // When the segment turns parallel to an edge, which feature is nearest can switch without
+                            // any contact event above.
                             out.push_back(gamma - delta);
                             out.push_back(gamma - delta + M_PI);
                         }
@@ -180,6 +190,7 @@ namespace michi
                 for (std::size_t v = 0; v < axes_.halfWidths.size(); ++v)
                     if (static_cast<int>(v) != axes_.axis1 && static_cast<int>(v) != axes_.axis2 &&
                         axes_.halfWidths[v] > 0.)
+                        // Joints held at a cell centre (a stack's outer joint) add their own half width the same way.
                         inflation[l] += arm_->reachFrom(static_cast<int>(v), link) * chord(axes_.halfWidths[v]);
             }
             return inflation;
@@ -192,6 +203,8 @@ namespace michi
 
         std::vector<JointInterval> PlanarIntervalSource::cellIntervals(double lo, double hi) const
         {
+            // Each subsample stands for a part of the column half as wide on each side: its intervals are inflated by
+            // how far the links move over that half width, so together they hold every collision of the column.
             const double half = 0.5 * (hi - lo) / subsamples_;
             const auto inflation = cellInflation(half);
             std::vector<JointInterval> all;
@@ -244,6 +257,8 @@ namespace michi
                     continue;
                 }
                 const Turning turning{caps[i].a - pivot, caps[i].b - pivot, rho};
+                // Obstacles beyond this distance from the pivot cannot be met at any theta2: they add no critical
+                // angles.
                 const double reach = std::max(turning.a.norm(), turning.b.norm()) + rho;
 
                 // obstacles the capsule can reach at all, relative to the pivot
@@ -279,6 +294,7 @@ namespace michi
                 std::vector<double> cuts{lo2, hi2};
                 for (double phi : phis)
                 {
+                    // Critical angles repeat every turn: each copy inside the joint's range is a cut.
                     double t = sign * phi;                         // world rotation sign * theta2
                     t = std::remainder(t - lo2, 2. * M_PI) + lo2;  // in [lo2 - pi, lo2 + pi]
                     for (double tk = t; tk < hi2; tk += 2. * M_PI)
@@ -299,6 +315,8 @@ namespace michi
                 const std::size_t m = unique.size();
                 std::vector<char> piece(m - 1, 0);
                 for (std::size_t k = 0; k + 1 < m; ++k)
+                    // No contact begins or ends between two critical angles, so one test at the middle classifies the
+                    // whole piece.
                     piece[k] = hits(0.5 * (unique[k] + unique[k + 1]));
                 for (std::size_t k = 0; k < m; ++k)
                 {

@@ -94,10 +94,14 @@ namespace michi
                     std::vector<JointInterval> column;
                     for (JointInterval iv : mergeIntervals(slice.columns.empty() ? slice.intervals : slice.columns[k]))
                     {
+                        // A region touching an axis limit is pushed past it (borderMargin): a state at the limit itself
+                        // must fall inside the polygon, not on an edge that rounding could put on either side.
                         if (iv.lo <= lo2 + 1e-12)
                             iv.lo = lo2 - margin;
                         if (iv.hi >= hi2 - 1e-12)
                             iv.hi = hi2 + margin;
+                        // A touching angle (lo == hi) becomes a sliver of height MIN_HEIGHT: a zero-height interval
+                        // would make a degenerate polygon with no area.
                         if (iv.hi - iv.lo < MIN_HEIGHT)
                         {
                             const double mid = 0.5 * (iv.lo + iv.hi);
@@ -134,6 +138,8 @@ namespace michi
                             partner[a] = static_cast<int>(b);
                         }
                 for (std::size_t a = 0; a < left.size(); ++a)
+                    // Only one-to-one continuations are followed: at a split or a merge the piece ends, so every piece
+                    // is theta2-monotone and its lower and upper chains are well defined.
                     if (out[a] == 1 && in[partner[a]] == 1)
                     {
                         next[i][a] = partner[a];
@@ -172,6 +178,8 @@ namespace michi
                         add(upper, border[s + j], run[j].hi);
                         add(upper, border[s + j + 1], run[j].hi);
                     }
+                    // The walk keeps the lower chain below and the upper chain above every end point it skips: the
+                    // polygon still holds the staircase whatever the tolerance (jmap.md, "Polygons").
                     lower = lineWalk(lower, settings.tolerance, false);
                     upper = lineWalk(upper, settings.tolerance, true);
                     std::vector<Point2> ring = lower;
@@ -182,6 +190,8 @@ namespace michi
             for (const auto &piece : pieces)
             {
                 MultiPolygon2 merged;
+                // United: pieces of one region overlap at their splits and merges, and a planner needs one polygon per
+                // region.
                 bg::union_(polygons, piece, merged);
                 polygons = std::move(merged);
             }

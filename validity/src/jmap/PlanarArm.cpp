@@ -18,6 +18,7 @@ namespace michi
             /** \brief True when rotation \e r turns only about z. */
             bool aboutZ(const Eigen::Matrix3d &r)
             {
+                // R(2, 2) = 1 only when z maps onto itself, i.e. the rotation turns about z alone.
                 return std::abs(r(2, 2) - 1.) < TOL;
             }
 
@@ -122,6 +123,7 @@ namespace michi
                     if (std::abs(std::abs(rj.axis.z()) - 1.) > TOL)
                         throw std::invalid_argument("robot '" + model.name() + "': joint '" + rj.name +
                                                     "' does not rotate about z");
+                    // A joint about -z turns the arm clockwise for a positive value: the sign goes into every angle.
                     joint.axisSign = rj.axis.z() > 0. ? 1. : -1.;
                     joint.variable = rj.variable;
                     joint.lower = rj.lower;
@@ -147,6 +149,7 @@ namespace michi
                         arm->order_.push_back(static_cast<int>(j));
                         placed[joints[j].childLink] = 1;
                     }
+                // A pass that places no joint means some joint hangs below a link the root never reaches.
                 if (arm->order_.size() == before)
                     throw std::invalid_argument("robot '" + model.name() + "': joints do not form a tree");
             }
@@ -165,6 +168,8 @@ namespace michi
                 {
                     const Joint &joint = arm->joints_[arm->links_[link].joint];
                     if (joint.variable >= 0)
+                        // Turning this joint by w moves the capsule's axis points by at most along * w (about 2 along
+                        // sin(w / 2)), which is what the J-map inflates the capsules by between slices (jmap.md).
                         arm->reach_[joint.variable][l] = along;
                     along += joint.origin.norm();
                     link = joint.parentLink;
@@ -271,6 +276,7 @@ namespace michi
         {
             if (obstacles.empty())
                 return std::numeric_limits<double>::infinity();
+            // A sphere's capsule has a == b: measured from its centre point.
             if ((a - b).squaredNorm() == 0.)
                 return bg::distance(Point2(a.x(), a.y()), obstacles);
             return bg::distance(Segment2(Point2(a.x(), a.y()), Point2(b.x(), b.y())), obstacles);

@@ -50,10 +50,13 @@ namespace michi
                 for (double v : q)
                     if (!std::isfinite(v))
                         throw UrdfError(what + " origin rotation is not finite");
+                // A zero quaternion has no direction: normalizing it below would give nan.
                 if (std::abs(q[0]) + std::abs(q[1]) + std::abs(q[2]) + std::abs(q[3]) < 1e-12)
                     throw UrdfError(what + " origin rotation is zero");
                 Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
                 t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+                // Normalized: a file's quaternion is rounded, and a rotation that is not orthonormal would stretch
+                // the geometry.
                 t.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
                                  .normalized()
                                  .toRotationMatrix();
@@ -70,6 +73,9 @@ namespace michi
                     fs::path inside;
                     for (auto it = ++rest.begin(); it != rest.end(); ++it)
                         inside /= *it;
+                    // Without ROS there is no package index: try the layouts robots ship in (the package folder beside
+                    // or above the URDF, or the URDF inside the package itself, as MotionBenchMaker's Panda is laid
+                    // out).
                     candidates = {fs::path(baseDir) / rest, fs::path(baseDir) / ".." / rest,
                                   fs::path(baseDir) / inside};
                 }
@@ -109,6 +115,8 @@ namespace michi
             {
                 std::lock_guard<std::mutex> lock(consoleMutex);
                 CollectingHandler handler;
+                // The handler is a local: it must be removed (restorePreviousOutputHandler) on every path out of this
+                // block, and the mutex keeps two threads from swapping the process-wide handler under each other.
                 console_bridge::useOutputHandler(&handler);
                 try
                 {
@@ -116,6 +124,8 @@ namespace michi
                 }
                 catch (const std::exception &e)
                 {
+                    // urdfdom throws on some malformed input (bad numbers) instead of logging it; both end in the same
+                    // one-line error.
                     handler.first = e.what();
                 }
                 console_bridge::restorePreviousOutputHandler();
@@ -193,6 +203,8 @@ namespace michi
                             }
                         }
                     }
+                    // Errors from resolveMesh() already name the file and the URI; only the others need the link's name
+                    // added.
                     catch (const UrdfError &)
                     {
                         throw;
@@ -257,9 +269,13 @@ namespace michi
                         throw UrdfError(source + ": joint '" + joint.name + "': axis is not finite");
                     if (axis.norm() < 1e-12)
                         throw UrdfError(source + ": joint '" + joint.name + "': zero axis");
+                    // URDF allows an axis of any length; the kinematics needs a unit axis so that q is radians (or
+                    // metres).
                     joint.axis = axis.normalized();
                     if (joint.type == RobotJoint::Type::CONTINUOUS)
                     {
+                        // A continuous joint has no limits in URDF; planning spaces treat it as an angle on [-pi, pi]
+                        // that wraps.
                         joint.lower = -M_PI;
                         joint.upper = M_PI;
                     }
@@ -276,6 +292,7 @@ namespace michi
                         if (!(joint.lower <= joint.upper))
                             throw UrdfError(source + ": joint '" + joint.name + "': lower limit above upper");
                     }
+                    // Configuration vectors list the movable joints in this breadth-first order.
                     joint.variable = static_cast<int>(model->variableJoints_.size());
                     model->variableJoints_.push_back(static_cast<int>(model->joints_.size()));
                 }
@@ -323,9 +340,11 @@ namespace michi
         {
             linkPoses.resize(links_.size());
             linkPoses[rootLink_] = basePose_;
+            // jointOrder_ is breadth-first, so a joint's parent link is posed before the joint is reached.
             for (int j : jointOrder_)
             {
                 const RobotJoint &joint = joints_[j];
+                // URDF's convention: child = parent * joint origin * motion, the axis given in the joint frame.
                 Eigen::Isometry3d t = linkPoses[joint.parentLink] * joint.origin;
                 if (joint.type == RobotJoint::Type::REVOLUTE || joint.type == RobotJoint::Type::CONTINUOUS)
                     t.rotate(Eigen::AngleAxisd(q[joint.variable], joint.axis));
@@ -359,6 +378,8 @@ namespace michi
         {
             const auto poses = forwardKinematics(q);
             const Eigen::Vector3d p = poses[link] * pointInLink;
+            // Rows 0-2: the point's linear velocity; rows 3-5: the link's angular velocity. Joints off the chain to the
+            // link stay zero columns.
             Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(6, static_cast<long>(variableCount()));
             for (int j : chainTo(link))
             {
@@ -382,6 +403,7 @@ namespace michi
         void RobotModel::allowCollision(const std::string &linkA, const std::string &linkB)
         {
             const int a = linkIndex(linkA), b = linkIndex(linkB);
+            // Stored as (smaller, larger): an allowed pair has no order.
             allowed_.insert({std::min(a, b), std::max(a, b)});
         }
 
@@ -401,6 +423,8 @@ namespace michi
                     g = joints_[links_[g].parentJoint].parentLink;
                 group[l] = g;
             }
+            // Links joined by one movable joint touch at the joint by construction; checking them would reject every
+            // state.
             auto parentGroup = [&](int l)
             {
                 const int root = group[l];
@@ -429,6 +453,8 @@ namespace michi
             for (std::size_t l = 0; l < links_.size(); ++l)
                 for (const auto &c : links_[l].collisions)
                     reach[l] = std::max(reach[l], c.origin.translation().norm() + c.shape->boundingRadius());
+            // Reverse breadth-first order: a child's reach is complete before its parent reads it. The reach adds up
+            // along the tree by the triangle inequality (joint offset, prismatic stroke, then the child's reach).
             for (auto it = jointOrder_.rbegin(); it != jointOrder_.rend(); ++it)
             {
                 const RobotJoint &joint = joints_[*it];
@@ -456,6 +482,9 @@ namespace michi
                     distance = std::max(distance, c.origin.translation().norm() + c.shape->boundingRadius());
                 if (links_[l].collisions.empty())
                     continue;
+                // Walking up the chain: at each joint, distance is how far link l's geometry can be from that joint's
+                // origin, which is how far a radian of that joint can move it. Each step up adds the joint's offset
+                // (and stroke) to the distance.
                 for (int j = links_[l].parentJoint; j >= 0; j = links_[joints_[j].parentLink].parentJoint)
                 {
                     const RobotJoint &joint = joints_[j];

@@ -103,7 +103,10 @@ namespace michi
                     if (in.gcount() != static_cast<std::streamsize>(raw.size()))
                         throw std::runtime_error(pgmPath + ": image data is truncated");
                     for (std::size_t i = 0; i < pixels.size(); ++i)
+                        // 16-bit PGM samples are stored most significant byte first.
                         pixels[i] = bytes == 1 ? raw[i] : (raw[2 * i] << 8) | raw[2 * i + 1];
+                    // Data left over means the header's size is wrong; read with it, the map would come out sheared,
+                    // not refused.
                     if (in.peek() != std::char_traits<char>::eof())
                         throw std::runtime_error(pgmPath + ": holds more data than its header's " +
                                                  std::to_string(width) + " x " + std::to_string(rows) + " cells");
@@ -139,6 +142,7 @@ namespace michi
                                              std::to_string(png.height) + " cells is empty or above the limit of " +
                                              std::to_string(MAX_MAP_CELLS) + " cells");
                 }
+                // Read before format is set to RGBA below, which always has an alpha channel.
                 const bool hasAlpha = (png.format & PNG_FORMAT_FLAG_ALPHA) != 0;
                 png.format = PNG_FORMAT_RGBA;
                 std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(png));
@@ -208,6 +212,8 @@ namespace michi
             for (int r = 0; r < rows; ++r)
             {
                 const double y = (rows - 1 - r + 0.5) * resolution;  // image row 0 is the top
+                // One box per run of occupied cells in a row, not one per cell: a 512 x 512 map then holds thousands of
+                // obstacles, not hundreds of thousands, for the broad phase.
                 int c = 0;
                 while (c < width)
                 {
@@ -241,6 +247,8 @@ namespace michi
             const GreyImage image = readGreyImage(pgmPath);
             std::vector<std::uint8_t> occupied(image.grey.size());
             for (std::size_t i = 0; i < occupied.size(); ++i)
+                // Dark is occupied (a PGM map's convention): a cell darker than the threshold's share of the maximum
+                // grey.
                 occupied[i] = image.grey[i] < threshold * image.maxValue ? 1 : 0;
             return cellObstacles(occupied, image.width, image.rows, resolution, origin, height, 0., pgmPath);
         }

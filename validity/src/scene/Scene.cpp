@@ -21,6 +21,8 @@ namespace michi
             for (auto &object : entry.objects)
             {
                 object->setTransform(pose);
+                // The broad phase sorts objects by their world bounding box, which setTransform() alone leaves at the
+                // old pose.
                 object->computeAABB();
             }
         }
@@ -61,12 +63,16 @@ namespace michi
                 }
                 if (!newNames.insert(obstacle.name).second)
                     throw std::invalid_argument("scene already has an obstacle named '" + obstacle.name + "'");
+                // Files may list key frames in any order; poseAt() finds the bracketing pair by binary search, which
+                // needs them sorted.
                 std::sort(obstacle.trajectory.begin(), obstacle.trajectory.end(),
                           [](const TimedPose &a, const TimedPose &b)
                           {
                               return a.time < b.time;
                           });
             }
+            // Names already in the scene are checked under the exclusive lock, so two threads adding the same name
+            // cannot both pass.
             std::unique_lock<std::shared_mutex> lock(mutex_);
             for (const auto &e : entries_)
                 if (newNames.count(e->obstacle.name))
@@ -78,8 +84,12 @@ namespace michi
                 for (const auto &g : entry->obstacle.shape->geometries())
                 {
                     entry->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+                    // Collision callbacks get FCL objects only; the user data names the obstacle (obstacleName()). The
+                    // pointer stays valid because each Entry lives behind a unique_ptr and does not move when entries_
+                    // grows.
                     entry->objects.back()->setUserData(&entry->obstacle.name);
                 }
+                // A moving obstacle starts where its trajectory is at the scene's current time, not at its static pose.
                 const Eigen::Isometry3d pose = entry->obstacle.trajectory.empty()
                                                    ? entry->obstacle.pose
                                                    : poseAt(entry->obstacle.trajectory, time_);
@@ -115,6 +125,8 @@ namespace michi
                 if (e->obstacle.name == name)
                 {
                     place(*e, pose);
+                    // Refits the broad-phase tree to the moved boxes, cheaper than the full rebuild that add() and
+                    // remove() do.
                     manager_.update();
                     ++changeCount_;
                     return;
@@ -132,6 +144,8 @@ namespace michi
                 if (e->obstacle.trajectory.empty())
                     continue;
                 const Eigen::Isometry3d pose = poseAt(e->obstacle.trajectory, t);
+                // Before its first and after its last key frame an obstacle holds still: not counting that as a change
+                // spares every cache that watches changeCount() a rebuild.
                 if (!pose.isApprox(e->obstacle.pose, 1e-12))
                 {
                     place(*e, pose);
@@ -169,6 +183,8 @@ namespace michi
         MultiPolygon2 Scene::polygons2d() const
         {
             MultiPolygon2 all;
+            // obstacles() copies under the shared lock; the union, which is slow for many obstacles, runs without
+            // holding it.
             for (const auto &o : obstacles())
             {
                 MultiPolygon2 merged;
@@ -188,6 +204,7 @@ namespace michi
             for (const auto &e : entries_)
                 for (const auto &o : e->objects)
                 {
+                    // World-aligned boxes: the result encloses every obstacle, loosely for rotated ones.
                     lo = lo.cwiseMin(o->getAABB().min_);
                     hi = hi.cwiseMax(o->getAABB().max_);
                 }
@@ -207,11 +224,14 @@ namespace michi
                                          {
                                              return time < p.time;
                                          });
+            // upper_bound gives the first key frame after t, so prev->time <= t < next->time and the division below is
+            // by a positive number even when two key frames share a time.
             auto prev = next - 1;
             const double s = (t - prev->time) / (next->time - prev->time);
             Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
             pose.translation() = (1. - s) * prev->pose.translation() + s * next->pose.translation();
             const Eigen::Quaterniond qa(prev->pose.linear()), qb(next->pose.linear());
+            // Slerp, not a linear blend of matrices, so the orientation stays a rotation and turns at a constant rate.
             pose.linear() = qa.slerp(s, qb).toRotationMatrix();
             return pose;
         }

@@ -46,6 +46,8 @@ namespace michi
             bool isConvexCcw(const std::vector<Eigen::Vector2d> &p)
             {
                 for (std::size_t i = 0; i < p.size(); ++i)
+                    // A corner turning right (beyond round-off) makes a CCW outline non-convex; collinear corners are
+                    // allowed.
                     if (cross(p[i], p[(i + 1) % p.size()], p[(i + 2) % p.size()]) < -1e-12)
                         return false;
                 return true;
@@ -62,6 +64,7 @@ namespace michi
                 for (const auto &p : outline)
                     vertices->emplace_back(p.x(), p.y(), zMax);
                 auto faces = std::make_shared<std::vector<int>>();
+                // fcl::Convex's face list: each face is its vertex count followed by its vertex indices.
                 faces->push_back(n);  // top, seen from +z
                 for (int i = 0; i < n; ++i)
                     faces->push_back(n + i);
@@ -71,6 +74,8 @@ namespace michi
                 for (int i = 0; i < n; ++i)
                 {
                     const int j = (i + 1) % n;
+                    // Side quad i, j, j', i' is counter-clockwise seen from outside because the outline is CCW seen
+                    // from +z.
                     faces->insert(faces->end(), {4, i, j, n + j, n + i});
                 }
                 return std::make_shared<fcl::Convexd>(vertices, n + 2, faces);
@@ -107,6 +112,8 @@ namespace michi
                     case Shape::Type::PRISM:
                         for (const auto &p : shape.outline())
                         {
+                            // The outline at z_min (size_.x()) and z_max (size_.y()): a tilted prism's shadow needs
+                            // both ends.
                             points.emplace_back(p.x(), p.y(), s.x());
                             points.emplace_back(p.x(), p.y(), s.y());
                         }
@@ -135,6 +142,7 @@ namespace michi
             std::vector<int> idx(n);
             for (int i = 0; i < n; ++i)
                 idx[i] = i;
+            // The ear test below assumes a counter-clockwise walk (a left turn is a convex corner).
             if (signedArea(outline) < 0.)
                 std::reverse(idx.begin(), idx.end());
             std::vector<std::array<int, 3>> triangles;
@@ -155,6 +163,8 @@ namespace michi
                         if (q == a || q == b || q == c)
                             continue;
                         const auto &p = outline[q];
+                        // A vertex inside the candidate ear or on its border (>= 0) would be cut off by the diagonal
+                        // a-c.
                         if (cross(outline[a], outline[b], p) >= 0 && cross(outline[b], outline[c], p) >= 0 &&
                             cross(outline[c], outline[a], p) >= 0)
                             empty = false;
@@ -162,6 +172,7 @@ namespace michi
                     if (!empty)
                         continue;
                     triangles.push_back({a, b, c});
+                    // clipped ends the for loop: m and the indices of idx changed with the erase.
                     idx.erase(idx.begin() + static_cast<long>(k));
                     clipped = true;
                 }
@@ -171,6 +182,7 @@ namespace michi
                     idx.erase(idx.begin());
                 }
             }
+            // The last three vertices may be collinear (a zero-area triangle); FCL gains nothing from it.
             if (cross(outline[idx[0]], outline[idx[1]], outline[idx[2]]) > 1e-14)
                 triangles.push_back({idx[0], idx[1], idx[2]});
             return triangles;
@@ -245,11 +257,14 @@ namespace michi
             const auto triangles = triangulatePolygon(outline);  // validates the outline
             std::shared_ptr<Shape> s(new Shape);
             s->type_ = Type::PRISM;
+            // A prism's size_ is (z_min, z_max, height), unlike the other shapes' extents (see Shape.h).
             s->size_ = Eigen::Vector3d(zMin, zMax, zMax - zMin);
             s->outline_ = outline;
             std::vector<Eigen::Vector2d> ccw = outline;
             if (signedArea(ccw) < 0.)
                 std::reverse(ccw.begin(), ccw.end());
+            // One convex prism when possible; otherwise one per triangle. A single non-convex piece as a surface mesh
+            // would only report contact with its walls, not a body deep inside (foundation.md).
             if (isConvexCcw(ccw))
                 s->convexPieces_.push_back(ccw);
             else
@@ -280,6 +295,8 @@ namespace michi
             s->vertices_ = std::move(vertices);
             s->triangles_ = std::move(triangles);
             s->source_ = std::move(source);
+            // OBBRSS bounding volumes serve both queries the checkers ask of a mesh: oriented boxes for collision,
+            // swept spheres for distance.
             auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
             std::vector<fcl::Triangle> tris;
             tris.reserve(s->triangles_.size());
@@ -297,6 +314,9 @@ namespace michi
         {
             requireInputFile(path);  // a directory or device would give assimp's own confusing message
             Assimp::Importer importer;
+            // Triangulate: FCL takes triangles only. PreTransformVertices: a file's node transforms are baked into the
+            // vertices, so the mesh is in the file's frame as a viewer shows it. SortByPType: points and lines land in
+            // meshes of their own, whose faces the loop below skips (it keeps 3-index faces only).
             const aiScene *scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                                aiProcess_PreTransformVertices | aiProcess_SortByPType);
             if (scene == nullptr)
@@ -332,12 +352,14 @@ namespace michi
             switch (type_)
             {
                 case Type::BOX:
+                    // Bounding radius about the shape's origin: half the box's diagonal.
                     r = 0.5 * size_.norm();
                     break;
                 case Type::SPHERE:
                     r = size_.x();
                     break;
                 case Type::CYLINDER:
+                    // A rim point: radius out and half the length up.
                     r = std::hypot(size_.x(), 0.5 * size_.z());
                     break;
                 case Type::CAPSULE:
@@ -345,6 +367,7 @@ namespace michi
                     break;
                 case Type::PRISM:
                     for (const auto &p : outline_)
+                        // Each outline vertex at either end height; the prism's z range need not contain the origin.
                         r = std::max({r, std::hypot(p.norm(), size_.x()), std::hypot(p.norm(), size_.y())});
                     break;
                 case Type::MESH:
@@ -360,6 +383,8 @@ namespace michi
         MultiPolygon2 Shape::footprint(const Eigen::Isometry3d &pose) const
         {
             MultiPolygon2 result;
+            // Circles become 32-gons whose edges touch the circle from outside, so a shadow never misses part of the
+            // shape.
             const int sides = 32;
             if (type_ == Type::SPHERE || type_ == Type::CAPSULE)
             {
@@ -378,6 +403,8 @@ namespace michi
                 result.push_back(hull);
                 return result;
             }
+            // Anything else: the convex hull of the projected corner points (exact for boxes, conservative for
+            // cylinders through the outer polygons, and for tilted prisms and meshes the hull fills in concave parts).
             const Eigen::Vector3d zAxis = pose.linear().col(2);
             if (type_ == Type::PRISM && std::abs(std::abs(zAxis.z()) - 1.) < 1e-9)
             {

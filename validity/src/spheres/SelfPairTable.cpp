@@ -37,9 +37,12 @@ namespace michi
             // the box's centre, and how far the bodies can close in from there to any point of the box
             const double centre[2] = {lo_[0] + 0.5 * (i0 + i1) * h_[0], lo_[1] + 0.5 * (j0 + j1) * h_[1]};
             const double reach =
+                // Grown a little against rounding in the bound and in FCL's distance.
                 (closing_[0] * 0.5 * (i1 - i0) * h_[0] + closing_[1] * 0.5 * (j1 - j0) * h_[1]) * (1. + 1e-6) + 1e-7;
             ++evaluations_;
             const double d = distance(centre);
+            // Distance at the centre beats how far the two bodies can close in on the way to any point of the box: the
+            // whole box is free, proved by this one FCL distance (the table's bits are proofs, never samples).
             if (d > reach)
             {
                 for (int j = j0; j < j1; ++j)
@@ -73,6 +76,7 @@ namespace michi
             if (wrap_[d])
             {
                 const double period = h_[d] * n_[d];
+                // Into [lo, lo + period): fmod keeps the sign of its argument, so a second fmod after adding a period.
                 v = lo_[d] + std::fmod(std::fmod(v - lo_[d], period) + period, period);
             }
             // cells are closed boxes, so the cell a value's floor names covers it even on a boundary
@@ -83,6 +87,7 @@ namespace michi
             last = static_cast<int>(std::floor(b));
             if (wrap_[d])
             {
+                // A span of a whole turn or more touches every cell: read them all once.
                 if (last - first + 1 >= n_[d])
                 {
                     first = 0;

@@ -46,6 +46,8 @@ namespace michi
                 };
                 LinkSphere bestSphere;
                 Eigen::Vector3d c = 0.5 * (lo + hi);
+                // Each iteration scans every point: fewer steps for big meshes keep building a link's cover within
+                // milliseconds.
                 const int iterations = points.size() > 20000 ? 20 : 100;
                 double r = 0.;
                 farthest(c, r);
@@ -54,11 +56,16 @@ namespace michi
                 for (int i = 1; i <= iterations; ++i)
                 {
                     const std::size_t f = farthest(c, r);
+                    // Every candidate's radius reaches its farthest point, so every candidate encloses all points:
+                    // keeping the smallest is always safe, even though the iteration does not shrink the radius
+                    // monotonically.
                     if (r < bestSphere.radius)
                     {
                         bestSphere.centre = c;
                         bestSphere.radius = r;
                     }
+                    // Badoiu-Clarkson step: move 1/(i+1) of the way to the farthest point; converges to the minimum
+                    // enclosing ball.
                     c += (points[f] - c) / static_cast<double>(i + 1);
                 }
                 farthest(c, r);
@@ -93,12 +100,15 @@ namespace michi
                             longest = e;
                         }
                     }
+                    // A long thin triangle would tie far-apart corners into one cluster and force a large sphere. The
+                    // cap bounds time and memory; a triangle left whole is still enclosed, only less tightly.
                     if (length <= maxEdge || out.size() > 3000000)
                     {
                         out.insert(out.end(), tri.begin(), tri.end());
                         continue;
                     }
                     const Eigen::Vector3d &a = tri[longest], &b = tri[(longest + 1) % 3], &c = tri[(longest + 2) % 3];
+                    // Halving the longest edge keeps the pieces from getting ever thinner.
                     const Eigen::Vector3d m = 0.5 * (a + b);
                     stack.push_back({a, m, c});
                     stack.push_back({m, b, c});
@@ -136,6 +146,9 @@ namespace michi
                               {
                                   return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
                               });
+                    // Neighbouring triangles share corners: deduplicated, coverPoints() scans each point once. A sphere
+                    // holding a triangle's three corners holds the whole triangle (a ball is convex), so corners are
+                    // all it needs.
                     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
                     p.sphere = coverPoints(corners);
                     p.triangles = std::move(ids);
@@ -143,6 +156,7 @@ namespace michi
                 };
                 std::vector<int> all(n);
                 std::iota(all.begin(), all.end(), 0);
+                // Largest sphere on top: each split spends the budget where the cover is loosest.
                 std::priority_queue<Part> open;
                 std::vector<LinkSphere> done;
                 open.push(makePart(std::move(all)));
@@ -150,6 +164,7 @@ namespace michi
                 {
                     Part p = open.top();
                     open.pop();
+                    // A single triangle cannot be split further; its sphere is final.
                     if (p.triangles.size() < 2)
                     {
                         done.push_back(p.sphere);
@@ -199,6 +214,8 @@ namespace michi
                     // split the axis whose cells are longest while the budget allows it
                     Eigen::Vector3d cell = size.cwiseQuotient(cells.cast<double>());
                     int axis = 0;
+                    // Splitting the longest cell side keeps cells near cubes, which have the smallest diagonal (sphere)
+                    // for their volume.
                     cell.maxCoeff(&axis);
                     Eigen::Vector3i next = cells;
                     ++next[axis];
@@ -214,6 +231,7 @@ namespace michi
                         {
                             const Eigen::Vector3d c =
                                 -0.5 * size + cell.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
+                            // The circumscribed sphere of a cell: half its diagonal, about its centre.
                             out.push_back({pose * c, padded(0.5 * cell.norm())});
                         }
                 return out;
@@ -224,6 +242,8 @@ namespace michi
             std::vector<LinkSphere> coverCylinder(double radius, double length, const Eigen::Isometry3d &pose,
                                                   int budget)
             {
+                // A flat cylinder: each slice's sphere would be at least as wide as the cylinder, so a grid over its
+                // box does better.
                 if (length < radius)
                     return coverBox(Eigen::Vector3d(2. * radius, 2. * radius, length), pose, budget);
                 const int n = std::max(1, budget);
@@ -232,6 +252,7 @@ namespace michi
                 for (int i = 0; i < n; ++i)
                 {
                     const double z = -0.5 * length + (i + 0.5) * slice;
+                    // The sphere through the slice's two rims: radius out, half a slice up and down.
                     out.push_back({pose * Eigen::Vector3d(0., 0., z), padded(std::hypot(radius, 0.5 * slice))});
                 }
                 return out;
@@ -276,6 +297,8 @@ namespace michi
                                 out.push_back(sp);
                             break;
                         case Shape::Type::CAPSULE:
+                            // The cylinder part, plus one sphere of the capsule's radius at each end, which holds that
+                            // hemispherical cap.
                             for (const auto &sp : coverCylinder(s.x(), s.z(), c.origin, std::max(1, share - 2)))
                                 out.push_back(sp);
                             out.push_back({c.origin * Eigen::Vector3d(0., 0., 0.5 * s.z()), padded(s.x())});
@@ -290,6 +313,8 @@ namespace michi
                     auto tris = SphereModel::surfaceTriangles(meshPart, settings.circleSides);
                     const int meshBudget =
                         std::max(1, settings.spheresPerLink * static_cast<int>(meshPart.collisions.size()) / shapes);
+                    // Edge length relative to the link's size, with a 0.1 mm floor so a tiny link is not split without
+                    // end.
                     tris = splitLong(tris, std::max(1e-4, settings.maxTriangleFraction * linkSize(tris)));
                     for (const auto &sp : coverTriangles(tris, meshBudget))
                         out.push_back(sp);
@@ -329,6 +354,8 @@ namespace michi
             auto circle = [&](double r)
             {
                 std::vector<Eigen::Vector2d> outline;
+                // Vertices on the circumscribed polygon: its edges touch the circle from outside, so a cover of the
+                // polygon holds the round surface too.
                 const double grow = 1. / std::cos(M_PI / circleSides);
                 for (int i = 0; i < circleSides; ++i)
                 {
@@ -353,6 +380,7 @@ namespace michi
                         prism(c.origin, circle(s.x()), -0.5 * s.z(), 0.5 * s.z());
                         break;
                     case Shape::Type::CAPSULE:
+                        // A capsule lies inside the cylinder of its radius that is longer by a radius at each end.
                         prism(c.origin, circle(s.x()), -0.5 * s.z() - s.x(), 0.5 * s.z() + s.x());
                         break;
                     case Shape::Type::PRISM:
@@ -363,6 +391,7 @@ namespace michi
                             add(c.origin, c.shape->vertices()[t[0]], c.shape->vertices()[t[1]],
                                 c.shape->vertices()[t[2]]);
                         break;
+                    // Spheres have no triangles here: the callers cover them with a sphere of their own.
                     case Shape::Type::SPHERE:
                         break;
                 }
@@ -414,6 +443,8 @@ namespace michi
                     continue;
                 }
                 // grow the seeds to hold the real geometry: each triangle goes to the seed that grows least
+                // The link's own sphere shapes are not in tris (surfaceTriangles skips them), so they join the cover as
+                // seeds.
                 auto tris = surfaceTriangles(link, settings.circleSides);
                 for (const auto &c : link.collisions)
                     if (c.shape->type() == Shape::Type::SPHERE)
@@ -435,6 +466,7 @@ namespace michi
                             bestNeed = need;
                         }
                     }
+                    // Grown to the triangle's farthest corner, the seed holds the whole triangle (a ball is convex).
                     if (bestGrowth > 0.)
                         seeds[best].radius = bestNeed;
                 }

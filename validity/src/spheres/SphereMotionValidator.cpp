@@ -37,6 +37,8 @@ namespace michi
                 double d = std::abs(b[i] - a[i]);
                 if (continuous_[i])
                 {
+                    // A continuous joint moves the short way round (as OMPL's SO(2) interpolates): its travel is at
+                    // most pi.
                     d = std::fmod(d, 2. * M_PI);
                     d = std::min(d, 2. * M_PI - d);
                 }
@@ -63,6 +65,9 @@ namespace michi
                 const double tm = 0.5 * (p.t0 + p.t1);
                 space->interpolate(s1, s2, tm, m);
                 space->copyToReals(mid, m);
+                // From the piece's middle, no point moves more than half the piece's share of the whole displacement:
+                // spheres grown by that hold every pose of the piece, so one check certifies it all. 1e-6 covers float
+                // rounding.
                 grow = whole * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
                 growBody = wholeBody * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
                 span = delta * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
@@ -72,6 +77,7 @@ namespace michi
                     certified = p.t1;
                     continue;
                 }
+                // The middle state itself collides: the motion is invalid, no need to split further.
                 if (!checker_->isValidConfiguration(mid.data()))
                 {
                     ok = false;
@@ -99,11 +105,14 @@ namespace michi
                     certified = p.t1;
                     continue;
                 }
+                // Halving has a floor: near a contact the grown spheres never come free, and the piece is refused
+                // (conservative) instead of split without end.
                 if (p.t1 - p.t0 < minFraction_)
                 {
                     ok = false;
                     break;
                 }
+                // Right half pushed first so the left half is checked first: certified grows from s1 without gaps.
                 stack.push_back({tm, p.t1});
                 stack.push_back({p.t0, tm});
             }
@@ -137,6 +146,8 @@ namespace michi
             else
             {
                 check(s1, s2, certified);
+                // The end state is invalid: the last valid time must stay short of 1 even when every piece but the end
+                // came free.
                 certified = std::min(certified, 1. - minFraction_);
             }
             if (ok)

@@ -54,8 +54,10 @@ namespace michi
                     const Eigen::Vector2f &a = poly[j], &b = poly[i];
                     if ((b.y() > p.y()) != (a.y() > p.y()) &&
                         p.x() < (a.x() - b.x()) * (p.y() - b.y()) / (a.y() - b.y()) + b.x())
+                        // Even-odd crossing count along +x; the edge distances are gathered in the same pass.
                         inside = !inside;
                     const Eigen::Vector2f ab = b - a;
+                    // The floor keeps a repeated vertex (a zero-length edge) from dividing by zero.
                     const float t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-30f), 0.f, 1.f);
                     best = std::min(best, (a + t * ab - p).squaredNorm());
                 }
@@ -71,6 +73,7 @@ namespace michi
                 const auto &shape = *o.shape;
                 const Eigen::Isometry3d pose = o.pose;
                 Frame f;
+                // The inverse rotation: the kernels map a world point into the obstacle's frame as rt * (p - t).
                 f.rt = pose.linear().transpose().cast<float>();
                 f.t = pose.translation().cast<float>();
                 const Eigen::Vector3d &s = shape.size();
@@ -82,6 +85,7 @@ namespace michi
                 {
                     case Shape::Type::BOX:
                         kind = BOX;
+                        // Half extents: the box kernel measures how far a point sticks out past each face.
                         size = (0.5 * s).cast<float>();
                         break;
                     case Shape::Type::SPHERE:
@@ -113,6 +117,8 @@ namespace michi
                         kind = MESH;
                         index = static_cast<int>(meshes_.size());
                         addMesh(o);
+                        // The root node's sphere is about the vertices themselves, tighter than the shape's radius
+                        // about its origin.
                         centre = meshes_.back().nodes.front().centre.cast<double>();
                         bound = meshes_.back().nodes.front().radius;
                         break;
@@ -126,6 +132,8 @@ namespace michi
                 bx_.push_back(static_cast<float>(centre.x()));
                 by_.push_back(static_cast<float>(centre.y()));
                 bz_.push_back(static_cast<float>(centre.z()));
+                // Grown a little so that the float sphere still encloses the shape after rounding: candidates() must
+                // never drop an obstacle a robot sphere touches.
                 br_.push_back(static_cast<float>(bound * (1. + 1e-6) + 1e-5));
             }
         }
@@ -142,6 +150,8 @@ namespace michi
                 Eigen::Vector3f c = Eigen::Vector3f::Zero();
                 for (int k = 0; k < 3; ++k)
                 {
+                    // Corners are stored in the world frame: a mesh query then needs no transform per sphere (frames_
+                    // is unused for meshes).
                     const Eigen::Vector3f v = (obstacle.pose * shape.vertices()[shape.triangles()[t][k]]).cast<float>();
                     corners.push_back(v);
                     c += v / 3.f;
@@ -173,7 +183,11 @@ namespace michi
                 for (int i = task.first; i < task.first + task.count; ++i)
                     for (int k = 0; k < 3; ++k)
                         r = std::max(r, (corners[3 * order[i] + k] - c).norm());
+                // Grown for float round-off, as br_ above: a node must enclose its triangles or the walk would prune a
+                // contact.
                 MeshNode node{c, r * (1.f + 1e-5f) + 1e-6f, -1, -1, task.first, task.count};
+                // Leaves of at most 4 triangles; a median split keeps the tree balanced, so its depth is about log2(n /
+                // 4) and the 64-entry stack of meshDistance() cannot overflow on any mesh that fits in memory.
                 if (task.count > 4)
                 {
                     int axis = 0;
@@ -208,6 +222,7 @@ namespace michi
             for (std::size_t o = 0; o < n; ++o)
             {
                 const float dx = bx_[o] - c.x(), dy = by_[o] - c.y(), dz = bz_[o] - c.z(), rr = br_[o] + r;
+                // Two spheres overlap when their centres are closer than the sum of the radii; no square root needed.
                 if (dx * dx + dy * dy + dz * dz < rr * rr)
                     out.push_back(static_cast<int>(o));
             }
@@ -230,6 +245,8 @@ namespace michi
             {
                 case SPHERE:
                     d2 = (dx.square() + dy.square() + dz.square()).sqrt() - s.x();
+                    // Clamped at 0 before squaring: a centre inside the obstacle has a negative distance, whose square
+                    // would look far.
                     d2 = d2.max(0.f).square();
                     break;
                 case BOX:
@@ -238,6 +255,7 @@ namespace michi
                     const Arr qx = ((m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz).abs() - s.x()).max(0.f);
                     const Arr qy = ((m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz).abs() - s.y()).max(0.f);
                     const Arr qz = ((m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz).abs() - s.z()).max(0.f);
+                    // Distance to a box = length of how far the point lies outside each pair of faces (0 inside).
                     d2 = qx.square() + qy.square() + qz.square();
                     break;
                 }
@@ -251,8 +269,11 @@ namespace michi
                     const Arr radial = (px.square() + py.square()).sqrt();
                     const Arr qz = (pz.abs() - s.y()).max(0.f);
                     if (kind_[o] == CYLINDER)
+                        // Cylinder: outside the radius and outside the caps are independent, so the two excesses add in
+                        // squares.
                         d2 = (radial - s.x()).max(0.f).square() + qz.square();
                     else
+                        // Capsule: distance to its axis segment (radial and past-the-end parts) minus the radius.
                         d2 = ((radial.square() + qz.square()).sqrt() - s.x()).max(0.f).square();
                     break;
                 }
@@ -293,6 +314,7 @@ namespace michi
             while (top > 0)
             {
                 const MeshNode &node = mesh.nodes[stack[--top]];
+                // Nothing in this node's sphere can beat the best distance so far (or the caller's limit).
                 if ((node.centre - p).norm() - node.radius >= best)
                     continue;
                 if (node.left < 0)
@@ -310,6 +332,8 @@ namespace michi
                 const float dl = (mesh.nodes[node.left].centre - p).squaredNorm();
                 const float dr = (mesh.nodes[node.right].centre - p).squaredNorm();
                 // the nearer child is visited first
+                // The farther child is pushed first so the nearer one is popped first: best shrinks sooner and prunes
+                // more.
                 stack[top++] = dl < dr ? node.right : node.left;
                 stack[top++] = dl < dr ? node.left : node.right;
             }
@@ -322,10 +346,12 @@ namespace michi
             {
                 const Mesh &mesh = meshes_[index_[o]];
                 for (int i = 0; i < b.n; ++i)
+                    // The radius as the limit: the walk only has to find something nearer than the sphere's surface.
                     if (meshDistance(mesh, Eigen::Vector3f(b.x[i], b.y[i], b.z[i]), b.r[i]) < b.r[i])
                         return true;
                 return false;
             }
+            // Batches of 256: the kernels' arrays live on the stack with at most 256 entries (Arr above).
             float d2[256];
             for (int first = 0; first < b.n; first += 256)
             {

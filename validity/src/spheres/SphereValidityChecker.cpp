@@ -48,6 +48,8 @@ namespace michi
             , scene_(std::move(scene))
             , exact_(std::move(exactSelf))
         {
+            // The spheres enclose the links, so their distance to an obstacle is a lower bound of the links' own
+            // distance.
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
             if (si->getStateSpace()->getDimension() != bodies_->dimension())
                 throw std::invalid_argument(
@@ -64,6 +66,7 @@ namespace michi
             {
                 const int link = bodies_->bodyLink(b);
                 const auto &sp = spheres_->linkSpheres(link);
+                // A link without geometry has no spheres and nothing to collide: it gets no body here.
                 if (sp.empty())
                     continue;
                 bodyOfRobotBody[b] = static_cast<int>(bodyLink_.size());
@@ -84,6 +87,8 @@ namespace michi
                 for (const auto &s : sp)
                     r = std::max(r, (s.centre - c).norm() + s.radius);
                 bodyCentre_.push_back(c.cast<float>());
+                // The body's bounding sphere holds every sphere of the link, so a body whose bound misses an obstacle
+                // needs no per-sphere test.
                 bodyRadius_.push_back(static_cast<float>(r) + 2.f * FLOAT_MARGIN);
                 begin_.push_back(static_cast<int>(radius_.size()));
             }
@@ -114,6 +119,7 @@ namespace michi
                         if (joint.variable >= 0)
                         {
                             const auto it = std::find(vars.begin(), vars.end(), joint.variable);
+                            // Grown by 1e-6 so float rounding cannot make a bound smaller than the true displacement.
                             if (it != vars.end())
                                 coefficients_(s, it - vars.begin()) =
                                     static_cast<float>((prismatic ? 1. : distance) * (1. + 1e-6));
@@ -188,6 +194,9 @@ namespace michi
             // the tables depend on the robot, its group and the sphere model (the displacement bounds): shared
             using Key =
                 std::tuple<const RobotModel *, std::vector<int>, std::vector<std::pair<int, int>>, const SphereModel *>;
+            // Building the tables costs FCL distances over a whole grid (about 0.7 s for the Panda): checkers made for
+            // the same robot, group and sphere model share them. The cache holds weak pointers, so the tables die with
+            // the last checker that uses them.
             static std::mutex mutex;
             static std::map<Key, std::weak_ptr<const std::vector<std::shared_ptr<const SelfPairTable>>>> cache;
             const Key key{&model, vars, bodies_->selfCheckPairs(), spheres_.get()};
@@ -223,6 +232,8 @@ namespace michi
                         }
                 std::sort(job.on.begin(), job.on.end());
                 job.on.erase(std::unique(job.on.begin(), job.on.end()), job.on.end());
+                // A table over one or two values (1024 or 256 x 256 cells); pairs that depend on more values, or on
+                // none of the group's, stay with the spheres and FCL.
                 if (job.on.empty() || job.on.size() > 2)
                     continue;
                 for (int v : job.on)
@@ -263,6 +274,7 @@ namespace michi
                 }
             };
             const std::size_t helpers =
+                // One helper fewer than cores: the calling thread works through the jobs too.
                 std::min<std::size_t>(jobs.size(), std::max(1u, std::thread::hardware_concurrency())) -
                 (jobs.empty() ? 0 : 1);
             std::vector<std::thread> threads;
@@ -290,12 +302,15 @@ namespace michi
         {
             const std::uint64_t version = scene_->changeCount();
             const SphereObstacles *current = current_.load(std::memory_order_acquire);
+            // Lock-free when the scene has not changed since the last snapshot (the common case); otherwise a new
+            // snapshot is made under the mutex, checking again in case another thread made it first.
             if (current != nullptr && current->version() == version)
                 return *current;
             std::lock_guard<std::mutex> lock(snapshotMutex_);
             current = current_.load(std::memory_order_acquire);
             if (current != nullptr && current->version() == scene_->changeCount())
                 return *current;
+            // Old snapshots are kept, never freed: another thread may still be reading the one it loaded.
             snapshots_.push_back(std::make_unique<SphereObstacles>(*scene_));
             if (exact_)
             {
@@ -308,6 +323,7 @@ namespace michi
                 std::vector<double> obstacle, self;
                 if (any)
                 {
+                    // Any values: the bodies asked about are those the group does not move.
                     std::vector<double> values(bodies_->dimension(), 0.);
                     exact_->bodyDistances(values.data(), wantBodies, wantPairs, obstacle, self);
                 }
@@ -325,6 +341,8 @@ namespace michi
 
         void SphereValidityChecker::place(const double *values, Scratch &s) const
         {
+            // Joints outside the planned group hold the values the template fixed; only the group's values change per
+            // query.
             s.q.assign(fullTemplate_.begin(), fullTemplate_.end());
             const auto &vars = bodies_->variables();
             for (std::size_t i = 0; i < vars.size(); ++i)
@@ -375,6 +393,8 @@ namespace michi
             else
                 std::copy(bodyRadius_.begin(), bodyRadius_.end(), s.bodyRadius.begin());
 
+            // Bodies the group does not move were decided by FCL once per scene version (staticBlocked) or once at
+            // construction (staticSelfBlocked_): if they touch, every state is invalid.
             const SphereObstacles &obs = obstacles();
             if (obs.staticBlocked || staticSelfBlocked_)
             {
@@ -420,6 +440,8 @@ namespace michi
                 const auto &p = selfPairs_[k];
                 if (static_[p.first] && static_[p.second])
                     continue;
+                // A set table bit is a proof for its whole cell (certified with the pair's closing speed), so the table
+                // answers without spheres or FCL; in a motion, freeOver() reads every cell the values sweep.
                 if (pairTables_ && (*pairTables_)[k])
                 {
                     const SelfPairTable &table = *(*pairTables_)[k];
@@ -431,6 +453,7 @@ namespace michi
                     return true;
                 }
                 const float reach = s.bodyRadius[p.first] + s.bodyRadius[p.second];
+                // Bounding spheres apart: no sphere of one body can meet a sphere of the other.
                 if ((s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() >= reach * reach)
                     continue;
                 const int fb = begin_[p.second], nbs = begin_[p.second + 1] - fb;
@@ -462,12 +485,16 @@ namespace michi
 
         bool SphereValidityChecker::isValidConfiguration(const double *values) const
         {
+            // No inflation: a state check. The motion validator passes the spheres' growth over a piece of motion
+            // instead.
             return isFreeInflated(values, nullptr, nullptr, nullptr);
         }
 
         bool SphereValidityChecker::isFreeInflated(const double *values, const float *inflation,
                                                    const float *bodyInflation, const float *valueSpan) const
         {
+            // Per thread: planners and benchmarks query from several threads, and the scratch arrays are reused without
+            // allocation.
             thread_local Scratch s;
             place(values, s);
             return !collides(s, values, inflation, bodyInflation, valueSpan, true, nullptr);
@@ -502,6 +529,8 @@ namespace michi
                                         radius_.data() + first, begin_[b + 1] - first};
                 for (std::size_t o = 0; o < obs.size(); ++o)
                 {
+                    // The distance between bounding spheres is a lower bound: an obstacle that cannot beat the best so
+                    // far is skipped.
                     if (obs.boundDistance(static_cast<int>(o), s.bodyCentre[b], bodyRadius_[b]) >= best)
                         continue;
                     best = std::min(best, obs.distance(static_cast<int>(o), batch));
