@@ -206,3 +206,41 @@ TEST(ConcentricCircleRules, PathsLeftAndRightOfAnObstacleAreBothInThePlannerData
     // and the planner kept both as full paths, of which the solution is one
     EXPECT_GE(planner->fullPaths().size(), 2u);
 }
+
+TEST(ConcentricCircleRules, FreeArcsFromCrossingsAgreeWithPointTestsAndSplitAtThinObstacles)
+{
+    // Two squares and a sliver 0.01 wide: on circles around the origin, every point's arc says what its own point
+    // test says, and the sliver (thinner than the points' spacing) still cuts the arc it crosses in two.
+    validity::MultiPolygon2 obstacles{
+        validity::makePolygon2({{1., -0.5}, {2., -0.5}, {2., 0.5}, {1., 0.5}}),
+        validity::makePolygon2({{-2., 1.}, {-1., 1.}, {-1., 2.}, {-2., 2.}}),
+        validity::makePolygon2({{-0.005, -2.5}, {0.005, -2.5}, {0.005, -0.5}, {-0.005, -0.5}})};
+    planners::PolygonCircleMap map(obstacles, Eigen::Vector2d(-3., -3.), Eigen::Vector2d(3., 3.));
+    const int n = 72;
+    for (double radius = 0.3; radius < 3.; radius += 0.17)
+    {
+        const double phase = 0.1 * radius;
+        std::vector<int> arc;
+        ASSERT_TRUE(map.freeArcs(Eigen::Vector2d::Zero(), radius, phase, n, arc));
+        ASSERT_EQ(arc.size(), static_cast<std::size_t>(n));
+        for (int i = 0; i < n; ++i)
+        {
+            const double a = phase + 2. * M_PI * i / n;
+            const Eigen::Vector2d p = radius * Eigen::Vector2d(std::cos(a), std::sin(a));
+            EXPECT_EQ(arc[i] >= 0, map.isFree(p)) << "radius " << radius << ", point " << i;
+        }
+    }
+    // radius 1.2: the sliver crosses the circle at the bottom (angle -pi/2 +- 0.004 rad), between two points 5
+    // degrees apart that are both free; they lie on different arcs
+    std::vector<int> arc;
+    const double radius = 1.2, phase = -M_PI / 2. + M_PI / 72.;  // points at -pi/2 -+ 2.5 degrees
+    ASSERT_TRUE(map.freeArcs(Eigen::Vector2d::Zero(), radius, phase, n, arc));
+    ASSERT_GE(arc[0], 0);
+    ASSERT_GE(arc[n - 1], 0);
+    EXPECT_NE(arc[0], arc[n - 1]) << "the sliver between the two points splits the arc";
+    // a circle that meets no polygon: one free arc
+    ASSERT_TRUE(map.freeArcs(Eigen::Vector2d(2.5, -2.5), 0.2, 0., n, arc));
+    for (int i = 0; i < n; ++i)
+        EXPECT_EQ(arc[i], arc[0]);
+    EXPECT_GE(arc[0], 0);
+}
