@@ -36,10 +36,9 @@ namespace michi
                 for (std::size_t idx : chosen)
                 {
                     const Frame &f = frames[idx];
-                    Problem p = problem;
-                    p.scene = std::make_shared<validity::Scene>();
+                    auto scene = std::make_shared<validity::Scene>();
                     for (const auto &o : statics)
-                        p.scene->add(o);
+                        scene->add(o);
                     for (std::size_t k = 0; k < movers.size(); ++k)
                     {
                         validity::Obstacle o;
@@ -48,7 +47,7 @@ namespace michi
                         // Each picture shows the movers where they were at the frame's time (as sensed), a still of the
                         // episode.
                         o.pose = k < f.poses.size() ? f.poses[k] : validity::Scene::poseAt(movers[k].trajectory, 0.);
-                        p.scene->add(o);
+                        scene->add(o);
                     }
                     std::ostringstream name;
                     name << "frame_" << std::setw(2) << std::setfill('0') << n++ << ".svg";
@@ -57,7 +56,9 @@ namespace michi
                     std::vector<PlotPath> paths{PlotPath{label.str(), f.executed}};
                     if (f.plan.size() > 1)
                         paths.push_back(PlotPath{"current plan", f.plan});
-                    writeProblemSvg(p, paths, (stage.path("episode") / name.str()).string());
+                    PictureOverride still;
+                    still.scene = scene;
+                    writeProblemSvg(problem, paths, (stage.path("episode") / name.str()).string(), 0, still);
                 }
             }
 
@@ -113,10 +114,9 @@ namespace michi
                 // the moving obstacles where the first method's simulation had them, as key frames at the frames'
                 // times (after its episode: its obstacle motions as they were at its end)
                 const Trace &first = traces.front();
-                Problem p = problem;
-                p.scene = std::make_shared<validity::Scene>();
+                auto scene = std::make_shared<validity::Scene>();
                 for (const auto &o : statics)
-                    p.scene->add(o);
+                    scene->add(o);
                 const auto at = sampled(steps);
                 for (std::size_t k = 0; k < movers.size(); ++k)
                 {
@@ -131,9 +131,10 @@ namespace michi
                                                       : validity::Scene::poseAt(first.trajectories[k], t)});
                     }
                     o.pose = o.trajectory.front().pose;
-                    p.scene->add(o);
+                    scene->add(o);
                 }
-                writeReplayPage(p, paths, file, replay);
+                replay.scene = scene;
+                writeReplayPage(problem, paths, file, replay);
             }
         }  // namespace replan
     }      // namespace tools

@@ -34,10 +34,8 @@ namespace michi
             const planners::SeedVariant v = planners::seedVariantFromName(variant);
             ompl::RNG::setSeed(seed);
             // the training query alone
-            Problem one = problem;
-            one.experience.training = {exp.training[training]};
             const PlanningContext ctx = makePlanningContext(problem, 0);
-            const auto paths = solveTrainingQueries(one, ctx, nullptr);
+            const auto paths = solveTrainingQueries(problem, ctx, nullptr, training);
             if (paths.empty())
                 throw std::runtime_error("RRT-Connect did not solve training query " + std::to_string(training));
             og::PathGeometric original = paths.front();
@@ -78,14 +76,14 @@ namespace michi
             // A decoded path is only a guess for the new query; whether it is valid says if it could be used as it is.
             const bool valid = decodedPath.check();
 
-            // draw with the held-out query's start and goal as the problem's query 0
-            Problem drawn = problem;
-            drawn.queries = {q};
-            writeProblemSvg(drawn,
+            // draw with the held-out query's start and goal (titled as query 0)
+            PictureOverride drawn;
+            drawn.query = &q;
+            writeProblemSvg(problem,
                             {toPlot("original (training query " + std::to_string(training) + ")", states),
                              toPlot("decoded for its own start and goal", same),
                              toPlot("decoded for held-out query " + std::to_string(heldOut), decoded)},
-                            file, 0);
+                            file, 0, drawn);
             std::ostringstream report;
             report << "michi path-seed-figure: wrote " << file << ": training query " << training << " ("
                    << states.size() - 2 << " waypoints, length " << original.length() << "), " << variant

@@ -64,7 +64,7 @@ namespace michi
             }  // namespace
 
             ConfigView buildConfigView(const Problem &problem, const RobotGeometry &robot,
-                                       const std::vector<SampledPath> &paths, const Query *query)
+                                       const std::vector<SampledPath> &paths, const Query *query, bool jmap)
             {
                 ConfigView c;
                 c.wraps = robot.wraps();
@@ -94,7 +94,8 @@ namespace michi
                 }
                 c.limits.add(lower[0], lower[1]);
                 c.limits.add(upper[0], upper[1]);
-                c.jmap = jmapPolygons(problem);
+                if (jmap)
+                    c.jmap = jmapPolygons(problem);
                 if (query)
                 {
                     c.start = Vec2(normalised(query->start[0], lower[0], c.wraps[0]),

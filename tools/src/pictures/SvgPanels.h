@@ -130,7 +130,8 @@ namespace michi
                 }
             };
 
-            WorldView buildWorldView(const Problem &problem, const RobotGeometry &robot,
+            /** \e scene: the obstacles drawn (the problem's, or a picture's own: PictureOverride) */
+            WorldView buildWorldView(const Problem &problem, const validity::Scene *scene, const RobotGeometry &robot,
                                      const std::vector<SampledPath> &paths, const Query *query,
                                      const Eigen::Isometry3d &view);
 
@@ -151,8 +152,9 @@ namespace michi
                 MultiPolygon2 jmap;
             };
 
+            /** \e jmap false: no J-map polygons (a picture of another scene than the problem's) */
             ConfigView buildConfigView(const Problem &problem, const RobotGeometry &robot,
-                                       const std::vector<SampledPath> &paths, const Query *query);
+                                       const std::vector<SampledPath> &paths, const Query *query, bool jmap = true);
 
             void drawConfigPanel(SvgWriter &svg, const ConfigView &c, const ViewTransform &t,
                                  const std::vector<SampledPath> &paths);

@@ -105,11 +105,12 @@ namespace michi
                 }
 
                 /** The top view, and the side view for robots that leave the x-y plane. */
-                std::vector<WorldView> buildWorldViews(const Problem &problem, const RobotGeometry &robot,
+                std::vector<WorldView> buildWorldViews(const Problem &problem, const validity::Scene *scene,
+                                                       const RobotGeometry &robot,
                                                        const std::vector<SampledPath> &paths, const Query *query)
                 {
                     std::vector<WorldView> views;
-                    views.push_back(buildWorldView(problem, robot, paths, query, Eigen::Isometry3d::Identity()));
+                    views.push_back(buildWorldView(problem, scene, robot, paths, query, Eigen::Isometry3d::Identity()));
                     WorldView &top = views.back();
                     top.id = "top-view";
                     top.title = "top view (x-y)";
@@ -123,7 +124,7 @@ namespace michi
                     }
                     if (robot.spatial())
                     {
-                        views.push_back(buildWorldView(problem, robot, paths, query, sideView()));
+                        views.push_back(buildWorldView(problem, scene, robot, paths, query, sideView()));
                         WorldView &side = views.back();
                         side.id = "side-view";
                         side.title = "side view (x-z, seen from -y)";
@@ -200,17 +201,26 @@ namespace michi
         }      // namespace svg_plot
 
         void writeProblemSvg(const Problem &problem, const std::vector<PlotPath> &paths, const std::string &file,
-                             std::size_t query)
+                             std::size_t query, const PictureOverride &override)
         {
             using namespace svg_plot;  // the pieces of the picture (SvgPanels.h)
-            const Query *q = chosenQuery(problem, query);
+            const Query *q = override.query;
+            if (q)
+            {
+                checkValues(q->start, problem.dimension(), "start of the picture's query");
+                checkValues(q->goal, problem.dimension(), "goal of the picture's query");
+            }
+            else
+                q = chosenQuery(problem, query);
+            const validity::Scene *scene = override.scene ? override.scene.get() : problem.scene.get();
             const RobotGeometry robot(problem);
             const std::vector<SampledPath> sampled = samplePaths(paths, robot, problem.dimension());
-            const std::vector<WorldView> views = buildWorldViews(problem, robot, sampled, q);
+            const std::vector<WorldView> views = buildWorldViews(problem, scene, robot, sampled, q);
             std::optional<ConfigView> config;
-            // A configuration-space panel only for two planned joints: the plane of (theta1, theta2), as in the J-map.
+            // A configuration-space panel only for two planned joints: the plane of (theta1, theta2), as in the J-map
+            // (the problem's J-map: none for a picture of another scene).
             if (problem.kind == Problem::Kind::ARM && problem.dimension() == 2)
-                config = buildConfigView(problem, robot, sampled, q);
+                config = buildConfigView(problem, robot, sampled, q, !override.scene);
             const auto legend = legendEntries(problem, views.front(), sampled, q != nullptr);
             const Layout layout = layoutPanels(views, config, legend.size());
 

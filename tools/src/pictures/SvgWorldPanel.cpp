@@ -86,12 +86,12 @@ namespace michi
                 }
             }  // namespace
 
-            WorldView buildWorldView(const Problem &problem, const RobotGeometry &robot,
+            WorldView buildWorldView(const Problem &problem, const validity::Scene *scene, const RobotGeometry &robot,
                                      const std::vector<SampledPath> &paths, const Query *query,
                                      const Eigen::Isometry3d &view)
             {
                 WorldView v;
-                addScene(problem.scene.get(), view, v);
+                addScene(scene, view, v);
                 // Links no planned joint moves look the same in every state: any values place them.
                 const Values reference = query ? query->start : Values(problem.dimension(), 0.);
                 v.fixedLinks = robot.fixedLinks(reference, view);

@@ -408,13 +408,14 @@ namespace michi
         }
 
         std::vector<og::PathGeometric> solveTrainingQueries(const Problem &problem, const PlanningContext &ctx,
-                                                            std::ostream *progress)
+                                                            std::ostream *progress, std::optional<std::size_t> only)
         {
             const auto si = ctx.setup->getSpaceInformation();
             const auto &training = problem.experience.training;
             std::vector<og::PathGeometric> paths;
             const auto began = std::chrono::steady_clock::now();
-            for (std::size_t i = 0; i < training.size(); ++i)
+            for (std::size_t i = only ? *only : 0; i < (only ? std::min(*only + 1, training.size()) : training.size());
+                 ++i)
             {
                 const std::string key = "experience.training[" + std::to_string(i) + "]";
                 for (const auto *which : {"start", "goal"})
@@ -429,7 +430,7 @@ namespace michi
                     paths.push_back(path);
             }
             if (progress)
-                *progress << "michi bench: training: " << paths.size() << " of " << training.size()
+                *progress << "michi bench: training: " << paths.size() << " of " << (only ? 1 : training.size())
                           << " training queries solved by RRT-Connect (" << problem.experience.trainingTime
                           << " s each) in " << std::setprecision(3) << seconds(began) << " s (not in run times)"
                           << std::endl;

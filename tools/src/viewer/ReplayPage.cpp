@@ -24,11 +24,12 @@ namespace michi
         {
             namespace ob = ompl::base;
 
-            std::string obstaclesJson(const Problem &problem, replay::ShapeTable &shapes, std::string &map)
+            std::string obstaclesJson(const Problem &problem, const validity::Scene &scene, replay::ShapeTable &shapes,
+                                      std::string &map)
             {
                 std::string out = "[";
                 std::vector<validity::Obstacle> cells;
-                for (const auto &obstacle : problem.scene->obstacles())
+                for (const auto &obstacle : scene.obstacles())
                 {
                     // A map's cells go into one textured plane (mapJson) instead of thousands of boxes: the page stays
                     // small and fast.
@@ -248,7 +249,8 @@ namespace michi
             const replay::RobotBodies robot(problem, shapes, options.fixedValues);
             std::string map;
             // One shape table for obstacles and robot: a shape both use (or many links share) is written once.
-            const std::string obstacles = obstaclesJson(problem, shapes, map);
+            const std::string obstacles =
+                obstaclesJson(problem, options.scene ? *options.scene : *problem.scene, shapes, map);
             const std::string fixedParts = robot.staticPartsJson(shapes);
             std::string pathsJson = "[";
             for (std::size_t i = 0; i < paths.size(); ++i)

@@ -8,6 +8,7 @@
 #include <ompl/geometric/PathGeometric.h>
 
 #include <ostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,10 +67,11 @@ namespace michi
 
         /** \brief Solve every training query with RRT-Connect (problem.experience.trainingTime each), simplify
             the solutions (OMPL's PathSimplifier) and return them. Checks each start and goal first (ProblemError
-            naming experience.training[i]). */
+            naming experience.training[i]). \e only: that training query alone. */
         std::vector<ompl::geometric::PathGeometric> solveTrainingQueries(const Problem &problem,
                                                                          const PlanningContext &ctx,
-                                                                         std::ostream *progress);
+                                                                         std::ostream *progress,
+                                                                         std::optional<std::size_t> only = {});
 
         /** \brief When some of \e planners are michi::planners::ExperiencePlanner and the problem has training
             queries: solve them (solveTrainingQueries) and give every such planner the paths. Returns the number

@@ -5,6 +5,7 @@
 #include <michi/tools/problem/Problem.h>
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ namespace michi
                 `michi replan` episode, whose moving obstacles' key frames are on the same clock): every state is a
                 frame and a waypoint, none is added, and \e duration and \e frames do not apply to it. */
             std::vector<std::vector<double>> times;
+            /** \brief The obstacles the page shows in place of the problem's scene (a `michi replan` episode's
+                obstacles with their key frames); null: the problem's scene. */
+            std::shared_ptr<const validity::Scene> scene;
         };
 
         /** \brief The data a replay page shows, as JSON: the scene (obstacle shapes and poses, moving obstacles'
