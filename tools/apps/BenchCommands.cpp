@@ -206,11 +206,12 @@ namespace michi
                     if (args.html)
                         writeReplayPage(problem, {PlotPath{name, states}}, stage.path(page).string());
                     stage.commit();
-                    const std::string stem = (stage.out() / base).string();
+                    // the folder as the user wrote it (as before the outputs were staged): scripts match this line
+                    const std::string stem = (fs::path(args.out) / base).string();
                     std::cerr << "michi plan: wrote " << stem << ".path" << (args.html ? ", " : " and ") << stem
                               << ".svg";
                     if (args.html)
-                        std::cerr << " and " << (stage.out() / page).string();
+                        std::cerr << " and " << (fs::path(args.out) / page).string();
                     std::cerr << std::endl;
                     return 0;
                 }
