@@ -93,21 +93,41 @@ namespace michi
             }
             if (out->edges_.empty())
                 return nullptr;
+            for (const Edge2 &e : out->edges_)
+            {
+                out->boxLo_.push_back(e.a.cwiseMin(e.b));
+                out->boxHi_.push_back(e.a.cwiseMax(e.b));
+            }
             return out;
         }
 
         double CapsuleClearance::at(const double *values) const
         {
+            // Per-thread buffers: the push calls this six times per point and step, and allocating the model's
+            // configuration, frames and capsules each time cost as much as the distances.
+            thread_local std::vector<double> q;
+            thread_local std::vector<validity::Capsule2> capsules;
+            thread_local std::vector<Eigen::Isometry2d> frames;
+            q = configuration_;
             // The group's values into the model's configuration (the other joints keep the values the checker uses).
-            std::vector<double> q = configuration_;
             for (std::size_t i = 0; i < variables_.size(); ++i)
                 q[variables_[i]] = values[i];
+            arm_->worldCapsules(q.data(), capsules, frames);
             double best = std::numeric_limits<double>::infinity();
-            for (const auto &capsule : arm_->worldCapsules(q.data()))
+            for (const auto &capsule : capsules)
             {
+                const Eigen::Vector2d lo = capsule.a.cwiseMin(capsule.b), hi = capsule.a.cwiseMax(capsule.b);
                 double nearest = std::numeric_limits<double>::infinity();
-                for (const Edge2 &e : edges_)
-                    nearest = std::min(nearest, segmentSegmentSquared(capsule.a, capsule.b, e.a, e.b));
+                for (std::size_t k = 0; k < edges_.size(); ++k)
+                {
+                    // The boxes' gap is a lower bound of the segments' distance: an edge whose box is already
+                    // farther than the nearest edge found cannot be nearer.
+                    const Eigen::Vector2d gap =
+                        (lo - boxHi_[k]).cwiseMax(boxLo_[k] - hi).cwiseMax(Eigen::Vector2d::Zero());
+                    if (gap.squaredNorm() >= nearest)
+                        continue;
+                    nearest = std::min(nearest, segmentSegmentSquared(capsule.a, capsule.b, edges_[k].a, edges_[k].b));
+                }
                 best = std::min(best, std::sqrt(nearest) - capsule.radius);
             }
             return std::max(best, 0.);

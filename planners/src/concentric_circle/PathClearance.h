@@ -48,9 +48,10 @@ namespace michi
         private:
             CapsuleClearance() = default;
             std::shared_ptr<const validity::PlanarArm> arm_;
-            std::vector<int> variables_;         ///< model configuration index of each group value
-            std::vector<double> configuration_;  ///< the model's configuration with the group's values unset
-            std::vector<Edge2> edges_;           ///< every obstacle polygon's edges (outer and inner rings)
+            std::vector<int> variables_;                  ///< model configuration index of each group value
+            std::vector<double> configuration_;           ///< the model's configuration with the group's values unset
+            std::vector<Edge2> edges_;                    ///< every obstacle polygon's edges (outer and inner rings)
+            std::vector<Eigen::Vector2d> boxLo_, boxHi_;  ///< each edge's bounding box
         };
 
         /** \brief A clearance to push along: the state's clearance in some measure (larger is safer). */

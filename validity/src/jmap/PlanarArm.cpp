@@ -210,6 +210,27 @@ namespace michi
             return out;
         }
 
+        void PlanarArm::worldCapsules(const double *q, std::vector<Capsule2> &out,
+                                      std::vector<Eigen::Isometry2d> &frames) const
+        {
+            // as linkFrames() and worldCapsules() above, into the caller's buffers
+            frames.assign(links_.size(), Eigen::Isometry2d::Identity());
+            frames[rootLink_] = base_;
+            for (int j : order_)
+            {
+                const Joint &joint = joints_[j];
+                double angle = joint.originAngle;
+                if (joint.variable >= 0)
+                    angle += joint.axisSign * q[joint.variable];
+                frames[joint.childLink] =
+                    frames[joint.parentLink] * Eigen::Translation2d(joint.origin) * Eigen::Rotation2Dd(angle);
+            }
+            out.clear();
+            for (std::size_t l = 0; l < links_.size(); ++l)
+                for (const auto &cap : links_[l].capsules)
+                    out.push_back({frames[l] * cap.a, frames[l] * cap.b, cap.radius});
+        }
+
         bool PlanarArm::moves(int variable, int link) const
         {
             while (links_[link].joint >= 0)

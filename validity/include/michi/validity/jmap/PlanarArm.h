@@ -99,6 +99,10 @@ namespace michi
             std::vector<Eigen::Isometry2d> linkFrames(const double *q) const;
             /** \brief Every capsule in the world frame for configuration \e q; \e owner gets each one's link. */
             std::vector<Capsule2> worldCapsules(const double *q, std::vector<int> *owner = nullptr) const;
+            /** \brief The same into \e out, with \e frames as scratch: no allocation once both have grown (hot
+                loops, e.g. a clearance gradient). */
+            void worldCapsules(const double *q, std::vector<Capsule2> &out,
+                               std::vector<Eigen::Isometry2d> &frames) const;
             /** \brief True when link \e link is moved by configuration value \e variable (it lies below that
                 joint in the tree). */
             bool moves(int variable, int link) const;
