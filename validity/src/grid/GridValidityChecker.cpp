@@ -141,6 +141,8 @@ namespace michi
             OccupancyGrid grid =
                 rasterizeScene(*scene_, res, origin, static_cast<int>(i1 - i0), static_cast<int>(j1 - j0), tolerance_);
             table_ = std::make_unique<HeadingTable>(std::move(grid), footprint_, settings.headings, tolerance_);
+            if (exact_)
+                table_->buildBand();
             // points of the outline at most one cell apart, for clearance()
             for (std::size_t e = 0; e < footprint_.size(); ++e)
             {
