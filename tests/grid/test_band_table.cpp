@@ -78,7 +78,7 @@ namespace
     }
 }  // namespace
 
-TEST(BandTable, SubEntriesAgreeWithTheExactTest)
+TEST(GridBandTable, SubEntriesAgreeWithTheExactTest)
 {
     ompl::RNG::setSeed(11);
     ompl::RNG rng(3);
@@ -103,7 +103,7 @@ TEST(BandTable, SubEntriesAgreeWithTheExactTest)
     }
 }
 
-TEST(BandTable, NonConvexFootprint)
+TEST(GridBandTable, NonConvexFootprint)
 {
     ompl::RNG rng(5);
     // an L: triangles, no blocked bits in the heading table (every invalid entry is a band entry)
@@ -117,7 +117,7 @@ TEST(BandTable, NonConvexFootprint)
     EXPECT_GT(c.decided, c.band / 2) << c.decided << " of " << c.band;
 }
 
-TEST(BandTable, LocalUpdateEqualsRebuild)
+TEST(GridBandTable, LocalUpdateEqualsRebuild)
 {
     ompl::RNG rng(7);
     const std::vector<Eigen::Vector2d> robot{{-0.1, -0.04}, {0.1, -0.04}, {0.1, 0.04}, {-0.1, 0.04}};
