@@ -115,24 +115,18 @@ namespace michi
             // Bit rows padded to whole 64-bit words, so that every row starts on a word and a row range is a few word
             // masks.
             wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
-            occupiedBits_.assign(wordsPerRow_ * grid_.height, 0);
+            cells_.assign(2 * wordsPerRow_ * grid_.height, 0);
             for (int j = 0; j < grid_.height; ++j)
                 for (int i = 0; i < grid_.width; ++i)
                     if (grid_.cells[static_cast<std::size_t>(j) * grid_.width + i])
-                        occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] |= std::uint64_t{1}
-                                                                                                << (i & 63);
-            // Heading-major layout: entry (i, j, k) is bit i of row (k * height + j).
-            bits_.assign(wordsPerRow_ * grid_.height * headings_, 0);
+                        cells_[2 * (static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)) + 1] |= std::uint64_t{1}
+                                                                                                   << (i & 63);
+            words_.assign(2 * wordsPerRow_ * grid_.height * headings_, 0);
             makeCoreStamps();
-            // The core table exists only for a convex footprint (makeCoreStamps); freePose() skips the shortcut
-            // otherwise.
-            if (!coreStamps_.empty())
-                blockedBits_.assign(bits_.size(), 0);
             blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
             const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
             blockAllValid_.assign(blocks / 64 + 1, 0);
             blockAllInvalid_.assign(blocks / 64 + 1, 0);
-            cellAllValid_.assign(wordsPerRow_ * grid_.height, 0);
             cellAllInvalid_.assign(wordsPerRow_ * grid_.height, 0);
             computeRegion(CellBox{0, grid_.width - 1, 0, grid_.height - 1});
         }
@@ -156,7 +150,8 @@ namespace michi
                     // cell (i, j).
                     const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ * 64 + static_cast<std::size_t>(i);
                     const std::uint64_t bit = std::uint64_t{1} << (c & 63);
-                    cellAllValid_[c >> 6] = allValid ? (cellAllValid_[c >> 6] | bit) : (cellAllValid_[c >> 6] & ~bit);
+                    std::uint64_t &all = cells_[2 * (c >> 6)];
+                    all = allValid ? (all | bit) : (all & ~bit);
                     cellAllInvalid_[c >> 6] =
                         allInvalid ? (cellAllInvalid_[c >> 6] | bit) : (cellAllInvalid_[c >> 6] & ~bit);
                 }
@@ -201,6 +196,12 @@ namespace michi
             }
             if (certainlyBlocked(x, y, yaw))
                 return false;
+            return footprintFree(x, y, yaw, margin);
+        }
+
+        bool HeadingTable::footprintFree(double x, double y, double yaw, double margin) const
+        {
+            const double inv = inverseResolution_;
             // The footprint grown by the caller's margin (a motion's spacing) and the table's tolerance, in cells; the
             // 1e-9 turns a touch at round-off into a collision.
             const double m = (margin + tolerance_) * inv + 1e-9;
@@ -226,6 +227,13 @@ namespace michi
                     return false;
                 // Row j's grown band [j - m, j + 1 + m] meets [vmin, vmax] exactly for these j.
                 const int j0 = static_cast<int>(std::ceil(vmin - m - 1.)), j1 = static_cast<int>(std::floor(vmax + m));
+                // each edge's x per unit of y, once (not a division per row)
+                double slope[16];
+                for (std::size_t p = 0; p < n; ++p)
+                {
+                    const std::size_t q = p + 1 == n ? 0 : p + 1;
+                    slope[p] = v[q] != v[p] ? (u[q] - u[p]) / (v[q] - v[p]) : 0.;
+                }
                 for (int j = std::max(0, j0); j <= j1; ++j)
                 {
                     const double lo = j - m, hi = j + 1. + m;
@@ -237,21 +245,27 @@ namespace michi
                             xa = std::min(xa, u[p]);
                             xb = std::max(xb, u[p]);
                         }
-                        const std::size_t q = (p + 1) % n;
-                        for (double y0 : {lo, hi})
-                            if ((v[p] - y0) * (v[q] - y0) < 0.)
-                            {
-                                const double xc = u[p] + (u[q] - u[p]) * (y0 - v[p]) / (v[q] - v[p]);
-                                xa = std::min(xa, xc);
-                                xb = std::max(xb, xc);
-                            }
+                        const std::size_t q = p + 1 == n ? 0 : p + 1;
+                        // the edge crosses the band's lower or upper line
+                        if ((v[p] - lo) * (v[q] - lo) < 0.)
+                        {
+                            const double xc = u[p] + slope[p] * (lo - v[p]);
+                            xa = std::min(xa, xc);
+                            xb = std::max(xb, xc);
+                        }
+                        if ((v[p] - hi) * (v[q] - hi) < 0.)
+                        {
+                            const double xc = u[p] + slope[p] * (hi - v[p]);
+                            xa = std::min(xa, xc);
+                            xb = std::max(xb, xc);
+                        }
                     }
                     if (!(xa <= xb))
                         continue;
                     // The same for columns: cell i's grown span [i - m, i + 1 + m] meets the piece's x range [xa, xb].
                     const int i0 = std::max(0, static_cast<int>(std::ceil(xa - m - 1.)));
                     const int i1 = std::min(grid_.width - 1, static_cast<int>(std::floor(xb + m)));
-                    const std::uint64_t *row = occupiedBits_.data() + static_cast<std::size_t>(j) * wordsPerRow_;
+                    const std::uint64_t *row = cells_.data() + 2 * static_cast<std::size_t>(j) * wordsPerRow_ + 1;
                     for (int w = i0 >> 6; w <= i1 >> 6; ++w)
                     {
                         std::uint64_t mask = ~std::uint64_t{0};
@@ -261,7 +275,7 @@ namespace michi
                             mask &= ~std::uint64_t{0} << (i0 & 63);
                         if (w == i1 >> 6 && (i1 & 63) != 63)
                             mask &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
-                        if (row[w] & mask)
+                        if (row[2 * w] & mask)
                             return false;
                     }
                 }
@@ -269,9 +283,82 @@ namespace michi
             return true;
         }
 
+        void HeadingTable::buildBand()
+        {
+            band_ = BandTable(pieces_, grid_.resolution, headings_, tolerance_);
+            computeBand(nullptr);
+        }
+
+        void HeadingTable::computeBand(const CellBox *box)
+        {
+            if (band_.empty())
+                return;
+            const std::size_t words = words_.size() / 2;
+            // the occupancy as rows of words (BandTable::compute reads it so)
+            std::vector<std::uint64_t> occupied(wordsPerRow_ * grid_.height);
+            for (std::size_t w = 0; w < occupied.size(); ++w)
+                occupied[w] = cells_[2 * w + 1];
+            const int h = grid_.height;
+            const std::uint64_t lastMask =
+                (grid_.width & 63) ? (std::uint64_t{1} << (grid_.width & 63)) - 1 : ~std::uint64_t{0};
+            const std::vector<std::uint32_t> &oldPrefix = band_.prefix();
+            std::vector<std::uint32_t> prefix(words + 1, 0);
+            std::vector<BandTable::Entry> entries;
+            entries.reserve(box ? band_.size() + band_.size() / 8 : 0);
+            for (int k = 0; k < headings_; ++k)
+                for (int j = 0; j < h; ++j)
+                    for (std::size_t wc = 0; wc < wordsPerRow_; ++wc)
+                    {
+                        const std::size_t w = (static_cast<std::size_t>(k) * h + j) * wordsPerRow_ + wc;
+                        if (entries.size() > std::numeric_limits<std::uint32_t>::max())
+                            throw std::length_error("HeadingTable: too many band entries");
+                        prefix[w] = static_cast<std::uint32_t>(entries.size());
+                        const std::uint64_t mask = ~words_[2 * w] & ~words_[2 * w + 1] &
+                                                   (wc + 1 == wordsPerRow_ ? lastMask : ~std::uint64_t{0});
+                        // the entries of this word to compute (the others keep their sub-entries)
+                        std::uint64_t fresh = ~std::uint64_t{0};
+                        if (box)
+                        {
+                            fresh = 0;
+                            const int c0 = static_cast<int>(wc) * 64;
+                            if (j >= box->j0 && j <= box->j1 && box->i0 <= c0 + 63 && box->i1 >= c0)
+                            {
+                                const int a = std::max(box->i0, c0) - c0, b = std::min(box->i1, c0 + 63) - c0;
+                                fresh = (b == 63 ? ~std::uint64_t{0} : (std::uint64_t{1} << (b + 1)) - 1) &
+                                        ~((std::uint64_t{1} << a) - 1);
+                            }
+                        }
+                        // old entries of this word: those outside the box are the same (before the box's columns,
+                        // then after them)
+                        const std::size_t oldStart = box ? oldPrefix[w] : 0;
+                        const std::size_t oldInBox =
+                            box ? oldPrefix[w + 1] - oldPrefix[w] -
+                                      static_cast<std::size_t>(__builtin_popcountll(mask & ~fresh))
+                                : 0;
+                        for (std::uint64_t bits = mask; bits; bits &= bits - 1)
+                        {
+                            const int t = __builtin_ctzll(bits);
+                            if ((fresh >> t) & 1u)
+                            {
+                                entries.push_back(band_.compute(static_cast<int>(wc) * 64 + t, j, k, occupied.data(),
+                                                                wordsPerRow_, grid_.width, h));
+                                continue;
+                            }
+                            const std::uint64_t below = (std::uint64_t{1} << t) - 1;
+                            std::size_t n =
+                                oldStart + static_cast<std::size_t>(__builtin_popcountll(mask & ~fresh & below));
+                            if (fresh & below)
+                                n += oldInBox;  // past the box's columns
+                            entries.push_back(band_.entry(n));
+                        }
+                    }
+            prefix[words] = static_cast<std::uint32_t>(entries.size());
+            band_.assign(std::move(prefix), entries);
+        }
+
         bool HeadingTable::certainlyBlocked(double x, double y, double yaw) const
         {
-            if (blockedBits_.empty())
+            if (coreStamps_.empty())
                 return false;
             const double fx = (x - grid_.origin.x()) * inverseResolution_;
             const double fy = (y - grid_.origin.y()) * inverseResolution_;
@@ -280,7 +367,7 @@ namespace michi
             const int i = static_cast<int>(fx), j = static_cast<int>(fy);
             const int k = headingBin(yaw);
             const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
-            return (blockedBits_[word] >> (i & 63)) & 1u;
+            return (words_[2 * word + 1] >> (i & 63)) & 1u;
         }
 
         void HeadingTable::makeCoreStamps()
@@ -463,17 +550,17 @@ namespace michi
                             blocked[t] |= static_cast<std::uint8_t>(p[b] > p[a]);
                         }
                     }
-                    std::uint64_t *row = bits_.data() + (static_cast<std::size_t>(k) * h + j) * wordsPerRow_;
+                    std::uint64_t *row = words_.data() + 2 * (static_cast<std::size_t>(k) * h + j) * wordsPerRow_;
                     for (int t = 0; t < n; ++t)
                     {
                         const int i = box.i0 + t;
                         const std::uint64_t bit = std::uint64_t{1} << (i & 63);
                         if (blocked[t])
-                            row[i >> 6] &= ~bit;
+                            row[2 * (i >> 6)] &= ~bit;
                         else
-                            row[i >> 6] |= bit;
+                            row[2 * (i >> 6)] |= bit;
                     }
-                    if (blockedBits_.empty())
+                    if (coreStamps_.empty())
                         continue;
                     // the same with the core stamp: an occupied cell in it blocks every pose of the entry
                     std::fill(blocked.begin(), blocked.end(), 0);
@@ -493,15 +580,15 @@ namespace michi
                             blocked[t] |= static_cast<std::uint8_t>(p[b] > p[a]);
                         }
                     }
-                    std::uint64_t *core = blockedBits_.data() + (static_cast<std::size_t>(k) * h + j) * wordsPerRow_;
+                    std::uint64_t *core = row + 1;
                     for (int t = 0; t < n; ++t)
                     {
                         const int i = box.i0 + t;
                         const std::uint64_t bit = std::uint64_t{1} << (i & 63);
                         if (blocked[t])
-                            core[i >> 6] |= bit;
+                            core[2 * (i >> 6)] |= bit;
                         else
-                            core[i >> 6] &= ~bit;
+                            core[2 * (i >> 6)] &= ~bit;
                     }
                 }
             summarise(box);
@@ -534,7 +621,8 @@ namespace michi
                 if ((cell != 0) == occupied)
                     continue;
                 cell = occupied ? 1 : 0;
-                std::uint64_t &bits = occupiedBits_[static_cast<std::size_t>(c.second) * wordsPerRow_ + (c.first >> 6)];
+                std::uint64_t &bits =
+                    cells_[2 * (static_cast<std::size_t>(c.second) * wordsPerRow_ + (c.first >> 6)) + 1];
                 const std::uint64_t bit = std::uint64_t{1} << (c.first & 63);
                 bits = occupied ? (bits | bit) : (bits & ~bit);
                 changed.i0 = std::min(changed.i0, c.first);
@@ -546,6 +634,16 @@ namespace michi
                 return CellBox{};
             const CellBox box = affected(changed);
             computeRegion(box);
+            if (!band_.empty())
+            {
+                // the band's entries read cells within its own reach (and change where the table's do)
+                const int *reach = band_.reach();
+                CellBox b{std::max(0, changed.i0 - reach[1]), std::min(grid_.width - 1, changed.i1 - reach[0]),
+                          std::max(0, changed.j0 - reach[3]), std::min(grid_.height - 1, changed.j1 - reach[2])};
+                b = CellBox{std::min(b.i0, box.i0), std::max(b.i1, box.i1), std::min(b.j0, box.j0),
+                            std::max(b.j1, box.j1)};
+                computeBand(&b);
+            }
             return box;
         }
 
@@ -574,17 +672,17 @@ namespace michi
         std::size_t HeadingTable::validCount() const
         {
             std::size_t n = 0;
-            for (auto w : bits_)
-                n += static_cast<std::size_t>(__builtin_popcountll(w));
+            for (std::size_t w = 0; w < words_.size(); w += 2)
+                n += static_cast<std::size_t>(__builtin_popcountll(words_[w]));
             return n;
         }
 
         std::size_t HeadingTable::bytes() const
         {
-            return (bits_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cellAllValid_.size() +
-                    cellAllInvalid_.size() + occupiedBits_.size() + blockedBits_.size()) *
+            return (words_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cells_.size() +
+                    cellAllInvalid_.size()) *
                        sizeof(std::uint64_t) +
-                   grid_.cells.size();
+                   grid_.cells.size() + band_.bytes();
         }
     }  // namespace validity
 }  // namespace michi

@@ -42,7 +42,9 @@ namespace michi
             conservative: a state it calls valid is free for FCL at every pose of its cell and heading bin, so
             it never lets a collision through. Where the entry is invalid (near obstacles: the footprint is grown
             by the cell and swept over the heading bin) of a grid map, the footprint at the state's own pose is
-            tested exactly against the occupied cells (HeadingTable::freePose), so the checker is exact on the map's
+            tested exactly against the occupied cells (HeadingTable::freeOnGrid: the pose's cell occupied or the
+            entry blocked at every pose: invalid; then the finer bits of a BandTable, 64 sub-entries of the entry;
+            only the poses none of these decide get HeadingTable::freePose), so the checker is exact on the map's
             grid: a narrow door the table closes stays open for the poses that fit (exact()). States outside the
             grid are invalid.
 
@@ -65,12 +67,13 @@ namespace michi
             bool isValid(const ompl::base::State *state, double &dist) const override;
             double clearance(const ompl::base::State *state) const override;
 
-            /** \brief The same on a pose: the table's entry when it is valid (most queries), else the exact test
-                of the footprint at this pose against the occupied cells (HeadingTable::freePose), so that poses
-                near obstacles that the entry's other poses would hit are not refused. */
+            /** \brief The same on a pose: the table's entry when it is valid (most queries), else, on a grid map,
+                the exact answer on the grid (HeadingTable::freeOnGrid: the band's finer bits, then the footprint at
+                this pose against the occupied cells), so that poses near obstacles that the entry's other poses
+                would hit are not refused. */
             bool isValidPose(double x, double y, double yaw) const
             {
-                return table_->validPose(x, y, yaw) || (exact_ && table_->freePose(x, y, yaw));
+                return exact_ ? table_->freeOnGrid(x, y, yaw) : table_->validPose(x, y, yaw);
             }
             /** \brief Does an invalid entry fall back to the exact test at the pose? Only on a grid map's cells
                 (GridCheckerSettings::mapResolution > 0), which are the obstacles exactly; a polygon scene's cells

@@ -1,6 +1,7 @@
 #ifndef MICHI_VALIDITY_GRID_HEADING_TABLE_
 #define MICHI_VALIDITY_GRID_HEADING_TABLE_
 
+#include <michi/validity/grid/BandTable.h>
 #include <michi/validity/grid/OccupancyGrid.h>
 
 #include <Eigen/Core>
@@ -46,9 +47,10 @@ namespace michi
             Summaries of 8 x 8-cell blocks and of cells (valid at every heading, invalid at every heading) answer
             most queries from a few kilobytes and two bits a cell that stay in the cache; the rest read the table.
 
-            Memory: headings x width x height bits plus a byte of occupancy per cell (and, while computing, a
-            32-bit running count per cell of the rows computed). A 2048 x 2048 table with 16 headings holds
-            8 MiB of bits and 12 MiB in all.
+            Memory: two bits per entry (valid; blocked: every pose collides), interleaved per 64 entries so that a
+            query finds both in one cache line, a byte of occupancy per cell (and, while computing, a 32-bit running
+            count per cell of the rows computed), and the BandTable when buildBand() made one. A 2048 x 2048 table
+            with 16 headings holds 16 MiB of bits.
 
             Queries are const and thread-safe; setOccupied() is not (no query may run meanwhile). */
         class HeadingTable
@@ -93,7 +95,7 @@ namespace michi
                 if (k < 0)
                     k += headings_;
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
-                return (bits_[word] >> (i & 63)) & 1u;
+                return (words_[2 * word] >> (i & 63)) & 1u;
             }
             /** \brief The entry holding pose (x, y, yaw); false outside the grid or for a non-finite value. The hot
                 path of the grid checker: a few multiplications and one bit (no division, no library call). */
@@ -113,7 +115,7 @@ namespace michi
                     return false;
                 // then cells valid (or invalid) at every heading: two bits a cell
                 const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ * 64 + static_cast<std::size_t>(i);
-                if ((cellAllValid_[c >> 6] >> (c & 63)) & 1u)
+                if ((cells_[2 * (c >> 6)] >> (c & 63)) & 1u)
                     return true;
                 if ((cellAllInvalid_[c >> 6] >> (c & 63)) & 1u)
                     return false;
@@ -127,7 +129,85 @@ namespace michi
                 if (k < 0 || k >= headings_)
                     k = headingBin(yaw);  // more than a turn away from [-pi, pi)
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
-                return (bits_[word] >> (i & 63)) & 1u;
+                return (words_[2 * word] >> (i & 63)) & 1u;
+            }
+            /** \brief Is the footprint at pose (x, y, yaw) clear of every occupied cell? The same answer as
+                freePose(x, y, yaw), for the grid checker on grid maps, mostly from bits: a valid entry (free), the
+                pose's own cell occupied or a blocked entry (collides), then, for a band entry (invalid, not
+                blocked), its sub-entry in the BandTable (when buildBand() made one: free or colliding at every pose
+                of the sub-entry); only a pose none of them decides is tested exactly. False outside the grid. */
+            bool freeOnGrid(double x, double y, double yaw) const
+            {
+                const double fx = (x - grid_.origin.x()) * inverseResolution_;
+                const double fy = (y - grid_.origin.y()) * inverseResolution_;
+                if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height && std::abs(yaw) < 1e6))
+                    return false;
+                const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+                const std::size_t b = static_cast<std::size_t>(j >> BLOCK_SHIFT) * blocksPerRow_ +
+                                      static_cast<std::size_t>(i >> BLOCK_SHIFT);
+                if ((blockAllValid_[b >> 6] >> (b & 63)) & 1u)
+                    return true;
+                const double fb = yaw * inverseStep_ + 0.5;
+                int k = static_cast<int>(fb);
+                k -= (fb < k) ? 1 : 0;  // floor
+                if (k < 0)
+                    k += headings_;
+                if (k >= headings_)
+                    k -= headings_;
+                if (k < 0 || k >= headings_)
+                    k = headingBin(yaw);  // more than a turn away from [-pi, pi)
+                const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+                // the three cache lines a query may need next are fetched at once, not one after the other (on a
+                // large map, after other work, each is a miss)
+                __builtin_prefetch(&words_[2 * word]);
+                if (!band_.empty())
+                    __builtin_prefetch(&band_.prefix()[word]);
+                // the cell's "valid at every heading" and "occupied" bits share a cache line
+                const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ + static_cast<std::size_t>(i >> 6);
+                if ((cells_[2 * c] >> (i & 63)) & 1u)
+                    return true;
+                if (originInside_ && ((cells_[2 * c + 1] >> (i & 63)) & 1u))
+                    return false;  // the footprint holds the origin, in an occupied cell
+                const std::uint64_t valid = words_[2 * word];
+                if ((valid >> (i & 63)) & 1u)
+                    return true;
+                const std::uint64_t blocked = words_[2 * word + 1];  // the same cache line
+                if ((blocked >> (i & 63)) & 1u)
+                    return false;
+                if (!band_.empty())
+                {
+                    const std::uint64_t below = (std::uint64_t{1} << (i & 63)) - 1;
+                    const BandTable::Entry &e = band_.entry(
+                        band_.rank(word) + static_cast<std::size_t>(__builtin_popcountll(~valid & ~blocked & below)));
+                    const int s = band_.subEntry(fx, fy, fb);
+                    if ((e.valid >> s) & 1u)
+                        return true;
+                    if ((e.blocked >> s) & 1u)
+                        return false;
+                }
+                return footprintFree(x, y, yaw, 0.);
+            }
+            /** \brief Split the band entries (invalid, not blocked) into sub-entries (BandTable) for freeOnGrid();
+                kept up to date by setOccupied() and update() from then on. */
+            void buildBand();
+            const BandTable &band() const
+            {
+                return band_;
+            }
+            /** \brief The band's sub-entries of entry (i, j, k); null when it is no band entry (valid, blocked or
+                outside the grid) or buildBand() was not called. */
+            const BandTable::Entry *bandEntry(int i, int j, int k) const
+            {
+                if (band_.empty() || !grid_.inside(i, j) || k < 0 || k >= headings_)
+                    return nullptr;
+                const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+                const std::uint64_t valid = words_[2 * word];
+                const std::uint64_t blocked = words_[2 * word + 1];  // the same cache line
+                if (((valid | blocked) >> (i & 63)) & 1u)
+                    return nullptr;
+                const std::uint64_t below = (std::uint64_t{1} << (i & 63)) - 1;
+                return &band_.entry(band_.rank(word) +
+                                    static_cast<std::size_t>(__builtin_popcountll(~valid & ~blocked & below)));
             }
             /** \brief Is the footprint at pose (x, y, yaw), grown by \e margin metres (a square growth, so at least
                 as far in every direction), clear of every occupied cell? Exact on the grid (each convex piece of the
@@ -140,7 +220,7 @@ namespace michi
             {
                 if (!grid_.inside(i, j))
                     return false;
-                return (occupiedBits_[static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)] >> (i & 63)) & 1u;
+                return (cells_[2 * (static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)) + 1] >> (i & 63)) & 1u;
             }
             /** \brief Cells that, when occupied, make heading \e k invalid, relative to the pose's cell. */
             const std::vector<GridSpan> &stamp(int k) const
@@ -169,8 +249,12 @@ namespace michi
             /** \brief coreStamps_ of a convex footprint: the cells the footprint covers whole at every pose of an
                 entry (every position in the cell, every yaw in the bin). */
             void makeCoreStamps();
-            /** \brief Is entry (cell of x, y; bin of yaw) known to collide at every pose (blockedBits_)? */
+            /** \brief Is entry (cell of x, y; bin of yaw) known to collide at every pose (its blocked bit)? */
             bool certainlyBlocked(double x, double y, double yaw) const;
+            /** \brief freePose() without its shortcuts: the footprint's pieces against the rows of cells. */
+            bool footprintFree(double x, double y, double yaw, double margin) const;
+            /** \brief Recompute the band's sub-entries of the entries in \e box (all when null), keep the others. */
+            void computeBand(const CellBox *box);
             void computeRegion(const CellBox &box);
             /** \brief Recompute the block summaries of the blocks meeting \e box. */
             void summarise(const CellBox &box);
@@ -183,23 +267,25 @@ namespace michi
             double inverseResolution_{0.};
             double circumradius_{0.};
             std::size_t wordsPerRow_{0};
-            std::vector<std::uint64_t> bits_;
-            /** like bits_: 1 where an occupied cell lies in the entry's core stamp, so every pose of the entry
-                collides and freePose() need not look (empty when the footprint is not convex) */
-            std::vector<std::uint64_t> blockedBits_;
+            /** the table, two words per 64 entries (k, j, i / 64): the valid bits, then the blocked bits (1 where an
+                occupied cell lies in the entry's core stamp, so every pose of the entry collides and freePose() need
+                not look; all 0 when the footprint is not convex), so that a query finds both in one cache line */
+            std::vector<std::uint64_t> words_;
             std::vector<std::vector<GridSpan>> coreStamps_;
             std::size_t blocksPerRow_{0};
             std::vector<std::uint64_t> blockAllValid_;    ///< per 8 x 8 block: every entry valid
             std::vector<std::uint64_t> blockAllInvalid_;  ///< per 8 x 8 block: every entry invalid
-            std::vector<std::uint64_t> cellAllValid_;    ///< per cell (rows of wordsPerRow_ words): every heading valid
-            std::vector<std::uint64_t> cellAllInvalid_;  ///< per cell: every heading invalid
-            std::vector<std::uint64_t> occupiedBits_;    ///< per cell (rows of wordsPerRow_ words): occupied
+            /** per cell, two words per 64 cells (j, i / 64): valid at every heading, then occupied */
+            std::vector<std::uint64_t> cells_;
+            std::vector<std::uint64_t>
+                cellAllInvalid_;  ///< per cell (rows of wordsPerRow_ words): every heading invalid
             /** convex pieces of the footprint (its hull when it is convex, else triangles), for freePose() */
             std::vector<std::vector<Eigen::Vector2d>> pieces_;
             double tolerance_{0.};
             /** the robot's origin lies in its footprint: a pose in an occupied cell collides (freePose's shortcut) */
             bool originInside_{false};
             std::vector<std::vector<GridSpan>> stamps_;
+            BandTable band_;            ///< empty until buildBand()
             int reach_[4]{0, 0, 0, 0};  ///< min dx, max dx, min dy, max dy over all stamps
         };
     }  // namespace validity
