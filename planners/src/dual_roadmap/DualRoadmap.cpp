@@ -28,6 +28,8 @@ namespace michi
             // First word of a saved learning roadmap, followed by the format version (docs/dual-roadmap.md,
             // "DualRoadmap").
             const char *FILE_MAGIC = "michi-dual-roadmap";
+            // Scenes over which a refutation raises an unknown edge's weight (setRefutedEdgePenalty()).
+            constexpr std::uint64_t REFUTED_MEMORY = 32;
         }  // namespace
 
         DualRoadmap::DualRoadmap(const ob::SpaceInformationPtr &si) : ob::Planner(si, "DualRoadmap")
@@ -53,6 +55,8 @@ namespace michi
                                        &DualRoadmap::getMaxLearningEdges, "0:1000:1000000");
             declareParam<double>("unknown_edge_penalty", this, &DualRoadmap::setUnknownEdgePenalty,
                                  &DualRoadmap::getUnknownEdgePenalty, "1.:0.5:10.");
+            declareParam<double>("refuted_edge_penalty", this, &DualRoadmap::setRefutedEdgePenalty,
+                                 &DualRoadmap::getRefutedEdgePenalty, "1.:0.5:20.");
             declareParam<unsigned int>("max_working_vertices", this, &DualRoadmap::setMaxWorkingVertices,
                                        &DualRoadmap::getMaxWorkingVertices, "10:10:1000000");
 
@@ -418,9 +422,19 @@ namespace michi
             // Unknown motions cost more than proved ones: the search prefers what needs no check, so after a local
             // change the path goes round rather than through what must be re-checked (still A*: the heuristic never
             // exceeds the lengths, which only grow)
+            // An unknown edge refuted a short while ago (or into a state refuted then) costs more again: the moving
+            // obstacle that blocked it most likely still does.
+            const auto recent = [&](std::uint64_t refuted)
+            {
+                return refuted != 0 && epoch_ - refuted < REFUTED_MEMORY;
+            };
             const auto cost = [&](Vertex, const Graph::Arc &arc)
             {
-                return arc.length * (knownValidEdge(arc.edge) ? 1. : unknownPenalty_);
+                if (knownValidEdge(arc.edge))
+                    return arc.length;
+                const bool refuted = recent(graph_.edge(arc.edge).refutedIn) ||
+                                     (recent(graph_[arc.to].refutedIn) && !knownValid(arc.to));
+                return arc.length * unknownPenalty_ * (refuted ? refutedPenalty_ : 1.);
             };
             // impassable in this scene: found invalid (now, or earlier and untouched by the changes since)
             const auto passable = [&](const Graph::Arc &arc)
@@ -446,6 +460,7 @@ namespace michi
                 if (!si_->isValid(graph_[v].state))
                 {
                     graph_[v].invalidIn = epoch_;  // impassable in this scene, so the next search goes round it
+                    graph_[v].refutedIn = epoch_;
                     graph_[v].validIn = 0;
                     statesValid = false;
                     continue;
@@ -477,6 +492,7 @@ namespace michi
                     // Invalid in this scene only: the edge stays (a moving obstacle may leave it free again), the
                     // next search avoids it. Edges checked valid before the failing one stay checked and learned.
                     graph_.edge(e.first).invalidIn = epoch_;
+                    graph_.edge(e.first).refutedIn = epoch_;
                     graph_.edge(e.first).validIn = 0;
                     return false;
                 }
@@ -503,6 +519,7 @@ namespace michi
                 return true;
             }
             graph_.edge(e.first).invalidIn = epoch_;
+            graph_.edge(e.first).refutedIn = epoch_;
             graph_.edge(e.first).validIn = 0;
             return false;
         }

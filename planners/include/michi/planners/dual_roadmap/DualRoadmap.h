@@ -225,6 +225,19 @@ namespace michi
                 return unknownPenalty_;
             }
 
+            /** \brief Further weight factor, in the search, of an unknown edge that was found invalid (or leads to a
+                state found invalid) in one of the last 32 scenes: a change near it made the record stale, but a
+                moving obstacle that blocked it a moment ago most likely still does, so the search tries other
+                unknown edges first (each refutation costs a motion check and a search). 1: no memory. */
+            void setRefutedEdgePenalty(double f)
+            {
+                refutedPenalty_ = f;
+            }
+            double getRefutedEdgePenalty() const
+            {
+                return refutedPenalty_;
+            }
+
         private:
             // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
             // at once, without touching the roadmap.
@@ -234,11 +247,13 @@ namespace michi
                 long learnId{-1};            ///< index in the learning roadmap, -1 when not (yet) there
                 std::uint64_t validIn{0};    ///< epoch in which the state was proved valid
                 std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
+                std::uint64_t refutedIn{0};  ///< epoch in which it was last found invalid (kept when that is stale)
             };
             struct EdgeProperties
             {
                 std::uint64_t validIn{0};    ///< epoch in which the motion was proved valid
                 std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
+                std::uint64_t refutedIn{0};  ///< epoch in which it was last found invalid (kept when that is stale)
                 bool learned{false};         ///< in the learning roadmap (proved valid in some scene)
             };
             using Graph = FlatRoadmap<VertexProperties, EdgeProperties>;
@@ -327,6 +342,7 @@ namespace michi
             unsigned int maxLearningEdges_{50000};
             unsigned int maxWorkingVertices_{2000};
             double unknownPenalty_{1.5};
+            double refutedPenalty_{10.};
         };
     }  // namespace planners
 }  // namespace michi
