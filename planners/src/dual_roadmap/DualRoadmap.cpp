@@ -172,6 +172,11 @@ namespace michi
             return stamp == epoch_;
         }
 
+        bool DualRoadmap::recentlyRefuted(std::uint64_t refutedIn) const
+        {
+            return refutedIn != 0 && epoch_ - refutedIn < REFUTED_MEMORY;
+        }
+
         bool DualRoadmap::knownValid(Vertex v)
         {
             auto &p = graph_[v];
@@ -424,16 +429,12 @@ namespace michi
             // exceeds the lengths, which only grow)
             // An unknown edge refuted a short while ago (or into a state refuted then) costs more again: the moving
             // obstacle that blocked it most likely still does.
-            const auto recent = [&](std::uint64_t refuted)
-            {
-                return refuted != 0 && epoch_ - refuted < REFUTED_MEMORY;
-            };
             const auto cost = [&](Vertex, const Graph::Arc &arc)
             {
                 if (knownValidEdge(arc.edge))
                     return arc.length;
-                const bool refuted = recent(graph_.edge(arc.edge).refutedIn) ||
-                                     (recent(graph_[arc.to].refutedIn) && !knownValid(arc.to));
+                const bool refuted = recentlyRefuted(graph_.edge(arc.edge).refutedIn) ||
+                                     (recentlyRefuted(graph_[arc.to].refutedIn) && !knownValid(arc.to));
                 return arc.length * unknownPenalty_ * (refuted ? refutedPenalty_ : 1.);
             };
             // impassable in this scene: found invalid (now, or earlier and untouched by the changes since)
@@ -507,7 +508,9 @@ namespace michi
             {
                 if (knownValidEdge(e.first))
                     return true;
-                if (knownInvalidEdge(e.first))
+                // a shortcut refuted a short while ago is not tried again while its record is stale (smoothing
+                // is optional work; the walker that blocked it most likely still does)
+                if (knownInvalidEdge(e.first) || recentlyRefuted(graph_.edge(e.first).refutedIn))
                     return false;
             }
             ++work_.motionChecks;

@@ -277,6 +277,8 @@ namespace michi
             /** A proof (\e stamp: the epoch it was made in) of the state or motion a-b, renewed to this epoch
                 when no scene change since touched it, else forgotten; true when it holds now. */
             bool stillProved(std::uint64_t &stamp, const ompl::base::State *a, const ompl::base::State *b) const;
+            /** \brief A refutation made in epoch \e refutedIn (0: none) is recent (setRefutedEdgePenalty()). */
+            bool recentlyRefuted(std::uint64_t refutedIn) const;
             bool knownValid(Vertex v);
             bool knownInvalid(Vertex v);
             bool knownValidEdge(Edge e);
