@@ -28,6 +28,8 @@ namespace michi
             // First word of a saved learning roadmap, followed by the format version (docs/dual-roadmap.md,
             // "DualRoadmap").
             const char *FILE_MAGIC = "michi-dual-roadmap";
+            // Scenes over which a refutation raises an unknown edge's weight (setRefutedEdgePenalty()).
+            constexpr std::uint64_t REFUTED_MEMORY = 32;
         }  // namespace
 
         DualRoadmap::DualRoadmap(const ob::SpaceInformationPtr &si) : ob::Planner(si, "DualRoadmap")
@@ -53,6 +55,8 @@ namespace michi
                                        &DualRoadmap::getMaxLearningEdges, "0:1000:1000000");
             declareParam<double>("unknown_edge_penalty", this, &DualRoadmap::setUnknownEdgePenalty,
                                  &DualRoadmap::getUnknownEdgePenalty, "1.:0.5:10.");
+            declareParam<double>("refuted_edge_penalty", this, &DualRoadmap::setRefutedEdgePenalty,
+                                 &DualRoadmap::getRefutedEdgePenalty, "1.:0.5:20.");
             declareParam<unsigned int>("max_working_vertices", this, &DualRoadmap::setMaxWorkingVertices,
                                        &DualRoadmap::getMaxWorkingVertices, "10:10:1000000");
 
@@ -89,7 +93,7 @@ namespace michi
 
         void DualRoadmap::freeWorking()
         {
-            for (auto v : boost::make_iterator_range(boost::vertices(graph_)))
+            for (Vertex v = 0; v < graph_.vertexCount(); ++v)
                 if (graph_[v].state != nullptr)
                     si_->freeState(graph_[v].state);
             graph_.clear();
@@ -122,7 +126,7 @@ namespace michi
             learningEdgeCountAtomic_ = 0;
             // Working vertices that pointed into the forgotten learning roadmap must not be learned under their old
             // ids.
-            for (auto v : boost::make_iterator_range(boost::vertices(graph_)))
+            for (Vertex v = 0; v < graph_.vertexCount(); ++v)
                 graph_[v].learnId = -1;
         }
 
@@ -168,6 +172,11 @@ namespace michi
             return stamp == epoch_;
         }
 
+        bool DualRoadmap::recentlyRefuted(std::uint64_t refutedIn) const
+        {
+            return refutedIn != 0 && epoch_ - refutedIn < REFUTED_MEMORY;
+        }
+
         bool DualRoadmap::knownValid(Vertex v)
         {
             auto &p = graph_[v];
@@ -180,16 +189,22 @@ namespace michi
             return stillProved(p.invalidIn, p.state, p.state);
         }
 
-        bool DualRoadmap::knownValid(const Graph::edge_descriptor &e)
+        bool DualRoadmap::knownValidEdge(Edge e)
         {
-            return stillProved(graph_[e].validIn, graph_[boost::source(e, graph_)].state,
-                               graph_[boost::target(e, graph_)].state);
+            auto &stamp = graph_.edge(e).validIn;
+            if (stamp == epoch_ || stamp == 0)  // the common cases, without a call (the search's inner loop)
+                return stamp != 0;
+            const auto &ends = graph_.ends(e);
+            return stillProved(stamp, graph_[ends.first].state, graph_[ends.second].state);
         }
 
-        bool DualRoadmap::knownInvalid(const Graph::edge_descriptor &e)
+        bool DualRoadmap::knownInvalidEdge(Edge e)
         {
-            return stillProved(graph_[e].invalidIn, graph_[boost::source(e, graph_)].state,
-                               graph_[boost::target(e, graph_)].state);
+            auto &stamp = graph_.edge(e).invalidIn;
+            if (stamp == epoch_ || stamp == 0)
+                return stamp != 0;
+            const auto &ends = graph_.ends(e);
+            return stillProved(stamp, graph_[ends.first].state, graph_[ends.second].state);
         }
 
         void DualRoadmap::setSceneChangeCounter(std::function<std::uint64_t()> counter)
@@ -217,17 +232,17 @@ namespace michi
 
         std::size_t DualRoadmap::workingVertexCount() const
         {
-            return boost::num_vertices(graph_);
+            return graph_.vertexCount();
         }
 
         std::size_t DualRoadmap::workingEdgeCount() const
         {
-            return boost::num_edges(graph_);
+            return graph_.edgeCount();
         }
 
         DualRoadmap::Vertex DualRoadmap::addWorkingVertex(ob::State *state, long learnId)
         {
-            const Vertex v = boost::add_vertex(graph_);
+            const Vertex v = graph_.addVertex();
             graph_[v].state = state;
             graph_[v].learnId = learnId;
             nn_->add(v);
@@ -250,20 +265,18 @@ namespace michi
                 const double d = si_->distance(graph_[v].state, graph_[n].state);
                 if (d > range)
                     continue;
-                auto e = addEdgeOnce(v, n);
-                if (e.second)
-                    graph_[e.first].weight = d;  // validity unknown (epochs 0) until a candidate path uses it
+                addEdgeOnce(v, n);  // validity unknown (epochs 0) until a candidate path uses it
             }
         }
 
-        std::pair<DualRoadmap::Graph::edge_descriptor, bool> DualRoadmap::addEdgeOnce(Vertex a, Vertex b)
+        std::pair<DualRoadmap::Edge, bool> DualRoadmap::addEdgeOnce(Vertex a, Vertex b)
         {
-            // vecS out-edge lists (a plain vector per vertex: the searches iterate them fast) allow parallel edges,
-            // so uniqueness is kept here; degrees are about k, so the lookup is short
-            const auto e = boost::edge(a, b, graph_);
+            // the flat graph allows parallel edges, so uniqueness is kept here; degrees are about 2k, so the lookup is
+            // short
+            const auto e = graph_.findEdge(a, b);
             if (e.second)
                 return {e.first, false};
-            return boost::add_edge(a, b, graph_);
+            return {graph_.addEdge(a, b, si_->distance(graph_[a].state, graph_[b].state)), true};
         }
 
         DualRoadmap::Vertex DualRoadmap::addQueryVertex(const ob::State *state)
@@ -363,10 +376,9 @@ namespace michi
                 auto e = addEdgeOnce(a, b);
                 if (e.second)
                 {
-                    graph_[e.first].weight = si_->distance(graph_[a].state, graph_[b].state);
-                    graph_[e.first].learned = true;
+                    graph_.edge(e.first).learned = true;
                     if (!lazySeeding_)
-                        graph_[e.first].validIn = epoch_;
+                        graph_.edge(e.first).validIn = epoch_;
                     ++learnedWorkingEdges_;
                     ++seeded_;
                 }
@@ -383,71 +395,54 @@ namespace michi
             }
         }
 
-        std::vector<DualRoadmap::Vertex> DualRoadmap::shortestPath(Vertex start, const std::vector<Vertex> &goals)
+        void DualRoadmap::shortestPath(Vertex start, const std::vector<Vertex> &goals, std::vector<Vertex> &path)
         {
-            // Plain A* with lazily re-validated records: Boost's astar_search initialises every vertex per search
-            // (O(V), the top of the profile with many lazy re-searches); here a vertex's entries count only when
-            // stamped by this search, so a search costs what it explores.
-            const std::size_t n = boost::num_vertices(graph_);
-            if (stamp_.size() < n)
+            // A* on the flat graph with buffers kept between searches (RoadmapAStar), lazily re-validated records,
+            // and the heuristic computed once per vertex and goal set (a query repeats its search after every
+            // refuted edge, with the same goals).
+            const std::size_t n = graph_.vertexCount();
+            if (heuristicStamp_.size() < n)
             {
-                stamp_.resize(n, 0);
-                closed_.resize(n, 0);
-                cost_.resize(n, 0.);
-                pred_.resize(n, 0);
+                heuristicStamp_.resize(n, 0);
+                heuristic_.resize(n, 0.);
             }
-            ++search_;
             // Admissible and consistent: the distance to the nearest goal never exceeds the path length through the
-            // roadmap's edges, whose weights are the same distances.
+            // roadmap's edges, whose lengths are the same distances.
             const auto h = [&](Vertex v)
             {
-                double best = std::numeric_limits<double>::infinity();
-                for (Vertex g : goals)
-                    best = std::min(best, si_->distance(graph_[v].state, graph_[g].state));
-                return best;
+                if (heuristicStamp_[v] != goalSet_)
+                {
+                    double best = std::numeric_limits<double>::infinity();
+                    for (Vertex g : goals)
+                        best = std::min(best, si_->distance(graph_[v].state, graph_[g].state));
+                    heuristic_[v] = best;
+                    heuristicStamp_[v] = goalSet_;
+                }
+                return heuristic_[v];
             };
-            using Item = std::pair<double, Vertex>;  // (f, vertex): ties broken by index, deterministic
-            std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-            stamp_[start] = search_;
-            cost_[start] = 0.;
-            pred_[start] = start;
-            open.emplace(h(start), start);
-            while (!open.empty())
+            const auto isGoal = [&](Vertex v)
             {
-                const Vertex u = open.top().second;
-                open.pop();
-                if (closed_[u] == search_)
-                    continue;
-                closed_[u] = search_;
-                if (std::find(goals.begin(), goals.end(), u) != goals.end())
-                {
-                    std::vector<Vertex> path{u};
-                    for (Vertex v = u; v != start; v = pred_[v])
-                        path.push_back(pred_[v]);
-                    std::reverse(path.begin(), path.end());
-                    return path;
-                }
-                for (auto e : boost::make_iterator_range(boost::out_edges(u, graph_)))
-                {
-                    const Vertex w = boost::target(e, graph_);
-                    if (closed_[w] == search_)
-                        continue;
-                    // Unknown motions cost more than proved ones: the search prefers what needs no check, so after a
-                    // local change the path goes round rather than through what must be re-checked (still A*: the
-                    // heuristic never exceeds the weights, which only grow)
-                    const double g = cost_[u] + graph_[e].weight * (knownValid(e) ? 1. : unknownPenalty_);
-                    if (stamp_[w] == search_ && g >= cost_[w])
-                        continue;
-                    // impassable in this scene: found invalid (now, or earlier and untouched by the changes since)
-                    if (knownInvalid(e) || knownInvalid(w))
-                        continue;
-                    stamp_[w] = search_;
-                    cost_[w] = g;
-                    pred_[w] = u;
-                    open.emplace(g + h(w), w);
-                }
-            }
-            return {};
+                return std::find(goals.begin(), goals.end(), v) != goals.end();
+            };
+            // Unknown motions cost more than proved ones: the search prefers what needs no check, so after a local
+            // change the path goes round rather than through what must be re-checked (still A*: the heuristic never
+            // exceeds the lengths, which only grow)
+            // An unknown edge refuted a short while ago (or into a state refuted then) costs more again: the moving
+            // obstacle that blocked it most likely still does.
+            const auto cost = [&](Vertex, const Graph::Arc &arc)
+            {
+                if (knownValidEdge(arc.edge))
+                    return arc.length;
+                const bool refuted = recentlyRefuted(graph_.edge(arc.edge).refutedIn) ||
+                                     (recentlyRefuted(graph_[arc.to].refutedIn) && !knownValid(arc.to));
+                return arc.length * unknownPenalty_ * (refuted ? refutedPenalty_ : 1.);
+            };
+            // impassable in this scene: found invalid (now, or earlier and untouched by the changes since)
+            const auto passable = [&](const Graph::Arc &arc)
+            {
+                return !knownInvalidEdge(arc.edge) && !knownInvalid(arc.to);
+            };
+            astar_.search(graph_, start, isGoal, cost, passable, h, path);
         }
 
         bool DualRoadmap::validatePath(const std::vector<Vertex> &path, const ob::PlannerTerminationCondition &ptc)
@@ -466,6 +461,7 @@ namespace michi
                 if (!si_->isValid(graph_[v].state))
                 {
                     graph_[v].invalidIn = epoch_;  // impassable in this scene, so the next search goes round it
+                    graph_[v].refutedIn = epoch_;
                     graph_[v].validIn = 0;
                     statesValid = false;
                     continue;
@@ -479,16 +475,16 @@ namespace michi
             {
                 if (ptc)
                     return false;
-                auto e = boost::edge(path[i], path[i + 1], graph_);
-                if (!e.second || knownInvalid(e.first))
+                const auto e = graph_.findEdge(path[i], path[i + 1]);
+                if (!e.second || knownInvalidEdge(e.first))
                     return false;
-                if (knownValid(e.first))
+                if (knownValidEdge(e.first))
                     continue;
                 ++work_.motionChecks;
                 if (si_->checkMotion(graph_[path[i]].state, graph_[path[i + 1]].state))
                 {
-                    graph_[e.first].validIn = epoch_;
-                    graph_[e.first].invalidIn = 0;
+                    graph_.edge(e.first).validIn = epoch_;
+                    graph_.edge(e.first).invalidIn = 0;
                     // Paper 002: every edge newly proved valid in the working roadmap is added to the learning roadmap.
                     learnEdge(path[i], path[i + 1]);
                 }
@@ -496,8 +492,9 @@ namespace michi
                 {
                     // Invalid in this scene only: the edge stays (a moving obstacle may leave it free again), the
                     // next search avoids it. Edges checked valid before the failing one stay checked and learned.
-                    graph_[e.first].invalidIn = epoch_;
-                    graph_[e.first].validIn = 0;
+                    graph_.edge(e.first).invalidIn = epoch_;
+                    graph_.edge(e.first).refutedIn = epoch_;
+                    graph_.edge(e.first).validIn = 0;
                     return false;
                 }
             }
@@ -506,29 +503,27 @@ namespace michi
 
         bool DualRoadmap::motionValid(Vertex a, Vertex b)
         {
-            auto e = boost::edge(a, b, graph_);
-            if (e.second)
+            const auto e = addEdgeOnce(a, b);
+            if (!e.second)
             {
-                if (knownValid(e.first))
+                if (knownValidEdge(e.first))
                     return true;
-                if (knownInvalid(e.first))
+                // a shortcut refuted a short while ago is not tried again while its record is stale (smoothing
+                // is optional work; the walker that blocked it most likely still does)
+                if (knownInvalidEdge(e.first) || recentlyRefuted(graph_.edge(e.first).refutedIn))
                     return false;
-            }
-            else
-            {
-                e = boost::add_edge(a, b, graph_);
-                graph_[e.first].weight = si_->distance(graph_[a].state, graph_[b].state);
             }
             ++work_.motionChecks;
             if (si_->checkMotion(graph_[a].state, graph_[b].state))
             {
-                graph_[e.first].validIn = epoch_;
-                graph_[e.first].invalidIn = 0;
+                graph_.edge(e.first).validIn = epoch_;
+                graph_.edge(e.first).invalidIn = 0;
                 learnEdge(a, b);
                 return true;
             }
-            graph_[e.first].invalidIn = epoch_;
-            graph_[e.first].validIn = 0;
+            graph_.edge(e.first).invalidIn = epoch_;
+            graph_.edge(e.first).refutedIn = epoch_;
+            graph_.edge(e.first).validIn = 0;
             return false;
         }
 
@@ -536,6 +531,10 @@ namespace michi
                                                                const ob::PlannerTerminationCondition &ptc)
         {
             std::vector<Vertex> out{path.front()};
+            // No shortcut longer than the roadmap's own edges (range_fraction): the long ones, across the map,
+            // were mostly refuted (3-4 failed checks of 6 m on average per query on dynamic_mobile_passage), and a
+            // long edge kept in the roadmap crosses some change region at almost every query, to be re-checked.
+            const double range = rangeFraction_ * si_->getMaximumExtent();
             std::size_t i = 0;
             while (i + 1 < path.size())
             {
@@ -543,7 +542,8 @@ namespace michi
                 // the far end first, then halfway, ...: O(log n) checks per kept vertex; each proved (or refuted)
                 // shortcut is recorded in the roadmap, so the next query's search takes it without a check
                 for (std::size_t step = path.size() - 1 - i; step > 1 && !ptc; step /= 2)
-                    if (motionValid(path[i], path[i + step]))
+                    if (si_->distance(graph_[path[i]].state, graph_[path[i + step]].state) <= range &&
+                        motionValid(path[i], path[i + step]))
                     {
                         next = i + step;
                         break;
@@ -579,10 +579,10 @@ namespace michi
                 learnEdges_.emplace_back(la, lb);
                 learningEdgeCountAtomic_ = learnEdges_.size();
             }
-            auto e = boost::edge(a, b, graph_);
-            if (e.second && !graph_[e.first].learned)
+            const auto e = graph_.findEdge(a, b);
+            if (e.second && !graph_.edge(e.first).learned)
             {
-                graph_[e.first].learned = true;
+                graph_.edge(e.first).learned = true;
                 ++learnedWorkingEdges_;
             }
         }
@@ -623,6 +623,7 @@ namespace michi
             // with the previous queries' vertices, is kept)
             startVertices_.clear();
             goalVertices_.clear();
+            ++goalSet_;  // the searches' cached heuristic is per goal set
             pis_.restart();
 
             std::vector<ob::State *> starts;
@@ -644,7 +645,7 @@ namespace michi
                 OMPL_ERROR("%s: Insufficient states in sampleable goal region", getName().c_str());
                 return ob::PlannerStatus::INVALID_GOAL;
             }
-            if (boost::num_vertices(graph_) == 0)
+            if (graph_.vertexCount() == 0)
             {
                 // an empty working roadmap: seeded from the learning roadmap near the query (a goal sample, valid
                 // or not, only orders the seeds)
@@ -677,6 +678,7 @@ namespace michi
                     {
                         const Vertex v = rememberQueryVertex(addQueryVertex(g));
                         goalVertices_.push_back(v);
+                        ++goalSet_;
                         connectLazily(v);
                     }
                     if (goalVertices_.empty())
@@ -690,7 +692,7 @@ namespace michi
                     while (!ptc)
                     {
                         ++work_.searches;
-                        path = shortestPath(s, goalVertices_);
+                        shortestPath(s, goalVertices_, path);
                         if (path.empty())
                             break;
                         if (validatePath(path, ptc))
@@ -702,7 +704,7 @@ namespace michi
                 }
                 if (solved || ptc)
                     break;
-                if (boost::num_vertices(graph_) >= maxWorkingVertices_)
+                if (graph_.vertexCount() >= maxWorkingVertices_)
                     break;  // full: no path in this scene now (setMaxWorkingVertices)
                 // expand: a batch of uniform valid samples, connected lazily
                 // A batch rather than one sample per round: each round repeats the A* search over the whole roadmap,
@@ -743,14 +745,14 @@ namespace michi
                 data.addStartVertex(ob::PlannerDataVertex(graph_[v].state, 0));
             for (Vertex v : goalVertices_)
                 data.addGoalVertex(ob::PlannerDataVertex(graph_[v].state, 0));
-            for (auto e : boost::make_iterator_range(boost::edges(graph_)))
+            for (Edge e = 0; e < graph_.edgeCount(); ++e)
             {
-                const ob::PlannerDataVertex a(graph_[boost::source(e, graph_)].state, 0);
-                const ob::PlannerDataVertex b(graph_[boost::target(e, graph_)].state, 0);
+                const ob::PlannerDataVertex a(graph_[graph_.ends(e).first].state, 0);
+                const ob::PlannerDataVertex b(graph_[graph_.ends(e).second].state, 0);
                 data.addEdge(a, b);
                 data.addEdge(b, a);
             }
-            for (auto v : boost::make_iterator_range(boost::vertices(graph_)))
+            for (Vertex v = 0; v < graph_.vertexCount(); ++v)
                 data.addVertex(ob::PlannerDataVertex(graph_[v].state, 0));
             for (const auto &e : learnEdges_)
             {

@@ -5,7 +5,7 @@
 #include <ompl/datastructures/NearestNeighbors.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include <boost/graph/adjacency_list.hpp>
+#include <michi/planners/dual_roadmap/RoadmapSearch.h>
 
 #include <atomic>
 #include <cstdint>
@@ -225,6 +225,19 @@ namespace michi
                 return unknownPenalty_;
             }
 
+            /** \brief Further weight factor, in the search, of an unknown edge that was found invalid (or leads to a
+                state found invalid) in one of the last 32 scenes: a change near it made the record stale, but a
+                moving obstacle that blocked it a moment ago most likely still does, so the search tries other
+                unknown edges first (each refutation costs a motion check and a search). 1: no memory. */
+            void setRefutedEdgePenalty(double f)
+            {
+                refutedPenalty_ = f;
+            }
+            double getRefutedEdgePenalty() const
+            {
+                return refutedPenalty_;
+            }
+
         private:
             // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
             // at once, without touching the roadmap.
@@ -234,25 +247,26 @@ namespace michi
                 long learnId{-1};            ///< index in the learning roadmap, -1 when not (yet) there
                 std::uint64_t validIn{0};    ///< epoch in which the state was proved valid
                 std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
+                std::uint64_t refutedIn{0};  ///< epoch in which it was last found invalid (kept when that is stale)
             };
             struct EdgeProperties
             {
-                double weight{0.};
                 std::uint64_t validIn{0};    ///< epoch in which the motion was proved valid
                 std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
+                std::uint64_t refutedIn{0};  ///< epoch in which it was last found invalid (kept when that is stale)
                 bool learned{false};         ///< in the learning roadmap (proved valid in some scene)
             };
-            using Graph =
-                boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, VertexProperties, EdgeProperties>;
-            using Vertex = Graph::vertex_descriptor;
+            using Graph = FlatRoadmap<VertexProperties, EdgeProperties>;
+            using Vertex = Graph::Vertex;
+            using Edge = Graph::Edge;
 
             void freeWorking();
             /** \brief Put the learning edges nearest \e near (the query's states) into the empty working roadmap. */
             void seedWorking(const std::vector<const ompl::base::State *> &near,
                              const ompl::base::PlannerTerminationCondition &ptc);
             Vertex addWorkingVertex(ompl::base::State *state, long learnId);
-            /** \brief The edge a - b, added unless it exists (second: added). */
-            std::pair<Graph::edge_descriptor, bool> addEdgeOnce(Vertex a, Vertex b);
+            /** \brief The edge a - b (its length the states' distance), added unless it exists (second: added). */
+            std::pair<Edge, bool> addEdgeOnce(Vertex a, Vertex b);
             /** \brief A start or goal: the vertex of a recent query's at the same state, else a new one; valid in
                 this scene. */
             Vertex addQueryVertex(const ompl::base::State *state);
@@ -263,10 +277,12 @@ namespace michi
             /** A proof (\e stamp: the epoch it was made in) of the state or motion a-b, renewed to this epoch
                 when no scene change since touched it, else forgotten; true when it holds now. */
             bool stillProved(std::uint64_t &stamp, const ompl::base::State *a, const ompl::base::State *b) const;
+            /** \brief A refutation made in epoch \e refutedIn (0: none) is recent (setRefutedEdgePenalty()). */
+            bool recentlyRefuted(std::uint64_t refutedIn) const;
             bool knownValid(Vertex v);
             bool knownInvalid(Vertex v);
-            bool knownValid(const Graph::edge_descriptor &e);
-            bool knownInvalid(const Graph::edge_descriptor &e);
+            bool knownValidEdge(Edge e);
+            bool knownInvalidEdge(Edge e);
             /** \brief Motion \e a -> \e b valid in this scene, from the roadmap's records or checked (and recorded
                 as an edge: a proved shortcut is a local path like any other). */
             bool motionValid(Vertex a, Vertex b);
@@ -276,8 +292,8 @@ namespace michi
                                          const ompl::base::PlannerTerminationCondition &ptc);
             void connectLazily(Vertex v);
             bool sceneChanged();
-            /** \brief A* from start to any goal vertex; empty when none is reachable. */
-            std::vector<Vertex> shortestPath(Vertex start, const std::vector<Vertex> &goals);
+            /** \brief A* from start to any goal vertex, into \e path; empty when none is reachable. */
+            void shortestPath(Vertex start, const std::vector<Vertex> &goals, std::vector<Vertex> &path);
             /** \brief Check the states and motions of \e path not yet proved valid in this scene; every invalid state
                 and the first invalid motion are marked so (impassable for this scene's searches). */
             bool validatePath(const std::vector<Vertex> &path, const ompl::base::PlannerTerminationCondition &ptc);
@@ -308,11 +324,12 @@ namespace michi
             std::mutex regionMutex_;
             bool haveRegion_{false};  ///< a region was given for the change not yet taken
             ChangeRegion pendingRegion_;
-            // A* without an O(V) initialisation per search: a vertex's entries count only when stamped this search
-            std::vector<std::uint64_t> stamp_, closed_;
-            std::vector<double> cost_;
-            std::vector<Vertex> pred_;
-            std::uint64_t search_{0};
+            RoadmapAStar astar_;
+            // the heuristic (distance to the nearest goal vertex) of a vertex, computed once per goal set: valid
+            // where heuristicStamp_ equals goalSet_
+            std::vector<double> heuristic_;
+            std::vector<std::uint64_t> heuristicStamp_;
+            std::uint64_t goalSet_{0};
             std::size_t learnedWorkingEdges_{0};  ///< working edges that are in the learning roadmap
             Work work_;
             std::atomic<std::size_t> learningEdgeCountAtomic_{0};  ///< for the progress property (other thread)
@@ -327,6 +344,7 @@ namespace michi
             unsigned int maxLearningEdges_{50000};
             unsigned int maxWorkingVertices_{2000};
             double unknownPenalty_{1.5};
+            double refutedPenalty_{10.};
         };
     }  // namespace planners
 }  // namespace michi
