@@ -1,4 +1,5 @@
 #include <michi/planners/concentric_circle/CircleLifts.h>
+#include "PathClearance.h"
 
 #include <michi/validity/robot/CollisionBodies.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
@@ -75,18 +76,6 @@ namespace michi
                 return v;
             }
 
-            /** the validity checker's FCL checker and robot (null when it is not michi's) */
-            const validity::FclValidityChecker *fclOf(const ob::SpaceInformationPtr &si)
-            {
-                const auto *checker = si->getStateValidityChecker().get();
-                if (const auto *f = dynamic_cast<const validity::FclValidityChecker *>(checker))
-                    return f;
-                // A J-map checker keeps an FCL checker of the same robot and scene (its source of intervals): use its
-                // geometry.
-                if (const auto *j = dynamic_cast<const validity::JMapValidityChecker *>(checker))
-                    return j->fcl().get();
-                return nullptr;
-            }
         }  // namespace
 
         std::vector<ValueAxis> valueAxes(const ob::StateSpace &space)
@@ -432,7 +421,7 @@ namespace michi
 
         bool isPlanarArm(const ob::SpaceInformationPtr &si)
         {
-            const auto *fcl = fclOf(si);
+            const auto *fcl = fclOf(*si);
             const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
             if (rgb == nullptr)
                 return false;
@@ -481,7 +470,7 @@ namespace michi
                             const std::vector<int> &handValues, int slices, double tolerance)
         {
             ArmMaps out;
-            const auto *fcl = fclOf(si);
+            const auto *fcl = fclOf(*si);
             const auto *rgb = fcl ? dynamic_cast<const validity::RobotGroupBodies *>(fcl->bodies().get()) : nullptr;
             validity::PlanarArmPtr planar;
             if (rgb != nullptr)

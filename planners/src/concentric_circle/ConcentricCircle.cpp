@@ -180,9 +180,7 @@ namespace michi
         {
             // As refreshJMapMap: another checker, or the same checker's scene changed, means other obstacles.
             const auto *checker = si_->getStateValidityChecker().get();
-            const validity::FclValidityChecker *fcl = dynamic_cast<const validity::FclValidityChecker *>(checker);
-            if (const auto *jmap = dynamic_cast<const validity::JMapValidityChecker *>(checker))
-                fcl = jmap->fcl().get();
+            const validity::FclValidityChecker *fcl = fclOf(*si_);
             const std::uint64_t generation = fcl ? fcl->scene()->changeCount() : 0;
             if (checker == capsuleChecker_ && generation == capsuleGeneration_)
                 return;

@@ -51,16 +51,19 @@ namespace michi
                                  pointSegmentSquared(c, a, b), pointSegmentSquared(d, a, b)});
             }
 
-            const validity::FclValidityChecker *fclOf(const ob::SpaceInformation &si)
-            {
-                const auto *checker = si.getStateValidityChecker().get();
-                if (const auto *f = dynamic_cast<const validity::FclValidityChecker *>(checker))
-                    return f;
-                if (const auto *j = dynamic_cast<const validity::JMapValidityChecker *>(checker))
-                    return j->fcl().get();
-                return nullptr;
-            }
         }  // namespace
+
+        const validity::FclValidityChecker *fclOf(const ob::SpaceInformation &si)
+        {
+            const auto *checker = si.getStateValidityChecker().get();
+            if (const auto *f = dynamic_cast<const validity::FclValidityChecker *>(checker))
+                return f;
+            if (const auto *j = dynamic_cast<const validity::JMapValidityChecker *>(checker))
+                // A J-map checker keeps an FCL checker of the same robot and scene (its source of intervals): its
+                // geometry.
+                return j->fcl().get();
+            return nullptr;
+        }
 
         std::shared_ptr<const CapsuleClearance> CapsuleClearance::make(const ob::SpaceInformation &si)
         {

@@ -29,6 +29,10 @@ namespace michi
         double jmapPathClearance(const ompl::base::SpaceInformation &si, const validity::JMapValidityChecker &checker,
                                  const std::vector<ompl::base::State *> &states, double cap);
 
+        /** \brief The space's FCL checker: the checker itself, or the FCL checker a J-map checker keeps (same robot and
+            scene); null when the checker is neither. */
+        const validity::FclValidityChecker *fclOf(const ompl::base::SpaceInformation &si);
+
         /** \brief Workspace clearance of a planar arm among prisms from its capsule model (validity::PlanarArm):
             the smallest distance from a capsule's centre segment to an obstacle polygon's edge, minus the capsule's
             radius. Every capsule contains its link's shadow, so this is a lower bound of FCL's clearance and at most

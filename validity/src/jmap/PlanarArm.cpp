@@ -180,40 +180,13 @@ namespace michi
 
         std::vector<Eigen::Isometry2d> PlanarArm::linkFrames(const double *q) const
         {
-            std::vector<Eigen::Isometry2d> frames(links_.size(), Eigen::Isometry2d::Identity());
-            frames[rootLink_] = base_;
-            for (int j : order_)
-            {
-                const Joint &joint = joints_[j];
-                double angle = joint.originAngle;
-                if (joint.variable >= 0)
-                    angle += joint.axisSign * q[joint.variable];
-                frames[joint.childLink] =
-                    frames[joint.parentLink] * Eigen::Translation2d(joint.origin) * Eigen::Rotation2Dd(angle);
-            }
+            std::vector<Eigen::Isometry2d> frames;
+            linkFrames(q, frames);
             return frames;
         }
 
-        std::vector<Capsule2> PlanarArm::worldCapsules(const double *q, std::vector<int> *owner) const
+        void PlanarArm::linkFrames(const double *q, std::vector<Eigen::Isometry2d> &frames) const
         {
-            const auto frames = linkFrames(q);
-            std::vector<Capsule2> out;
-            if (owner)
-                owner->clear();
-            for (std::size_t l = 0; l < links_.size(); ++l)
-                for (const auto &cap : links_[l].capsules)
-                {
-                    out.push_back({frames[l] * cap.a, frames[l] * cap.b, cap.radius});
-                    if (owner)
-                        owner->push_back(static_cast<int>(l));
-                }
-            return out;
-        }
-
-        void PlanarArm::worldCapsules(const double *q, std::vector<Capsule2> &out,
-                                      std::vector<Eigen::Isometry2d> &frames) const
-        {
-            // as linkFrames() and worldCapsules() above, into the caller's buffers
             frames.assign(links_.size(), Eigen::Isometry2d::Identity());
             frames[rootLink_] = base_;
             for (int j : order_)
@@ -225,6 +198,26 @@ namespace michi
                 frames[joint.childLink] =
                     frames[joint.parentLink] * Eigen::Translation2d(joint.origin) * Eigen::Rotation2Dd(angle);
             }
+        }
+
+        std::vector<Capsule2> PlanarArm::worldCapsules(const double *q, std::vector<int> *owner) const
+        {
+            std::vector<Capsule2> out;
+            std::vector<Eigen::Isometry2d> frames;
+            worldCapsules(q, out, frames);
+            if (owner)
+            {
+                owner->clear();
+                for (std::size_t l = 0; l < links_.size(); ++l)
+                    owner->insert(owner->end(), links_[l].capsules.size(), static_cast<int>(l));
+            }
+            return out;
+        }
+
+        void PlanarArm::worldCapsules(const double *q, std::vector<Capsule2> &out,
+                                      std::vector<Eigen::Isometry2d> &frames) const
+        {
+            linkFrames(q, frames);
             out.clear();
             for (std::size_t l = 0; l < links_.size(); ++l)
                 for (const auto &cap : links_[l].capsules)

@@ -119,15 +119,7 @@ namespace michi
                     return true;
                 if ((cellAllInvalid_[c >> 6] >> (c & 63)) & 1u)
                     return false;
-                const double fb = yaw * inverseStep_ + 0.5;
-                int k = static_cast<int>(fb);
-                k -= (fb < k) ? 1 : 0;  // floor
-                if (k < 0)
-                    k += headings_;
-                if (k >= headings_)
-                    k -= headings_;
-                if (k < 0 || k >= headings_)
-                    k = headingBin(yaw);  // more than a turn away from [-pi, pi)
+                const int k = fastHeadingBin(yaw);
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
                 return (words_[2 * word] >> (i & 63)) & 1u;
             }
@@ -147,15 +139,8 @@ namespace michi
                                       static_cast<std::size_t>(i >> BLOCK_SHIFT);
                 if ((blockAllValid_[b >> 6] >> (b & 63)) & 1u)
                     return true;
-                const double fb = yaw * inverseStep_ + 0.5;
-                int k = static_cast<int>(fb);
-                k -= (fb < k) ? 1 : 0;  // floor
-                if (k < 0)
-                    k += headings_;
-                if (k >= headings_)
-                    k -= headings_;
-                if (k < 0 || k >= headings_)
-                    k = headingBin(yaw);  // more than a turn away from [-pi, pi)
+                double fb;
+                const int k = fastHeadingBin(yaw, fb);
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
                 // the three cache lines a query may need next are fetched at once, not one after the other (on a
                 // large map, after other work, each is a miss)
@@ -245,6 +230,27 @@ namespace michi
             CellBox update(const OccupancyGrid &grid);
 
         private:
+            /** headingBin() for the inline queries: a floor without std::floor, one wrap for yaws within a turn
+                of [-pi, pi), headingBin() beyond */
+            int fastHeadingBin(double yaw) const
+            {
+                double fb;
+                return fastHeadingBin(yaw, fb);
+            }
+            /** the same, and the yaw in bins (\e fb, shifted by half a bin) */
+            int fastHeadingBin(double yaw, double &fb) const
+            {
+                fb = yaw * inverseStep_ + 0.5;
+                int k = static_cast<int>(fb);
+                k -= (fb < k) ? 1 : 0;  // floor
+                if (k < 0)
+                    k += headings_;
+                if (k >= headings_)
+                    k -= headings_;
+                if (k < 0 || k >= headings_)
+                    k = headingBin(yaw);  // more than a turn away from [-pi, pi)
+                return k;
+            }
             void makeStamps(const std::vector<Eigen::Vector2d> &footprint, double tolerance);
             /** \brief coreStamps_ of a convex footprint: the cells the footprint covers whole at every pose of an
                 entry (every position in the cell, every yaw in the bin). */

@@ -97,6 +97,8 @@ namespace michi
 
             /** \brief World frame (2-D rigid transform) of every link for configuration \e q (variableCount()). */
             std::vector<Eigen::Isometry2d> linkFrames(const double *q) const;
+            /** \brief The same into \e frames (no allocation once it has grown). */
+            void linkFrames(const double *q, std::vector<Eigen::Isometry2d> &frames) const;
             /** \brief Every capsule in the world frame for configuration \e q; \e owner gets each one's link. */
             std::vector<Capsule2> worldCapsules(const double *q, std::vector<int> *owner = nullptr) const;
             /** \brief The same into \e out, with \e frames as scratch: no allocation once both have grown (hot
