@@ -11,6 +11,7 @@
 #include <michi/validity/spheres/SphereMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <benchmark/benchmark.h>
@@ -72,11 +73,13 @@ namespace
         return c;
     }
 
-    /** The same states as isValid, checked with the sphere checker. */
-    void isValidSpheres(benchmark::State &bm, const std::string &name)
+    /** The same states as isValid, checked with the sphere checker: spheres and self-pair tables alone, or
+        with FCL settling the states whose spheres touch (\e exact: collision.spheres.exact_states on). */
+    void isValidSpheres(benchmark::State &bm, const std::string &name, bool exact)
     {
         auto &f = fixture(name);
         auto checker = sphereChecker(f);
+        checker->setExactStates(exact);
         std::size_t i = 0, valid = 0;
         for (auto _ : bm)
             valid += checker->isValid(f.states[i++ % f.states.size()]);
@@ -111,7 +114,12 @@ namespace
                 si, jmap, std::make_shared<michi::validity::ConservativeMotionValidator>(si, f.ctx.checker));
         }
         else if (kind == 4)
-            validator = std::make_shared<michi::validity::SphereMotionValidator>(si, sphereChecker(f));
+        {
+            auto checker = sphereChecker(f);
+            checker->setExactStates(
+                false);  // what `--checker spheres` runs for a query whose endpoints the spheres accept
+            validator = std::make_shared<michi::validity::SphereMotionValidator>(si, checker);
+        }
         else
             validator = std::make_shared<ompl::base::DiscreteMotionValidator>(si);
         // motions between valid samples, by default short ones (a tenth of the way) as planners mostly make
@@ -137,6 +145,28 @@ namespace
             benchmark::DoNotOptimize(validator->checkMotion(m.first, m.second));
         }
     }
+
+    /** RRTConnect from the problem's start to its goal, one solve per iteration (CPU time of solve() alone, with
+        no OMPL Benchmark thread around it): \e spheres picks the sphere checker and its certified motions,
+        otherwise FCL with the problem's motion validator. */
+    void rrtConnect(benchmark::State &bm, const std::string &name, bool spheres)
+    {
+        auto &f = fixture(name);
+        michi::tools::ContextOptions options;
+        options.checker = spheres ? "spheres" : "";
+        michi::tools::PlanningContext ctx = michi::tools::makePlanningContext(f.problem, options);
+        auto csi = ctx.setup->getSpaceInformation();
+        std::size_t solved = 0, runs = 0;
+        ompl::RNG::setSeed(1);
+        for (auto _ : bm)
+        {
+            ctx.setup->clear();
+            ctx.setup->setPlanner(std::make_shared<ompl::geometric::RRTConnect>(csi));
+            solved += ctx.setup->solve(10.) == ompl::base::PlannerStatus::EXACT_SOLUTION;
+            ++runs;
+        }
+        bm.counters["solved"] = static_cast<double>(solved) / std::max<std::size_t>(1, runs);
+    }
 }  // namespace
 
 BENCHMARK_CAPTURE(isValid, planar_2link, std::string("planar_2link"));
@@ -157,9 +187,16 @@ BENCHMARK_CAPTURE(clearance, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(motion, discrete_panda_table_pick, std::string("panda_table_pick"), 0);
 BENCHMARK_CAPTURE(motion, workspace_panda_table_pick, std::string("panda_table_pick"), 2);
 // the sphere checker against the FCL ones above (same states, same motions)
-BENCHMARK_CAPTURE(isValidSpheres, xarm6_ring, std::string("xarm6_ring"));
-BENCHMARK_CAPTURE(isValidSpheres, panda_table_pick, std::string("panda_table_pick"));
+BENCHMARK_CAPTURE(isValidSpheres, xarm6_ring, std::string("xarm6_ring"), false);
+BENCHMARK_CAPTURE(isValidSpheres, panda_table_pick, std::string("panda_table_pick"), false);
+BENCHMARK_CAPTURE(isValidSpheres, exact_xarm6_ring, std::string("xarm6_ring"), true);
+BENCHMARK_CAPTURE(isValidSpheres, exact_panda_table_pick, std::string("panda_table_pick"), true);
 BENCHMARK_CAPTURE(motion, spheres_xarm6_ring, std::string("xarm6_ring"), 4);
 BENCHMARK_CAPTURE(motion, spheres_panda_table_pick, std::string("panda_table_pick"), 4);
+// planning: RRTConnect's solve() with FCL and with spheres
+BENCHMARK_CAPTURE(rrtConnect, fcl_panda_table_pick, std::string("panda_table_pick"), false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(rrtConnect, spheres_panda_table_pick, std::string("panda_table_pick"), true)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -146,6 +146,9 @@ TEST_F(ProblemFiles, ErrorsNameFileAndKey)
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {checker: spheres, spheres: {per_link: "
          "0}}\n",
          "collision.spheres.per_link"},
+        {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {checker: spheres, spheres: {exact_states: "
+         "sometimes}}\n",
+         "collision.spheres.exact_states"},
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\ncollision: {checker: spheres, spheres: {urdf: "
          "no.urdf}}\n",
          "collision.spheres.urdf"},

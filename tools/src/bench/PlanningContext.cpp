@@ -171,6 +171,24 @@ namespace michi
             }
         }  // namespace
 
+        namespace
+        {
+            /** collision.spheres.exact_states: "auto" turns FCL's settling on only where the spheres alone would make
+                the query unsolvable, a start or goal they reject that FCL accepts (a grasp: the hand's spheres stand
+                out of its surface into the object). Other queries keep the spheres-only speed. */
+            void chooseExactStates(const Problem &problem, PlanningContext &ctx,
+                                   std::initializer_list<const std::vector<double> *> endpoints)
+            {
+                const std::string &mode = problem.spheres.exactStates;
+                bool exact = mode == "on";
+                if (mode == "auto")
+                    for (const auto *values : endpoints)
+                        exact = exact || (!ctx.spheres->isValidConfiguration(values->data()) &&
+                                          ctx.checker->isValidConfiguration(values->data()));
+                ctx.spheres->setExactStates(exact);
+            }
+        }  // namespace
+
         PlanningContext makePlanningContext(const Problem &problem, std::size_t query)
         {
             ContextOptions options;
@@ -245,6 +263,8 @@ namespace michi
             setState(goal, q.goal);
             // After the endpoint checks, so they stay FCL's whatever the checker.
             installChecker(problem, ctx, checker);
+            if (ctx.spheres)
+                chooseExactStates(problem, ctx, {&q.start, &q.goal});
             if (ctx.grid)
                 for (const auto *values : {&q.start, &q.goal})
                     if (!ctx.grid->isValidPose((*values)[0], (*values)[1], (*values)[2]))

@@ -229,8 +229,16 @@ namespace michi
                     else if (k == "spheres")
                     {
                         if (!kv.second.IsMap())
-                            r.fail(key, "expected a mapping (per_link, urdf)");
-                        r.keys(kv.second, key, {"per_link", "urdf"});
+                            r.fail(key, "expected a mapping (per_link, urdf, exact_states)");
+                        r.keys(kv.second, key, {"per_link", "urdf", "exact_states"});
+                        if (kv.second["exact_states"])
+                        {
+                            problem.spheres.exactStates = r.text(kv.second["exact_states"], key + ".exact_states");
+                            if (problem.spheres.exactStates != "auto" && problem.spheres.exactStates != "on" &&
+                                problem.spheres.exactStates != "off")
+                                r.fail(key + ".exact_states",
+                                       "expected auto, on or off, got '" + problem.spheres.exactStates + "'");
+                        }
                         if (kv.second["per_link"])
                         {
                             problem.spheres.perLink = r.count(kv.second["per_link"], key + ".per_link");

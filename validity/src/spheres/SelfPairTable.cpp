@@ -107,17 +107,59 @@ namespace michi
                 return false;
             if (variables_.size() == 2 && !range(1, values[variables_[1]], span1, j0, j1))
                 return false;
-            // indices may run past the ends of a continuous joint's range: they wrap
+            // Indices may run past the ends of a continuous joint's range: they wrap. Each row's run of cells is
+            // read as whole 64-bit words under a mask, so a motion's wide span costs a few words per row, not one
+            // read per cell.
             for (int j = j0; j <= j1; ++j)
-                for (int i = i0; i <= i1; ++i)
-                    if (!cell(((i % n_[0]) + n_[0]) % n_[0], ((j % n_[1]) + n_[1]) % n_[1]))
+            {
+                const std::size_t row =
+                    static_cast<std::size_t>(((j % n_[1]) + n_[1]) % n_[1]) * static_cast<std::size_t>(n_[0]);
+                for (int i = i0; i <= i1;)
+                {
+                    const int wrapped = ((i % n_[0]) + n_[0]) % n_[0];
+                    // the run from this cell to the last wanted one or the end of the row, whichever comes first
+                    const int run = std::min(i1 - i, n_[0] - 1 - wrapped) + 1;
+                    if (!allSet(row + static_cast<std::size_t>(wrapped), static_cast<std::size_t>(run)))
                         return false;
+                    i += run;
+                }
+            }
+            return true;
+        }
+
+        bool SelfPairTable::allSet(std::size_t first, std::size_t count) const
+        {
+            while (count > 0)
+            {
+                const std::size_t word = first >> 6, bit = first & 63, take = std::min<std::size_t>(64 - bit, count);
+                const std::uint64_t mask = (take == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << take) - 1)) << bit;
+                if ((bits_[word] & mask) != mask)
+                    return false;
+                first += take;
+                count -= take;
+            }
             return true;
         }
 
         bool SelfPairTable::free(const double *values) const
         {
-            return freeWithin(values, 0., 0.);
+            // A state reads one cell: the index straight from the value (the span-0 case of range(), without its
+            // fmod calls, which a state check on every wrist pair felt).
+            std::size_t k = 0, stride = 1;
+            for (std::size_t d = 0; d < variables_.size(); ++d)
+            {
+                double a = (values[variables_[d]] - lo_[d]) / h_[d];
+                if (!std::isfinite(a))
+                    return false;
+                if (wrap_[d])
+                    a -= n_[d] * std::floor(a / n_[d]);  // into [0, n): a whole turn is n cells
+                else if (a < -1e-9 || a > n_[d] + 1e-9)
+                    return false;  // outside the joint's range: not certified
+                const int i = std::min(std::max(static_cast<int>(std::floor(a)), 0), n_[d] - 1);
+                k += static_cast<std::size_t>(i) * stride;
+                stride *= static_cast<std::size_t>(n_[d]);
+            }
+            return (bits_[k >> 6] >> (k & 63)) & 1u;
         }
 
         bool SelfPairTable::freeOver(const double *values, const float *span) const

@@ -58,6 +58,8 @@ namespace michi
             /** Index range [first, last] of the cells meeting [v - s, v + s] of variable d; false when outside. */
             bool range(int d, double v, double s, int &first, int &last) const;
             bool freeWithin(const double *values, double span0, double span1) const;
+            /** Are the \e count cells from flat index \e first on (one row) all set? */
+            bool allSet(std::size_t first, std::size_t count) const;
             void fill(int i0, int i1, int j0, int j1, const std::function<double(const double *)> &distance);
 
             std::vector<int> variables_;

@@ -118,16 +118,52 @@ namespace michi
 
             /** Cover triangles with at most \e budget spheres: split the part with the largest sphere along the
                 longest extent of its triangles' centroids, at the median. */
-            std::vector<LinkSphere> coverTriangles(const std::vector<Eigen::Vector3d> &tris, int budget)
+            std::vector<LinkSphere> coverTriangles(const std::vector<Eigen::Vector3d> &tris,
+                                                   const std::vector<Eigen::Vector3d> &whole, int budget)
             {
                 struct Part
                 {
                     std::vector<int> triangles;
                     LinkSphere sphere;
+                    double bulge{0.};  ///< how far the sphere may stand out of the link (estimate)
                     bool operator<(const Part &o) const
                     {
-                        return sphere.radius < o.sphere.radius;
+                        return bulge < o.bulge;
                     }
+                };
+                // Points of the whole link's surface (corners and centroids, thinned to a few thousand): the distance
+                // from a candidate centre to the nearest of them estimates how deep inside the link it lies.
+                std::vector<Eigen::Vector3d> surface;
+                {
+                    const std::size_t n = tris.size() / 3, stride = std::max<std::size_t>(1, 2 * n / 6000);
+                    for (std::size_t t = 0; t < n; t += stride)
+                    {
+                        surface.push_back(tris[3 * t]);
+                        surface.push_back((tris[3 * t] + tris[3 * t + 1] + tris[3 * t + 2]) / 3.);
+                    }
+                }
+                // Inside the link or not, by the winding number of its (unsplit) surface about the point: about 1
+                // inside a closed surface, about 0 outside, and robust to small holes and either orientation of
+                // the whole mesh (its magnitude is tested).
+                auto inside = [&](const Eigen::Vector3d &c)
+                {
+                    double w = 0.;
+                    for (std::size_t t = 0; t + 2 < whole.size(); t += 3)
+                    {
+                        const Eigen::Vector3d a = whole[t] - c, b = whole[t + 1] - c, d = whole[t + 2] - c;
+                        const double la = a.norm(), lb = b.norm(), ld = d.norm();
+                        const double num = a.dot(b.cross(d));
+                        const double den = la * lb * ld + a.dot(b) * ld + a.dot(d) * lb + b.dot(d) * la;
+                        w += 2. * std::atan2(num, den);
+                    }
+                    return std::abs(w) > 2. * M_PI;  // |winding number| > 1/2
+                };
+                auto depth = [&](const Eigen::Vector3d &c)
+                {
+                    double best = std::numeric_limits<double>::infinity();
+                    for (const auto &p : surface)
+                        best = std::min(best, (p - c).squaredNorm());
+                    return std::sqrt(best);
                 };
                 const int n = static_cast<int>(tris.size() / 3);
                 std::vector<Eigen::Vector3d> centroid(n);
@@ -151,6 +187,40 @@ namespace michi
                     // all it needs.
                     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
                     p.sphere = coverPoints(corners);
+                    // A sphere centred on a flat patch stands out of the surface by its whole radius. Moved inwards
+                    // (against the patch's normal), a larger sphere that still holds the patch's corners stands out
+                    // by its radius less its depth inside the link, which is much less for a thick link. Any centre
+                    // is safe (the radius always reaches every corner); the depth only chooses among them.
+                    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+                    double area = 0.;
+                    for (int t : ids)
+                    {
+                        const Eigen::Vector3d n = (tris[3 * t + 1] - tris[3 * t]).cross(tris[3 * t + 2] - tris[3 * t]);
+                        normal += n;
+                        area += n.norm();
+                    }
+                    p.bulge = p.sphere.radius - depth(p.sphere.centre);
+                    if (area > 0. && normal.norm() > 0.2 * area)
+                    {
+                        normal.normalize();
+                        const Eigen::Vector3d c0 = p.sphere.centre;
+                        const double r0 = p.sphere.radius;
+                        for (double sign : {1., -1.})
+                            for (double k : {0.25, 0.5, 1., 1.5, 2., 3., 4.})
+                            {
+                                const Eigen::Vector3d c = c0 - sign * k * r0 * normal;
+                                double r = 0.;
+                                for (const auto &q : corners)
+                                    r = std::max(r, (q - c).squaredNorm());
+                                r = std::sqrt(r);
+                                const double bulge = r - depth(c);
+                                if (bulge < p.bulge && inside(c))
+                                {
+                                    p.bulge = bulge;
+                                    p.sphere = {c, padded(r)};
+                                }
+                            }
+                    }
                     p.triangles = std::move(ids);
                     return p;
                 };
@@ -185,7 +255,7 @@ namespace michi
                                          });
                         Part left = makePart(std::vector<int>(ids.begin(), mid));
                         Part right = makePart(std::vector<int>(mid, ids.end()));
-                        const double r = std::max(left.sphere.radius, right.sphere.radius);
+                        const double r = std::max(left.bulge, right.bulge);
                         if (r < bestRadius)
                         {
                             bestRadius = r;
@@ -315,8 +385,9 @@ namespace michi
                         std::max(1, settings.spheresPerLink * static_cast<int>(meshPart.collisions.size()) / shapes);
                     // Edge length relative to the link's size, with a 0.1 mm floor so a tiny link is not split without
                     // end.
+                    const auto whole = tris;
                     tris = splitLong(tris, std::max(1e-4, settings.maxTriangleFraction * linkSize(tris)));
-                    for (const auto &sp : coverTriangles(tris, meshBudget))
+                    for (const auto &sp : coverTriangles(tris, whole, meshBudget))
                         out.push_back(sp);
                 }
                 return out;

@@ -219,13 +219,72 @@ namespace michi
         {
             out.clear();
             const std::size_t n = kind_.size();
-            for (std::size_t o = 0; o < n; ++o)
+            // Blocks of 16 obstacles: the overlap tests of a block have no branch, so they run in SIMD lanes; the
+            // indices are collected after.
+            for (std::size_t first = 0; first < n; first += 16)
             {
-                const float dx = bx_[o] - c.x(), dy = by_[o] - c.y(), dz = bz_[o] - c.z(), rr = br_[o] + r;
-                // Two spheres overlap when their centres are closer than the sum of the radii; no square root needed.
-                if (dx * dx + dy * dy + dz * dz < rr * rr)
-                    out.push_back(static_cast<int>(o));
+                const std::size_t count = std::min<std::size_t>(16, n - first);
+                const float *x = bx_.data() + first, *y = by_.data() + first, *z = bz_.data() + first,
+                            *rad = br_.data() + first;
+                unsigned char near[16];
+                for (std::size_t o = 0; o < count; ++o)
+                {
+                    const float dx = x[o] - c.x(), dy = y[o] - c.y(), dz = z[o] - c.z(), rr = rad[o] + r;
+                    // Two spheres overlap when their centres are closer than the sum of the radii; no square root.
+                    near[o] = dx * dx + dy * dy + dz * dz < rr * rr;
+                }
+                for (std::size_t o = 0; o < count; ++o)
+                    if (near[o])
+                        out.push_back(static_cast<int>(first + o));
             }
+        }
+
+        bool SphereObstacles::hitsSphere(int o, const Eigen::Vector3f &c, float r) const
+        {
+            // One sphere (a body's bound) in plain scalar code: the batch kernels' dynamic arrays cost more than the
+            // arithmetic for a single sphere. Polygons and meshes go through the batch path.
+            const Frame &f = frames_[o];
+            const Eigen::Vector3f &s = size_[o];
+            const Eigen::Vector3f d = c - f.t;
+            float d2 = 0.f;
+            switch (kind_[o])
+            {
+                case SPHERE:
+                {
+                    const float out = std::max(d.norm() - s.x(), 0.f);
+                    d2 = out * out;
+                    break;
+                }
+                case BOX:
+                {
+                    const Eigen::Vector3f q = ((f.rt * d).cwiseAbs() - s).cwiseMax(0.f);
+                    d2 = q.squaredNorm();
+                    break;
+                }
+                case CYLINDER:
+                case CAPSULE:
+                {
+                    const Eigen::Vector3f p = f.rt * d;
+                    const float radial = p.head<2>().norm(), qz = std::max(std::abs(p.z()) - s.y(), 0.f);
+                    if (kind_[o] == CYLINDER)
+                    {
+                        const float qr = std::max(radial - s.x(), 0.f);
+                        d2 = qr * qr + qz * qz;
+                    }
+                    else
+                    {
+                        const float out = std::max(std::sqrt(radial * radial + qz * qz) - s.x(), 0.f);
+                        d2 = out * out;
+                    }
+                    break;
+                }
+                default:
+                {
+                    const float one[4] = {c.x(), c.y(), c.z(), r};
+                    return hits(o, SphereBatch{one, one + 1, one + 2, one + 3, 1});
+                }
+            }
+            return d2 < r * r;
         }
 
         float SphereObstacles::boundDistance(int o, const Eigen::Vector3f &c, float r) const

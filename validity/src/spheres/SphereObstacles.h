@@ -45,6 +45,8 @@ namespace michi
             }
             /** \brief Indices of the obstacles whose bounding sphere meets the sphere (c, r). */
             void candidates(const Eigen::Vector3f &c, float r, std::vector<int> &out) const;
+            /** \brief Does the sphere (c, r) touch obstacle \e o? (The same test as hits() for one sphere.) */
+            bool hitsSphere(int o, const Eigen::Vector3f &c, float r) const;
             /** \brief Does any sphere of \e batch touch obstacle \e o? */
             bool hits(int o, const SphereBatch &batch) const;
             /** \brief Smallest distance between a sphere's surface and obstacle \e o (negative inside; lower

@@ -1,6 +1,7 @@
 #include <michi/validity/spheres/SphereValidityChecker.h>
 
 #include "SelfPairTable.h"
+#include "SphereKinematics.h"
 #include "SphereObstacles.h"
 
 #include <ompl/base/SpaceInformation.h>
@@ -20,8 +21,8 @@ namespace michi
         /** Per-thread working arrays of a query. */
         struct SphereValidityChecker::Scratch
         {
-            std::vector<double> q;
-            std::vector<Eigen::Isometry3d> links;
+            std::vector<RigidFrame> frames;
+            std::vector<char> placed;  ///< per body: its spheres are placed for this state
             std::vector<float> x, y, z, r;
             std::vector<Eigen::Vector3f> bodyCentre;
             std::vector<float> bodyRadius;
@@ -141,6 +142,22 @@ namespace michi
                         bodyCoefficients_(b, j) = std::max(bodyCoefficients_(b, j), c);
                     }
             fullTemplate_ = bodies_->fullConfiguration(std::vector<double>(vars.size(), 0.).data());
+            // Sphere centres in the frame their body rides on (a fixed joint's offset folded in), so that a state
+            // places a sphere with one rotation and translation from the frames SphereKinematics makes.
+            kinematics_ = std::make_unique<SphereKinematics>(model, vars, fullTemplate_, bodyLink_);
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+            {
+                const RigidFrame &offset = kinematics_->offsetOf(b);
+                bodyFrame_.push_back(kinematics_->frameOf(b));
+                frameCentre_.push_back((offset.r * bodyCentre_[b].cast<double>() + offset.t).cast<float>());
+                for (int i = begin_[b]; i < begin_[b + 1]; ++i)
+                {
+                    const Eigen::Vector3d c = offset.r * Eigen::Vector3d(cx_[i], cy_[i], cz_[i]) + offset.t;
+                    fx_.push_back(static_cast<float>(c.x()));
+                    fy_.push_back(static_cast<float>(c.y()));
+                    fz_.push_back(static_cast<float>(c.z()));
+                }
+            }
             if (exact_ && exact_->bodies() != bodies_)
                 throw std::invalid_argument("the exact self-collision checker must check the same bodies");
             // bodies the group does not move (a base on the floor): with FCL at hand, their contacts are decided
@@ -168,6 +185,7 @@ namespace michi
             }
             if (exact_)
                 makeSelfPairTables();
+            realVector_ = dynamic_cast<const ompl::base::RealVectorStateSpace *>(si->getStateSpace().get());
             // the first snapshot of the scene
             obstacles();
         }
@@ -175,7 +193,7 @@ namespace michi
         namespace
         {
             /** Cells per joint value of a self-pair table (one value: 1024 cells; two: 256 x 256, 8 KiB). */
-            constexpr int TABLE_CELLS_1D = 1024, TABLE_CELLS_2D = 256;
+            constexpr int TABLE_CELLS_1D = 4096, TABLE_CELLS_2D = 1024;
         }  // namespace
 
         void SphereValidityChecker::makeSelfPairTables()
@@ -341,34 +359,42 @@ namespace michi
 
         void SphereValidityChecker::place(const double *values, Scratch &s) const
         {
-            // Joints outside the planned group hold the values the template fixed; only the group's values change per
-            // query.
-            s.q.assign(fullTemplate_.begin(), fullTemplate_.end());
-            const auto &vars = bodies_->variables();
-            for (std::size_t i = 0; i < vars.size(); ++i)
-                s.q[vars[i]] = values[i];
-            bodies_->model()->forwardKinematics(s.q.data(), s.links);
-            const std::size_t n = radius_.size();
+            // Joints outside the planned group and fixed joints are folded into the kinematics' offsets: only the
+            // group's values are read per query.
+            s.frames.resize(kinematics_->frameCount());
+            kinematics_->frames(values, s.frames.data());
+            const std::size_t n = radius_.size(), nb = bodyLink_.size();
             s.x.resize(n);
             s.y.resize(n);
             s.z.resize(n);
             s.r.resize(n);
-            s.bodyCentre.resize(bodyLink_.size());
-            s.bodyRadius.resize(bodyLink_.size());
+            s.bodyCentre.resize(nb);
+            s.bodyRadius.resize(nb);
+            s.placed.assign(nb, 0);
+            for (std::size_t b = 0; b < nb; ++b)
+            {
+                const RigidFrame &f = s.frames[bodyFrame_[b]];
+                s.bodyCentre[b] = (f.r * frameCentre_[b].cast<double>() + f.t).cast<float>();
+            }
+        }
+
+        void SphereValidityChecker::placeBody(std::size_t b, Scratch &s) const
+        {
+            // Spheres are placed only for bodies whose bounding sphere reaches something: far from obstacles and
+            // from other links, a body costs its bounding sphere alone.
+            if (s.placed[b])
+                return;
+            s.placed[b] = 1;
             using Map = Eigen::Map<Eigen::ArrayXf>;
             using MapC = Eigen::Map<const Eigen::ArrayXf>;
-            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
-            {
-                const Eigen::Isometry3d &pose = s.links[bodyLink_[b]];
-                const Eigen::Matrix3f m = pose.linear().cast<float>();
-                const Eigen::Vector3f t = pose.translation().cast<float>();
-                const int first = begin_[b], count = begin_[b + 1] - begin_[b];
-                const MapC cx(cx_.data() + first, count), cy(cy_.data() + first, count), cz(cz_.data() + first, count);
-                Map(s.x.data() + first, count) = m(0, 0) * cx + m(0, 1) * cy + m(0, 2) * cz + t.x();
-                Map(s.y.data() + first, count) = m(1, 0) * cx + m(1, 1) * cy + m(1, 2) * cz + t.y();
-                Map(s.z.data() + first, count) = m(2, 0) * cx + m(2, 1) * cy + m(2, 2) * cz + t.z();
-                s.bodyCentre[b] = m * bodyCentre_[b] + t;
-            }
+            const RigidFrame &f = s.frames[bodyFrame_[b]];
+            const Eigen::Matrix3f m = f.r.cast<float>();
+            const Eigen::Vector3f t = f.t.cast<float>();
+            const int first = begin_[b], count = begin_[b + 1] - begin_[b];
+            const MapC cx(fx_.data() + first, count), cy(fy_.data() + first, count), cz(fz_.data() + first, count);
+            Map(s.x.data() + first, count) = m(0, 0) * cx + m(0, 1) * cy + m(0, 2) * cz + t.x();
+            Map(s.y.data() + first, count) = m(1, 0) * cx + m(1, 1) * cy + m(1, 2) * cz + t.y();
+            Map(s.z.data() + first, count) = m(2, 0) * cx + m(2, 1) * cy + m(2, 2) * cz + t.z();
         }
 
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
@@ -413,16 +439,20 @@ namespace michi
                 const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, r + first,
                                         begin_[b + 1] - first};
                 // the body's bounding sphere against the obstacle's own shape first: a large obstacle (a table top)
-                // has a bounding sphere that reaches every body, its shape reaches few
-                const float bound[4] = {s.bodyCentre[b].x(), s.bodyCentre[b].y(), s.bodyCentre[b].z(), s.bodyRadius[b]};
-                const SphereBatch whole{bound, bound + 1, bound + 2, bound + 3, 1};
+                // has a bounding sphere that reaches every body, its shape reaches few; the body's spheres are placed
+                // only once an obstacle's shape is within its bound
                 int hit = -1;
                 for (int o : s.candidates)
-                    if (obs.hits(o, whole) && obs.hits(o, batch))
+                {
+                    if (!obs.hitsSphere(o, s.bodyCentre[b], s.bodyRadius[b]))
+                        continue;
+                    placeBody(b, s);
+                    if (obs.hits(o, batch))
                     {
                         hit = o;
                         break;
                     }
+                }
                 if (hit < 0)
                     continue;
                 // the spheres stand out of the link's surface: near an obstacle (a grasp) the real geometry
@@ -434,7 +464,6 @@ namespace michi
                     *why = bodies_->model()->links()[bodyLink_[b]].name + " touches obstacle '" + obs.name(hit) + "'";
                 return true;
             }
-            using MapC = Eigen::Map<const Eigen::ArrayXf>;
             for (std::size_t k = 0; k < selfPairs_.size(); ++k)
             {
                 const auto &p = selfPairs_[k];
@@ -456,14 +485,29 @@ namespace michi
                 // Bounding spheres apart: no sphere of one body can meet a sphere of the other.
                 if ((s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() >= reach * reach)
                     continue;
-                const int fb = begin_[p.second], nbs = begin_[p.second + 1] - fb;
-                const MapC bx(s.x.data() + fb, nbs), by(s.y.data() + fb, nbs), bz(s.z.data() + fb, nbs),
-                    br(r + fb, nbs);
+                placeBody(static_cast<std::size_t>(p.first), s);
+                placeBody(static_cast<std::size_t>(p.second), s);
+                const int fb = begin_[p.second], lb = begin_[p.second + 1];
+                const float *bx = s.x.data(), *by = s.y.data(), *bz = s.z.data();
+                const Eigen::Vector3f &other = s.bodyCentre[p.second];
+                const float otherRadius = s.bodyRadius[p.second];
                 bool hit = false;
                 for (int i = begin_[p.first]; i < begin_[p.first + 1] && !hit; ++i)
-                    hit = ((bx - s.x[i]).square() + (by - s.y[i]).square() + (bz - s.z[i]).square() <
-                           (br + r[i]).square())
-                              .any();
+                {
+                    const float xi = bx[i], yi = by[i], zi = bz[i], ri = r[i];
+                    // A sphere that misses the other body's bounding sphere misses all of its spheres.
+                    const float ox = xi - other.x(), oy = yi - other.y(), oz = zi - other.z(), reach = ri + otherRadius;
+                    if (ox * ox + oy * oy + oz * oz >= reach * reach)
+                        continue;
+                    // No early exit inside: the compiler vectorises this loop into whole SIMD lanes.
+                    int any = 0;
+                    for (int j = fb; j < lb; ++j)
+                    {
+                        const float dx = bx[j] - xi, dy = by[j] - yi, dz = bz[j] - zi, rr = r[j] + ri;
+                        any |= dx * dx + dy * dy + dz * dz < rr * rr;
+                    }
+                    hit = any != 0;
+                }
                 if (!hit)
                     continue;
                 if (useExact && exact_ && inflation == nullptr)
@@ -497,7 +541,7 @@ namespace michi
             // allocation.
             thread_local Scratch s;
             place(values, s);
-            return !collides(s, values, inflation, bodyInflation, valueSpan, true, nullptr);
+            return !collides(s, values, inflation, bodyInflation, valueSpan, exactStates_, nullptr);
         }
 
         bool SphereValidityChecker::spheresFree(const double *values) const
@@ -512,7 +556,7 @@ namespace michi
             Scratch s;
             place(values, s);
             std::string why;
-            collides(s, values, nullptr, nullptr, nullptr, true, &why);
+            collides(s, values, nullptr, nullptr, nullptr, exactStates_, &why);
             return why;
         }
 
@@ -524,6 +568,7 @@ namespace michi
             float best = std::numeric_limits<float>::infinity();
             for (std::size_t b = 0; b < bodyLink_.size(); ++b)
             {
+                placeBody(b, s);
                 const int first = begin_[b];
                 const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first,
                                         radius_.data() + first, begin_[b + 1] - first};
@@ -541,6 +586,18 @@ namespace michi
 
         bool SphereValidityChecker::isValid(const ompl::base::State *state) const
         {
+            if (realVector_ != nullptr)
+            {
+                // The common case (an arm's joint vector): the values are read in place; the bounds test is
+                // RealVectorStateSpace::satisfiesBounds' own (a value may pass a bound by one epsilon).
+                const double *v = state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
+                const auto &bounds = realVector_->getBounds();
+                for (std::size_t i = 0; i < bounds.low.size(); ++i)
+                    if (v[i] - std::numeric_limits<double>::epsilon() > bounds.high[i] ||
+                        v[i] + std::numeric_limits<double>::epsilon() < bounds.low[i])
+                        return false;
+                return isValidConfiguration(v);
+            }
             if (!si_->satisfiesBounds(state))
                 return false;
             thread_local std::vector<double> values;

@@ -148,6 +148,10 @@ namespace michi
             {
                 int perLink{24};
                 std::string spherizedUrdf;
+                /** \brief Whether FCL settles states whose spheres touch (SphereValidityChecker::setExactStates):
+                    "on", "off", or "auto": on only for a query whose start or goal the spheres reject and FCL
+                    accepts (a hand at its grasp), so that such a query stays solvable. */
+                std::string exactStates{"auto"};
             } spheres;
             validity::JMapCheckerSettings jmap;  ///< for checker "jmap" (collision.jmap)
             /** \brief For checker "grid" (collision.grid); a map scene (scene.map, scene.movingai) sets its

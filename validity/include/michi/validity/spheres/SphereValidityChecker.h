@@ -7,6 +7,7 @@
 #include <michi/validity/spheres/SphereModel.h>
 
 #include <ompl/base/StateValidityChecker.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <Eigen/Core>
 
@@ -21,6 +22,7 @@ namespace michi
     {
         class SphereObstacles;
         class SelfPairTable;
+        class SphereKinematics;
 
         /** \brief Collision checking of an arm with the spheres of a SphereModel (which enclose its links) against a
             scene, in structure-of-arrays form: forward kinematics of the links, then every sphere centre of a
@@ -37,10 +39,11 @@ namespace michi
         public:
             /** \param exactSelf when given (an FCL checker of the same bodies): self pairs whose relative pose
                 depends on one or two joint values (a wrist, which sits close by construction) are decided by
-                tables built once with FCL on the real geometry (certified over each cell); in a state check, other
-                pairs whose spheres overlap are decided by an FCL collision query between the two links, and a link
-                whose spheres touch an obstacle by an FCL query of that link against the scene, so that states are
-                exact (no state is judged in collision that is not). */
+                tables built once with FCL on the real geometry (certified over each cell), and bodies the group
+                does not move are decided once by FCL. With setExactStates(true), a state check also hands other
+                pairs whose spheres overlap to an FCL collision query between the two links, and a link whose
+                spheres touch an obstacle to an FCL query of that link against the scene (no state is then judged
+                in collision that is not, outside the tables' cells next to contact). */
             SphereValidityChecker(const ompl::base::SpaceInformationPtr &si,
                                   std::shared_ptr<const RobotGroupBodies> bodies, SphereModelPtr spheres,
                                   ScenePtr scene, FclValidityCheckerPtr exactSelf = nullptr);
@@ -63,6 +66,18 @@ namespace michi
                 spheres, hence for the real geometry; false may be a state whose real geometry is free (a grasp:
                 the hand's spheres stand out of its surface). */
             bool spheresFree(const double *values) const;
+            /** \brief Whether a state check asks FCL about links whose spheres touch (default false). Off, a
+                state is decided by the spheres and the self-pair tables alone (tens of times faster; a few per
+                cent of free states near contact read as blocked); on, FCL settles those, so that no free state is
+                judged in collision. Set before use. */
+            void setExactStates(bool exact)
+            {
+                exactStates_ = exact;
+            }
+            bool exactStates() const
+            {
+                return exactStates_;
+            }
             /** \brief The FCL checker of the same bodies given at construction (may be null). */
             const FclValidityCheckerPtr &exact() const
             {
@@ -111,8 +126,10 @@ namespace michi
         private:
             struct Scratch;
             void toReals(const ompl::base::State *state, std::vector<double> &values) const;
-            /** Place every sphere for \e values into \e s (world centres). */
+            /** Frames and bodies' bounding spheres for \e values into \e s; no sphere is placed yet. */
             void place(const double *values, Scratch &s) const;
+            /** World centres of body \e b's spheres into \e s (once per state). */
+            void placeBody(std::size_t b, Scratch &s) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *bodyInflation,
                           const float *valueSpan, bool useExact, std::string *why) const;
             void makeSelfPairTables();
@@ -127,6 +144,13 @@ namespace michi
             std::vector<Eigen::Vector3f> bodyCentre_;  ///< bounding sphere of the body's spheres, link frame
             std::vector<float> bodyRadius_;
             std::vector<float> cx_, cy_, cz_, radius_;  ///< sphere centres in the link frame, padded radii
+            std::unique_ptr<SphereKinematics> kinematics_;
+            std::vector<int> bodyFrame_;                ///< frame (SphereKinematics) each body rides on
+            std::vector<float> fx_, fy_, fz_;           ///< sphere centres in their body's frame
+            std::vector<Eigen::Vector3f> frameCentre_;  ///< bounding sphere centres in the body's frame
+            bool exactStates_{false};
+            /** the state space when it is a RealVectorStateSpace: states are read in place, without copyToReals */
+            const ompl::base::RealVectorStateSpace *realVector_{nullptr};
             std::vector<std::pair<int, int>> selfPairs_;
             std::vector<int> selfPairIndex_;
             std::vector<int> robotBody_;     ///< index of each body in bodies_->bodies()

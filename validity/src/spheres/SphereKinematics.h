@@ -1,0 +1,75 @@
+#ifndef MICHI_VALIDITY_SPHERES_SPHERE_KINEMATICS_
+#define MICHI_VALIDITY_SPHERES_SPHERE_KINEMATICS_
+
+// Internal to the sphere checker: forward kinematics of only what a state check needs. RobotModel's
+// forwardKinematics poses every link through Eigen's AngleAxis and Isometry products, and per state that cost more
+// than the sphere tests themselves. Here every fixed transform (fixed joints, joints outside the planned group at
+// their template values) is folded into the few frames the group's joints move, and a body is a frame plus a
+// constant offset that the checker folds into its sphere centres.
+
+#include <michi/validity/robot/RobotModel.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace michi
+{
+    namespace validity
+    {
+        /** \brief sin and cos of \e x (|x| up to a few thousand radians), accurate to a few units in the last
+            place: one reduction by pi/2 and the two minimax polynomials on [-pi/4, pi/4]. */
+        void fastSinCos(double x, double &s, double &c);
+
+        /** \brief A rigid transform as a 3x3 rotation and a translation (double). */
+        struct RigidFrame
+        {
+            Eigen::Matrix3d r{Eigen::Matrix3d::Identity()};
+            Eigen::Vector3d t{Eigen::Vector3d::Zero()};
+        };
+
+        class SphereKinematics
+        {
+        public:
+            /** \param variables the group's variable indices (as RobotGroupBodies::variables())
+                \param fullTemplate a whole configuration: joints outside the group keep these values
+                \param links the links whose poses are asked for */
+            SphereKinematics(const RobotModel &model, const std::vector<int> &variables,
+                             const std::vector<double> &fullTemplate, const std::vector<int> &links);
+
+            std::size_t frameCount() const
+            {
+                return steps_.size() + 1;
+            }
+            /** \brief Frame that link links[i] rides on, and its constant pose in that frame. */
+            int frameOf(std::size_t i) const
+            {
+                return linkFrame_[i];
+            }
+            const RigidFrame &offsetOf(std::size_t i) const
+            {
+                return linkOffset_[i];
+            }
+            /** \brief Every frame for group values \e values (frame 0: the robot's base pose, read per call).
+                \e frames holds frameCount() entries. */
+            void frames(const double *values, RigidFrame *frames) const;
+
+        private:
+            struct Step
+            {
+                int parent;         ///< frame the joint hangs from
+                RigidFrame offset;  ///< joint origin in that frame
+                Eigen::Vector3d axis;
+                bool prismatic;
+                int value;     ///< group index of its value
+                double zSign;  ///< axis +z: 1, -z: -1, other: 0 (general rotation)
+            };
+            const RobotModel &model_;
+            std::vector<Step> steps_;  ///< frame s + 1 is made by step s; parents come first
+            std::vector<int> linkFrame_;
+            std::vector<RigidFrame> linkOffset_;
+        };
+    }  // namespace validity
+}  // namespace michi
+
+#endif
