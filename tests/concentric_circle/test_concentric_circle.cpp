@@ -9,6 +9,7 @@
 #include <michi/tools/pictures/CirclePicture.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/Problem.h>
+#include <michi/validity/jmap/JMapValidityChecker.h>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -107,6 +108,28 @@ TEST(ConcentricCircle, PlansOnTheJMapPolygonsWithTheJMapChecker)
     ASSERT_EQ(r.planner->stages().size(), 1u);
     EXPECT_NE(dynamic_cast<const planners::PolygonCircleMap *>(r.planner->stages()[0].map.get()), nullptr);
     EXPECT_EQ(exactCheck(r.ctx.setup->getSpaceInformation(), *r.ctx.checker, r.ctx.setup->getSolutionPath()), "");
+}
+
+TEST(ConcentricCircle, UnitesTheJMapPolygonsOncePerCheckerNotPerSolve)
+{
+    // The J-map mode's map depends on the checker only: its polygons are united in setup(), not in every solve
+    // (solve() once made a second map just to see whether the mode applies: a sixth of a planar_2link solve).
+    auto r = planProblem("planar_2link", "jmap");
+    ASSERT_EQ(r.status, ob::PlannerStatus::EXACT_SOLUTION);
+    const auto *checker =
+        dynamic_cast<const validity::JMapValidityChecker *>(r.ctx.setup->getStateValidityChecker().get());
+    ASSERT_NE(checker, nullptr);
+    EXPECT_EQ(checker->unionsMade(), 1u);
+    const auto first = r.planner->stages()[0].map;
+    for (int i = 0; i < 3; ++i)
+    {
+        r.planner->clear();
+        r.ctx.setup->getProblemDefinition()->clearSolutionPaths();
+        ASSERT_EQ(r.planner->solve(ob::timedPlannerTerminationCondition(20.)), ob::PlannerStatus::EXACT_SOLUTION);
+        EXPECT_EQ(r.planner->usedMode(), "jmap");
+        EXPECT_EQ(r.planner->stages()[0].map, first);
+    }
+    EXPECT_EQ(checker->unionsMade(), 1u);
 }
 
 TEST(ConcentricCircle, SolvesPlanar3dofHandThroughTheHierarchy)

@@ -531,7 +531,14 @@ namespace michi
                 // Mode order in auto: the J-map polygons when the checker has them (the paper's own map, with exact
                 // visibility), else for 3 or more values the arm -> hand hierarchy (planar arms) or the restriction
                 // surface, else the 2-D projection.
-                const bool possible = n == 2 && axis1_ == 0 && axis2_ == 1 && makeJMapCircleMap(si_) != nullptr;
+                // the map made in setup() (made again only for another checker or a changed scene): uniting the
+                // polygons here in every solve cost about a sixth of a planar_2link solve
+                bool possible = false;
+                if (n == 2 && axis1_ == 0 && axis2_ == 1)
+                {
+                    refreshJMapMap();
+                    possible = jmapMap_ != nullptr;
+                }
                 if (possible)
                 {
                     usedMode_ = "jmap";

@@ -159,6 +159,7 @@ namespace michi
 
         MultiPolygon2 JMapValidityChecker::unitedPolygons() const
         {
+            ++unionsMade_;
             buildAll();
             MultiPolygon2 all;
             for (std::size_t k = 0; k < tileCount_; ++k)

@@ -76,6 +76,12 @@ namespace michi
             {
                 return fclQueries_.load();
             }
+            /** \brief unitedPolygons() calls so far (each unites every tile's polygons: milliseconds; a planner
+                should do it once per checker and scene, not per solve). */
+            std::uint64_t unionsMade() const
+            {
+                return unionsMade_.load();
+            }
             const JMapAxes &axes() const
             {
                 return axes_;
@@ -117,6 +123,7 @@ namespace michi
             mutable std::mutex buildMutex_;
             mutable std::atomic<std::uint64_t> generation_{0};
             mutable std::atomic<std::uint64_t> fclQueries_{0};
+            mutable std::atomic<std::uint64_t> unionsMade_{0};
         };
 
         using JMapValidityCheckerPtr = std::shared_ptr<JMapValidityChecker>;
