@@ -116,8 +116,9 @@ namespace michi
                 return out;
             }
 
-            /** Cover triangles with at most \e budget spheres: split the part with the largest sphere along the
-                longest extent of its triangles' centroids, at the median. */
+            /** Cover triangles with at most \e budget spheres: split the part whose sphere stands out of the link
+                most along the longest extent of its triangles' centroids, at the median. \e whole: the link's
+                surface before long triangles were split (for the inside test). */
             std::vector<LinkSphere> coverTriangles(const std::vector<Eigen::Vector3d> &tris,
                                                    const std::vector<Eigen::Vector3d> &whole, int budget)
             {
@@ -205,6 +206,9 @@ namespace michi
                         normal.normalize();
                         const Eigen::Vector3d c0 = p.sphere.centre;
                         const double r0 = p.sphere.radius;
+                        // candidates better than the surface-centred sphere, best first; the inside test (a pass
+                        // over the whole mesh) runs only until one passes
+                        std::vector<std::pair<double, LinkSphere>> better;
                         for (double sign : {1., -1.})
                             for (double k : {0.25, 0.5, 1., 1.5, 2., 3., 4.})
                             {
@@ -214,11 +218,20 @@ namespace michi
                                     r = std::max(r, (q - c).squaredNorm());
                                 r = std::sqrt(r);
                                 const double bulge = r - depth(c);
-                                if (bulge < p.bulge && inside(c))
-                                {
-                                    p.bulge = bulge;
-                                    p.sphere = {c, padded(r)};
-                                }
+                                if (bulge < p.bulge)
+                                    better.push_back({bulge, {c, padded(r)}});
+                            }
+                        std::sort(better.begin(), better.end(),
+                                  [](const auto &a, const auto &b)
+                                  {
+                                      return a.first < b.first;
+                                  });
+                        for (const auto &candidate : better)
+                            if (inside(candidate.second.centre))
+                            {
+                                p.bulge = candidate.first;
+                                p.sphere = candidate.second;
+                                break;
                             }
                     }
                     p.triangles = std::move(ids);
