@@ -11,6 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 
 using namespace michi;
 using namespace michi::validity;
@@ -134,4 +138,66 @@ TEST(SelfPairTable, PandaWristTablesAgreeWithFcl)
     }
     ASSERT_GT(fclValid, 1000);
     EXPECT_LT(falseInvalid, fclValid / 20) << falseInvalid << " of " << fclValid;
+}
+
+// The tables go to the cache folder once and come back from it for the next checker of the same robot, with the
+// same answers; a damaged file is not trusted but rebuilt.
+TEST(SelfPairTable, CachedOnDiskAndReadBack)
+{
+    const std::string dir = ::testing::TempDir() + "michi-self-pairs-" + std::to_string(::getpid());
+    std::filesystem::remove_all(dir);
+    ::setenv("MICHI_CACHE_DIR", dir.c_str(), 1);
+    const auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/panda_table_pick.yaml");
+    auto ctx = tools::makePlanningContext(problem);
+    auto group = std::dynamic_pointer_cast<const RobotGroupBodies>(ctx.bodies);
+    const auto model = SphereModel::enclose(*group->model());
+    auto make = [&]
+    {
+        return std::make_shared<SphereValidityChecker>(ctx.setup->getSpaceInformation(), group, model, ctx.scene,
+                                                       ctx.checker);
+    };
+    ompl::RNG rng(21);
+    const auto &bounds = ctx.setup->getStateSpace()->as<ompl::base::RealVectorStateSpace>()->getBounds();
+    std::vector<std::vector<double>> states;
+    for (int i = 0; i < 3000; ++i)
+    {
+        std::vector<double> q;
+        for (std::size_t d = 0; d < bounds.low.size(); ++d)
+            q.push_back(rng.uniformReal(bounds.low[d], bounds.high[d]));
+        states.push_back(q);
+    }
+    std::vector<char> built;
+    {
+        auto first = make();
+        EXPECT_FALSE(first->selfPairTablesFromDisk());
+        for (const auto &q : states)
+            built.push_back(first->isValidConfiguration(q.data()));
+    }  // the last user of the tables: the next checker cannot share them in memory
+    std::vector<std::filesystem::path> files;
+    for (const auto &entry : std::filesystem::directory_iterator(dir))
+        files.push_back(entry.path());
+    ASSERT_EQ(files.size(), 1u);
+    {
+        auto second = make();
+        EXPECT_TRUE(second->selfPairTablesFromDisk());
+        for (std::size_t i = 0; i < states.size(); ++i)
+            ASSERT_EQ(second->isValidConfiguration(states[i].data()), built[i] != 0) << "state " << i;
+    }
+    // one byte flipped in the middle of the bits: the checksum refuses the file, the tables are built again
+    {
+        std::fstream f(files[0], std::ios::in | std::ios::out | std::ios::binary);
+        const auto middle = static_cast<std::streamoff>(std::filesystem::file_size(files[0]) / 2);
+        f.seekg(middle);
+        const char byte = static_cast<char>(f.get());
+        f.seekp(middle);
+        f.put(static_cast<char>(~byte));
+    }
+    {
+        auto third = make();
+        EXPECT_FALSE(third->selfPairTablesFromDisk());
+        for (std::size_t i = 0; i < states.size(); ++i)
+            ASSERT_EQ(third->isValidConfiguration(states[i].data()), built[i] != 0) << "state " << i;
+    }
+    ::unsetenv("MICHI_CACHE_DIR");
+    std::filesystem::remove_all(dir);
 }

@@ -13,6 +13,25 @@ namespace michi
                                      const std::function<double(const double *)> &distance)
             : variables_(std::move(variables))
         {
+            shape(lo, hi, wrap, closing, cellsPerVariable);
+            fill(0, n_[0], 0, n_[1], distance);
+        }
+
+        SelfPairTable::SelfPairTable(std::vector<int> variables, std::vector<double> lo, std::vector<double> hi,
+                                     std::vector<char> wrap, std::vector<double> closing, int cellsPerVariable,
+                                     std::vector<std::uint64_t> bits)
+            : variables_(std::move(variables))
+        {
+            shape(lo, hi, wrap, closing, cellsPerVariable);
+            if (bits.size() != bits_.size())
+                throw std::invalid_argument("SelfPairTable: stored bits do not fit the table");
+            bits_ = std::move(bits);
+        }
+
+        void SelfPairTable::shape(const std::vector<double> &lo, const std::vector<double> &hi,
+                                  const std::vector<char> &wrap, const std::vector<double> &closing,
+                                  int cellsPerVariable)
+        {
             if (variables_.empty() || variables_.size() > 2 || lo.size() != variables_.size() ||
                 hi.size() != variables_.size() || wrap.size() != variables_.size() ||
                 closing.size() != variables_.size() || cellsPerVariable < 1)
@@ -29,7 +48,6 @@ namespace michi
             }
             const std::size_t cells = static_cast<std::size_t>(n_[0]) * static_cast<std::size_t>(n_[1]);
             bits_.assign((cells + 63) / 64, 0);
-            fill(0, n_[0], 0, n_[1], distance);
         }
 
         void SelfPairTable::fill(int i0, int i1, int j0, int j1, const std::function<double(const double *)> &distance)

@@ -32,6 +32,16 @@ namespace michi
                           std::vector<char> wrap, std::vector<double> closing, int cellsPerVariable,
                           const std::function<double(const double *)> &distance);
 
+            /** \brief A table whose cells were certified before (the bits of bits() of a table built with the same
+                arguments, read back from the cache); throws std::invalid_argument when the size does not fit. */
+            SelfPairTable(std::vector<int> variables, std::vector<double> lo, std::vector<double> hi,
+                          std::vector<char> wrap, std::vector<double> closing, int cellsPerVariable,
+                          std::vector<std::uint64_t> bits);
+            const std::vector<std::uint64_t> &bits() const
+            {
+                return bits_;
+            }
+
             /** \brief Is the pair certainly apart at group values \e values? */
             bool free(const double *values) const;
             /** \brief Is it apart for every value within \e span[v] of values[v] (group indices)? */
@@ -60,6 +70,9 @@ namespace michi
             bool freeWithin(const double *values, double span0, double span1) const;
             /** Are the \e count cells from flat index \e first on (one row) all set? */
             bool allSet(std::size_t first, std::size_t count) const;
+            /** The ranges and cell sizes; bits_ sized, empty. */
+            void shape(const std::vector<double> &lo, const std::vector<double> &hi, const std::vector<char> &wrap,
+                       const std::vector<double> &closing, int cellsPerVariable);
             void fill(int i0, int i1, int j0, int j1, const std::function<double(const double *)> &distance);
 
             std::vector<int> variables_;

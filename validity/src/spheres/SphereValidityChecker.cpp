@@ -1,5 +1,6 @@
 #include <michi/validity/spheres/SphereValidityChecker.h>
 
+#include "SelfPairCache.h"
 #include "SelfPairTable.h"
 #include "SphereKinematics.h"
 #include "SphereObstacles.h"
@@ -267,6 +268,51 @@ namespace michi
                 }
                 jobs.push_back(std::move(job));
             }
+            // The tables on disk (SelfPairCache.h), keyed by everything they are built from: the robot's geometry
+            // and joints, the values of the joints the group does not move, and each table's pair, values, ranges,
+            // closing speeds and cells. A file that does not check out is ignored and the tables built again.
+            Fnv64 hash;
+            hash.text("michi self-pair tables v1");
+            hashRobotGeometry(model, hash);
+            hash.bytes(fullTemplate_.data(), fullTemplate_.size() * sizeof(double));
+            for (const Job &job : jobs)
+            {
+                hash.value(job.k);
+                hash.text(model.links()[bodyLink_[selfPairs_[job.k].first]].name);
+                hash.text(model.links()[bodyLink_[selfPairs_[job.k].second]].name);
+                for (std::size_t d = 0; d < job.on.size(); ++d)
+                {
+                    hash.value(vars[job.on[d]]);
+                    hash.value(job.lo[d]);
+                    hash.value(job.hi[d]);
+                    hash.value(job.wrap[d]);
+                    hash.value(job.closing[d]);
+                }
+                hash.value(job.on.size() == 1 ? TABLE_CELLS_1D : TABLE_CELLS_2D);
+            }
+            const std::string cacheDir = selfPairCacheDir();
+            std::vector<std::vector<std::uint64_t>> stored;
+            if (!jobs.empty() && readSelfPairCache(cacheDir, hash.digest(), jobs.size(), stored))
+            {
+                try
+                {
+                    for (std::size_t i = 0; i < jobs.size(); ++i)
+                    {
+                        const Job &job = jobs[i];
+                        (*tables)[job.k] = std::make_shared<SelfPairTable>(
+                            job.on, job.lo, job.hi, job.wrap, job.closing,
+                            job.on.size() == 1 ? TABLE_CELLS_1D : TABLE_CELLS_2D, std::move(stored[i]));
+                    }
+                    tablesFromDisk_ = true;
+                    pairTables_ = tables;
+                    cache[key] = tables;
+                    return;
+                }
+                catch (const std::invalid_argument &)
+                {
+                    // a stored table of another size: built again below
+                }
+            }
             std::atomic<std::size_t> next{0};
             auto work = [&]
             {
@@ -303,6 +349,13 @@ namespace michi
                 t.join();
             pairTables_ = tables;
             cache[key] = tables;
+            if (!jobs.empty())
+            {
+                std::vector<std::vector<std::uint64_t>> bits;
+                for (const Job &job : jobs)
+                    bits.push_back((*tables)[job.k]->bits());
+                writeSelfPairCache(cacheDir, hash.digest(), bits);
+            }
         }
 
         std::size_t SphereValidityChecker::tabulatedPairs() const

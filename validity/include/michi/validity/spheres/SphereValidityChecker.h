@@ -85,6 +85,12 @@ namespace michi
             }
             /** \brief Self pairs decided by a table over one or two joint values (see selfPairTables). */
             std::size_t tabulatedPairs() const;
+            /** \brief Were this checker's self-pair tables read from the cache folder ($MICHI_CACHE_DIR, else
+                $XDG_CACHE_HOME/michi or ~/.cache/michi) rather than built with FCL? */
+            bool selfPairTablesFromDisk() const
+            {
+                return tablesFromDisk_;
+            }
             /** \brief "panda_hand touches obstacle 'can'" or "link1 touches link4" (spheres); empty when valid. */
             std::string describeCollision(const double *values) const;
             /** \brief Lower bound of the distance between the robot and the scene (<= 0 when the spheres touch). */
@@ -149,6 +155,7 @@ namespace michi
             std::vector<float> fx_, fy_, fz_;           ///< sphere centres in their body's frame
             std::vector<Eigen::Vector3f> frameCentre_;  ///< bounding sphere centres in the body's frame
             bool exactStates_{false};
+            bool tablesFromDisk_{false};
             /** the state space when it is a RealVectorStateSpace: states are read in place, without copyToReals */
             const ompl::base::RealVectorStateSpace *realVector_{nullptr};
             std::vector<std::pair<int, int>> selfPairs_;
