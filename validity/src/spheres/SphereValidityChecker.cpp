@@ -272,6 +272,8 @@ namespace michi
             // and joints, the values of the joints the group does not move, and each table's pair, values, ranges,
             // closing speeds and cells. A file that does not check out is ignored and the tables built again.
             Fnv64 hash;
+            // The version names the certification rule and the file layout: change it with either, so that files
+            // written by an older build are not read as proofs.
             hash.text("michi self-pair tables v1");
             hashRobotGeometry(model, hash);
             hash.bytes(fullTemplate_.data(), fullTemplate_.size() * sizeof(double));
