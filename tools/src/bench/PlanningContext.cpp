@@ -174,8 +174,9 @@ namespace michi
         namespace
         {
             /** collision.spheres.exact_states: "auto" turns FCL's settling on only where the spheres alone would make
-                the query unsolvable, a start or goal they reject that FCL accepts (a grasp: the hand's spheres stand
-                out of its surface into the object). Other queries keep the spheres-only speed. */
+                the query unsolvable, a start or goal they reject (a grasp: the hand's spheres stand out of its surface
+                into the object); checkEndpoint() has already shown both free for FCL. Other queries keep the
+                spheres-only speed. */
             void chooseExactStates(const Problem &problem, PlanningContext &ctx,
                                    std::initializer_list<const std::vector<double> *> endpoints)
             {
@@ -183,8 +184,7 @@ namespace michi
                 bool exact = mode == "on";
                 if (mode == "auto")
                     for (const auto *values : endpoints)
-                        exact = exact || (!ctx.spheres->isValidConfiguration(values->data()) &&
-                                          ctx.checker->isValidConfiguration(values->data()));
+                        exact = exact || !ctx.spheres->isValidConfiguration(values->data());
                 ctx.spheres->setExactStates(exact);
             }
         }  // namespace

@@ -59,12 +59,6 @@ namespace michi
             double freeFraction() const;
 
         private:
-            bool cell(int i, int j) const
-            {
-                const std::size_t k =
-                    static_cast<std::size_t>(j) * static_cast<std::size_t>(n_[0]) + static_cast<std::size_t>(i);
-                return (bits_[k >> 6] >> (k & 63)) & 1u;
-            }
             /** Index range [first, last] of the cells meeting [v - s, v + s] of variable d; false when outside. */
             bool range(int d, double v, double s, int &first, int &last) const;
             bool freeWithin(const double *values, double span0, double span1) const;
