@@ -241,50 +241,19 @@ namespace michi
 
         bool SphereObstacles::hitsSphere(int o, const Eigen::Vector3f &c, float r) const
         {
-            // One sphere (a body's bound) in plain scalar code: the batch kernels' dynamic arrays cost more than the
-            // arithmetic for a single sphere. Polygons and meshes go through the batch path.
-            const Frame &f = frames_[o];
-            const Eigen::Vector3f &s = size_[o];
-            const Eigen::Vector3f d = c - f.t;
-            float d2 = 0.f;
-            switch (kind_[o])
+            // One sphere (a body's bound): the kernel of squaredDistances() on fixed one-element arrays, which cost
+            // no more than scalar code (the batch's dynamic arrays cost more than the arithmetic for one sphere).
+            // A mesh goes through hits(), whose tree walk stops at the radius.
+            if (kind_[o] == MESH)
             {
-                case SPHERE:
-                {
-                    const float out = std::max(d.norm() - s.x(), 0.f);
-                    d2 = out * out;
-                    break;
-                }
-                case BOX:
-                {
-                    const Eigen::Vector3f q = ((f.rt * d).cwiseAbs() - s).cwiseMax(0.f);
-                    d2 = q.squaredNorm();
-                    break;
-                }
-                case CYLINDER:
-                case CAPSULE:
-                {
-                    const Eigen::Vector3f p = f.rt * d;
-                    const float radial = p.head<2>().norm(), qz = std::max(std::abs(p.z()) - s.y(), 0.f);
-                    if (kind_[o] == CYLINDER)
-                    {
-                        const float qr = std::max(radial - s.x(), 0.f);
-                        d2 = qr * qr + qz * qz;
-                    }
-                    else
-                    {
-                        const float out = std::max(std::sqrt(radial * radial + qz * qz) - s.x(), 0.f);
-                        d2 = out * out;
-                    }
-                    break;
-                }
-                default:
-                {
-                    const float one[4] = {c.x(), c.y(), c.z(), r};
-                    return hits(o, SphereBatch{one, one + 1, one + 2, one + 3, 1});
-                }
+                const float one[4] = {c.x(), c.y(), c.z(), r};
+                return hits(o, SphereBatch{one, one + 1, one + 2, one + 3, 1});
             }
-            return d2 < r * r;
+            using One = Eigen::Array<float, 1, 1>;
+            const One x = One::Constant(c.x()), y = One::Constant(c.y()), z = One::Constant(c.z());
+            One d2;
+            squaredDistancesOf<One>(o, x, y, z, d2);
+            return d2(0) < r * r;
         }
 
         float SphereObstacles::boundDistance(int o, const Eigen::Vector3f &c, float r) const
@@ -294,12 +263,18 @@ namespace michi
 
         void SphereObstacles::squaredDistances(int o, const SphereBatch &b, float *out) const
         {
-            const int n = b.n;
-            const ArrayC x(b.x, n), y(b.y, n), z(b.z, n);
-            Eigen::Map<Eigen::ArrayXf> d2(out, n);
+            const ArrayC x(b.x, b.n), y(b.y, b.n), z(b.z, b.n);
+            Eigen::Map<Eigen::ArrayXf> d2(out, b.n);
+            squaredDistancesOf<Arr>(o, x, y, z, d2);
+        }
+
+        template <typename A, typename In, typename Out>
+        void SphereObstacles::squaredDistancesOf(int o, const In &x, const In &y, const In &z, Out &d2) const
+        {
+            const int n = static_cast<int>(x.size());
             const Frame &f = frames_[o];
             const Eigen::Vector3f &s = size_[o];
-            const Arr dx = x - f.t.x(), dy = y - f.t.y(), dz = z - f.t.z();
+            const A dx = x - f.t.x(), dy = y - f.t.y(), dz = z - f.t.z();
             switch (kind_[o])
             {
                 case SPHERE:
@@ -311,9 +286,9 @@ namespace michi
                 case BOX:
                 {
                     const auto &m = f.rt;
-                    const Arr qx = ((m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz).abs() - s.x()).max(0.f);
-                    const Arr qy = ((m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz).abs() - s.y()).max(0.f);
-                    const Arr qz = ((m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz).abs() - s.z()).max(0.f);
+                    const A qx = ((m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz).abs() - s.x()).max(0.f);
+                    const A qy = ((m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz).abs() - s.y()).max(0.f);
+                    const A qz = ((m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz).abs() - s.z()).max(0.f);
                     // Distance to a box = length of how far the point lies outside each pair of faces (0 inside).
                     d2 = qx.square() + qy.square() + qz.square();
                     break;
@@ -322,11 +297,11 @@ namespace michi
                 case CAPSULE:
                 {
                     const auto &m = f.rt;
-                    const Arr px = m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz;
-                    const Arr py = m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz;
-                    const Arr pz = m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz;
-                    const Arr radial = (px.square() + py.square()).sqrt();
-                    const Arr qz = (pz.abs() - s.y()).max(0.f);
+                    const A px = m(0, 0) * dx + m(0, 1) * dy + m(0, 2) * dz;
+                    const A py = m(1, 0) * dx + m(1, 1) * dy + m(1, 2) * dz;
+                    const A pz = m(2, 0) * dx + m(2, 1) * dy + m(2, 2) * dz;
+                    const A radial = (px.square() + py.square()).sqrt();
+                    const A qz = (pz.abs() - s.y()).max(0.f);
                     if (kind_[o] == CYLINDER)
                         // Cylinder: outside the radius and outside the caps are independent, so the two excesses add in
                         // squares.

@@ -89,6 +89,10 @@ namespace michi
             };
             /** Squared distance from each centre of \e batch to the shape of \e o, in \e d2 (n values). */
             void squaredDistances(int o, const SphereBatch &batch, float *d2) const;
+            /** The kernel of squaredDistances() on Eigen arrays \e x, \e y, \e z (temporaries of type A), written to
+                \e d2: the batch's maps, or fixed one-element arrays for hitsSphere(). */
+            template <typename A, typename In, typename Out>
+            void squaredDistancesOf(int o, const In &x, const In &y, const In &z, Out &d2) const;
             float meshDistance(const Mesh &mesh, const Eigen::Vector3f &p, float limit) const;
             void addMesh(const Obstacle &obstacle);
 
