@@ -74,3 +74,44 @@ TEST(ExperienceThunder, TrainedItSolvesAHeldOutQueryAndKeepsItsRoadmapThroughCle
     thunder->getPlannerData(data);
     EXPECT_GT(data.numVertices(), 0u);
 }
+
+// A goal the checker rejects (the sphere checker's grasp goals): OMPL 1.5.2's retrieve-repair planners hand the null
+// goal PlannerInputStates gives them to the database and crash; the race must not run them, and report the goal.
+TEST(ExperienceThunder, AnInvalidGoalIsReportedNotACrash)
+{
+    ompl::RNG::setSeed(7);
+    auto problem = michi::test::makeConformanceProblem();
+    const auto &setup = problem.setup;
+    auto si = setup->getSpaceInformation();
+    setQuery(setup, {0.2, 0.3}, {1.2, -0.4});
+    setup->setPlanner(std::make_shared<og::RRTConnect>(si));
+    ASSERT_EQ(setup->solve(10.), ob::PlannerStatus::EXACT_SOLUTION);
+    const og::PathGeometric trained(setup->getSolutionPath());
+
+    // a goal in collision: the first of a scan of the joint square that the checker refuses
+    std::vector<double> blocked;
+    ob::ScopedState<> probe(setup->getStateSpace());
+    for (double a = -3.; a <= 3. && blocked.empty(); a += 0.05)
+        for (double b = -3.; b <= 3. && blocked.empty(); b += 0.05)
+        {
+            probe = std::vector<double>{a, b};
+            if (!si->isValid(probe.get()))
+                blocked = {a, b};
+        }
+    ASSERT_FALSE(blocked.empty());
+
+    std::vector<std::shared_ptr<michi::planners::ExperienceRace>> planners = {
+        std::make_shared<michi::planners::ThunderPlanner>(si), std::make_shared<michi::planners::LightningPlanner>(si)};
+    for (const auto &planner : planners)
+    {
+        planner->addExperience(trained);
+        ASSERT_GT(planner->experienceCount(), 0u);
+        setQuery(setup, {0.22, 0.28}, blocked);
+        setup->setPlanner(planner);
+        planner->clear();
+        setup->getProblemDefinition()->clearSolutionPaths();
+        const ob::PlannerStatus status = setup->solve(1.);
+        EXPECT_NE(status, ob::PlannerStatus::EXACT_SOLUTION) << planner->getName();
+        EXPECT_FALSE(setup->getProblemDefinition()->hasExactSolution()) << planner->getName();
+    }
+}

@@ -4,6 +4,8 @@
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/experience/LightningRetrieveRepair.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/base/goals/GoalStates.h>
 #include <ompl/geometric/planners/experience/ThunderRetrieveRepair.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/tools/lightning/LightningDB.h>
@@ -59,8 +61,10 @@ namespace michi
             // as ompl::tools::Lightning / Thunder: both in parallel, stop at the first solution
             ompl::tools::ParallelPlan race(pdef_);
             // With an empty database retrieve-repair can only fail: racing it would take CPU from the planner that can
-            // succeed.
-            if (experienceCount() > 0)
+            // succeed. Nor is it raced without a valid start and goal: OMPL 1.5.2's Lightning/ThunderRetrieveRepair
+            // pass the null state PlannerInputStates then gives to the database (a crash, seen with a grasp goal the
+            // sphere checker rejects); RRT-Connect alone reports the invalid start or goal as OMPL's planners do.
+            if (experienceCount() > 0 && hasValidStartAndGoal())
                 race.addPlanner(retrieveRepair_);
             race.addPlanner(scratch_);
             const ob::PlannerStatus status = race.solve(ptc, false);
@@ -74,6 +78,25 @@ namespace michi
                 addExperience(path);
             }
             return status;
+        }
+
+        bool ExperienceRace::hasValidStartAndGoal() const
+        {
+            bool start = false;
+            for (unsigned int i = 0; i < pdef_->getStartStateCount() && !start; ++i)
+                start = si_->isValid(pdef_->getStartState(i));
+            const ob::Goal *goal = pdef_->getGoal().get();
+            if (const auto *one = dynamic_cast<const ob::GoalState *>(goal))
+                return start && si_->isValid(one->getState());
+            if (const auto *several = dynamic_cast<const ob::GoalStates *>(goal))
+            {
+                for (std::size_t i = 0; i < several->getStateCount(); ++i)
+                    if (si_->isValid(several->getState(i)))
+                        return start;
+                return false;
+            }
+            // other goals (regions): sampled by retrieve-repair as OMPL does
+            return start && goal != nullptr;
         }
 
         void ExperienceRace::getPlannerData(ob::PlannerData &data) const

@@ -54,6 +54,8 @@ namespace michi
 
         protected:
             ExperienceRace(const ompl::base::SpaceInformationPtr &si, const std::string &name);
+            /** \brief A valid start and a valid goal state (any, for several): retrieve-repair needs both. */
+            bool hasValidStartAndGoal() const;
             ompl::base::PlannerPtr retrieveRepair_;
             ompl::base::PlannerPtr scratch_;
             bool learn_{false};
