@@ -1,5 +1,6 @@
 // The sphere checker never accepts what FCL on the real geometry rejects; certified motions are free.
 #include <michi/tools/bench/PlanningContext.h>
+#include <michi/tools/problem/ExperienceQueries.h>
 #include <michi/validity/spheres/SphereMotionValidator.h>
 #include <michi/validity/spheres/SphereValidityChecker.h>
 
@@ -188,6 +189,16 @@ TEST(SphereCheckerExactStates, AutoTurnsOnOnlyForAGraspTheSpheresReject)
     EXPECT_TRUE(graspCtx.spheres->exactStates());
     // with FCL settling, the grasp itself is a valid state
     EXPECT_TRUE(graspCtx.spheres->isValidConfiguration(goal.data()));
+    // a dataset's next query decides again (setQuery), from the spheres alone whatever the previous query chose:
+    // the grasp again keeps it on, from the start to itself the spheres alone suffice
+    tools::setQuery(graspCtx, grasp.queries[0]);
+    EXPECT_TRUE(graspCtx.spheres->exactStates());
+    const auto &start = grasp.queries[0].start;
+    ASSERT_TRUE(graspCtx.spheres->spheresFree(start.data()));
+    tools::setQuery(graspCtx, tools::Query{start, start, {}});
+    EXPECT_FALSE(graspCtx.spheres->exactStates());
+    tools::setQuery(graspCtx, grasp.queries[0]);
+    EXPECT_TRUE(graspCtx.spheres->exactStates());
 
     EXPECT_FALSE(tools::makePlanningContext(load("panda_table_pick.yaml", "auto")).spheres->exactStates());
     EXPECT_TRUE(tools::makePlanningContext(load("panda_table_pick.yaml", "on")).spheres->exactStates());

@@ -95,10 +95,13 @@ namespace michi
                 }
             if (!ownChecker.empty())
                 contextOptions.checker = ownChecker;
-            // a dataset's scenes are swapped under the FCL checker; the other checkers precompute the scene
-            if (experienceDataset && (problem.checker != "fcl" || !ownChecker.empty() || compareCheckers))
+            // A dataset's scenes are swapped in the context's scene object: FCL and the sphere checker follow its
+            // changes (Scene::changeCount()); the J-map and the grid checker precompute the scene.
+            const std::string datasetChecker = ownChecker.empty() ? problem.checker : ownChecker;
+            if (experienceDataset && ((datasetChecker != "fcl" && datasetChecker != "spheres") || compareCheckers))
                 throw ProblemError(problem.file, "experience.dataset",
-                                   "an experience dataset runs on the FCL checker only (collision.checker: fcl)");
+                                   "an experience dataset runs on the FCL or the sphere checker only "
+                                   "(collision.checker: fcl or spheres; not --checker fcl,OTHER)");
             ctx = makePlanningContext(problem, contextOptions);  // checks start and goal
             si = ctx.setup->getSpaceInformation();
             if (experienceDataset)

@@ -64,6 +64,9 @@ namespace michi
                                                    " motion validator; planners suffixed _" + compareChecker + ": " +
                                                    compareChecker + " validity checker and its motion validator"
                    : problem.checker == "grid" ? std::string("grid validity checker, grid motion validator")
+                   : problem.checker == "spheres"
+                       ? std::string("sphere validity checker, certified sphere motion validator (paths certified "
+                                     "with FCL afterwards)")
                    : problem.checker == "jmap"
                        ? "J-map validity checker, J-map motion validator (" + problem.motionValidator +
                              " for what the map cannot decide)"

@@ -171,23 +171,20 @@ namespace michi
             }
         }  // namespace
 
-        namespace
+        void chooseExactStates(const PlanningContext &ctx, const std::vector<double> &start,
+                               const std::vector<double> &goal)
         {
-            /** collision.spheres.exact_states: "auto" turns FCL's settling on only where the spheres alone would make
-                the query unsolvable, a start or goal they reject (a grasp: the hand's spheres stand out of its surface
-                into the object); checkEndpoint() has already shown both free for FCL. Other queries keep the
-                spheres-only speed. */
-            void chooseExactStates(const Problem &problem, PlanningContext &ctx,
-                                   std::initializer_list<const std::vector<double> *> endpoints)
-            {
-                const std::string &mode = problem.spheres.exactStates;
-                bool exact = mode == "on";
-                if (mode == "auto")
-                    for (const auto *values : endpoints)
-                        exact = exact || !ctx.spheres->isValidConfiguration(values->data());
-                ctx.spheres->setExactStates(exact);
-            }
-        }  // namespace
+            if (!ctx.spheres)
+                return;
+            // "auto" turns FCL's settling on only where the spheres alone would make the query unsolvable, a start or
+            // goal they reject (a grasp: the hand's spheres stand out of its surface into the object); the callers
+            // have shown both free for FCL. Other queries keep the spheres-only speed.
+            bool exact = ctx.sphereExactStates == "on";
+            // spheresFree(): the spheres alone, whatever the previous query chose
+            if (ctx.sphereExactStates == "auto")
+                exact = !ctx.spheres->spheresFree(start.data()) || !ctx.spheres->spheresFree(goal.data());
+            ctx.spheres->setExactStates(exact);
+        }
 
         PlanningContext makePlanningContext(const Problem &problem, std::size_t query)
         {
@@ -263,8 +260,8 @@ namespace michi
             setState(goal, q.goal);
             // After the endpoint checks, so they stay FCL's whatever the checker.
             installChecker(problem, ctx, checker);
-            if (ctx.spheres)
-                chooseExactStates(problem, ctx, {&q.start, &q.goal});
+            ctx.sphereExactStates = problem.spheres.exactStates;
+            chooseExactStates(ctx, q.start, q.goal);
             if (ctx.grid)
                 for (const auto *values : {&q.start, &q.goal})
                     if (!ctx.grid->isValidPose((*values)[0], (*values)[1], (*values)[2]))

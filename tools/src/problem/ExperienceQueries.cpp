@@ -494,6 +494,8 @@ namespace michi
             pdef->clearStartStates();
             pdef->addStartState(start);
             pdef->setGoalState(goal);
+            // a grasp among a dataset's queries needs the sphere checker's exact states, the others not
+            chooseExactStates(ctx, query.start, query.goal);
         }
     }  // namespace tools
 }  // namespace michi

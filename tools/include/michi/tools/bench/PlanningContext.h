@@ -32,6 +32,9 @@ namespace michi
             /** \brief The sphere checker when the checker is "spheres" (validity::SphereMotionValidator certifies
                 its motions), else null. */
             std::shared_ptr<validity::SphereValidityChecker> spheres;
+            /** \brief The problem's collision.spheres.exact_states ("auto", "on", "off"): with "auto" every new
+                query (setQuery()) decides it again from its own start and goal (chooseExactStates()). */
+            std::string sphereExactStates{"auto"};
             std::string checkerName;  ///< the checker installed in the space ("fcl", "jmap", "grid")
             /** \brief The FCL-based motion validator of the problem's collision.motion_validator, whatever checker
                 is installed: the reference a fast checker is compared with (bench --checker fcl,X,
@@ -53,6 +56,12 @@ namespace michi
             validity::ScenePtr scene;         ///< another scene (replanning's world at one moment)
             std::vector<double> fixedValues;  ///< the other joints' values (a dual-arm task's configuration)
         };
+
+        /** \brief With the sphere checker: turn FCL's settling of the spheres' contacts (exact states) on or off
+            for a query, as ctx.sphereExactStates says; "auto" turns it on only where the spheres reject \e start or
+            \e goal (a grasp), which FCL has found free. No effect without the sphere checker. */
+        void chooseExactStates(const PlanningContext &ctx, const std::vector<double> &start,
+                               const std::vector<double> &goal);
 
         /** \brief The checkers makePlanningContext() can install: fcl, jmap, grid (docs/checking.md). */
         const std::vector<std::string> &checkerNames();
