@@ -33,6 +33,7 @@ namespace michi
                     std::optional<double> startSpread;
                     std::optional<double> goalSpread;
                     std::optional<unsigned int> seed;
+                    std::string regions;
                     bool verbose{false};
                 };
 
@@ -52,6 +53,7 @@ namespace michi
                     options.startSpread = args.startSpread.value_or(options.startSpread);
                     options.goalSpread = args.goalSpread.value_or(options.goalSpread);
                     options.seed = args.seed.value_or(options.seed);
+                    options.regions = args.regions;
                     std::cerr << writeExperienceQueriesFile(loadProblem(args.problem), options) << std::endl;
                     return 0;
                 }
@@ -99,10 +101,16 @@ namespace michi
                 addInteger(*c, "--count", args->count, 1, MAX_QUERIES, "pairs in all (default 160)");
                 addInteger(*c, "--training", args->training, 0, MAX_QUERIES,
                            "the first N are the training set, the rest held out (default 60)");
-                addReal(*c, "--start-spread", args->startSpread, 0., MAX_SPREAD,
-                        "uniform perturbation of the starts per joint (> 0; default 0.3)", "RAD");
-                addReal(*c, "--goal-spread", args->goalSpread, 0., MAX_SPREAD,
-                        "uniform perturbation of the goals per joint (> 0; default 0.05)", "RAD");
+                CLI::Option *start = addReal(*c, "--start-spread", args->startSpread, 0., MAX_SPREAD,
+                                             "uniform perturbation of the starts per joint (> 0; default 0.3)", "RAD");
+                CLI::Option *goal = addReal(*c, "--goal-spread", args->goalSpread, 0., MAX_SPREAD,
+                                            "uniform perturbation of the goals per joint (> 0; default 0.05)", "RAD");
+                c->add_option("--regions", args->regions,
+                              "task regions (YAML): start and goal drawn independently from hand poses in them, "
+                              "solved by IK, instead of perturbing the problem's queries")
+                    ->type_name("FILE")
+                    ->excludes(start)
+                    ->excludes(goal);
                 addSeed(*c, args->seed, "seed (default 1)");
                 addVerbose(*c, args->verbose);
                 return [args]

@@ -1,6 +1,7 @@
 #include <michi/tools/problem/ExperienceQueries.h>
 #include <michi/tools/problem/Dataset.h>
 #include <michi/tools/problem/ExperienceDataset.h>
+#include <michi/tools/problem/TaskRegionQueries.h>
 #include <michi/planners/path_seed/PathSeed.h>
 #include "ProblemYaml.h"
 #include <michi/validity/InputFile.h>
@@ -318,19 +319,37 @@ namespace michi
 
         std::string writeExperienceQueriesFile(const Problem &problem, const ExperienceQueriesOptions &options)
         {
-            const auto queries = generateExperienceQueries(problem, options.count, options.training,
-                                                           options.startSpread, options.goalSpread, options.seed);
+            const bool fromRegions = !options.regions.empty();
+            const TaskRegions regions = fromRegions ? readTaskRegions(options.regions, problem) : TaskRegions();
+            const auto queries =
+                fromRegions ? generateTaskRegionQueries(problem, regions, options.count, options.training, options.seed)
+                            : generateExperienceQueries(problem, options.count, options.training, options.startSpread,
+                                                        options.goalSpread, options.seed);
             std::ostringstream header;
             header << "# Experience queries of " << fs::path(problem.file).filename().string()
                    << " (docs/path-seed.md): training and held-out start/goal pairs, disjoint.\n"
                    << "# Made by: michi experience-queries " << fs::path(problem.file).filename().string()
-                   << " --count " << options.count << " --training " << options.training << " --start-spread "
-                   << options.startSpread << " --goal-spread " << options.goalSpread << " --seed " << options.seed
-                   << " --out " << fs::path(options.out).filename().string() << "\n"
-                   << "# Pair i perturbs the problem's query i mod " << problem.queries.size()
-                   << " uniformly per joint (start by +-" << options.startSpread << " rad, goal by +-"
-                   << options.goalSpread << " rad);\n"
-                   << "# every start and goal is within the joint limits and collision-free (FCL).\n";
+                   << " --count " << options.count << " --training " << options.training;
+            if (fromRegions)
+            {
+                header << " --regions " << fs::path(options.regions).filename().string() << " --seed " << options.seed
+                       << " --out " << fs::path(options.out).filename().string() << "\n"
+                       << "# Start and goal of each pair are drawn independently: a (start region, goal region) pair "
+                          "of the regions file,\n# then in each region a hand pose ("
+                       << regions.tipLink
+                       << "'s tool point in the region's box, its axis within the region's cone), solved by IK;\n"
+                       << "# training and held-out pairs come from that one distribution. Regions:";
+                for (const auto &region : regions.regions)
+                    header << " " << region.name;
+                header << ".\n";
+            }
+            else
+                header << " --start-spread " << options.startSpread << " --goal-spread " << options.goalSpread
+                       << " --seed " << options.seed << " --out " << fs::path(options.out).filename().string() << "\n"
+                       << "# Pair i perturbs the problem's query i mod " << problem.queries.size()
+                       << " uniformly per joint (start by +-" << options.startSpread << " rad, goal by +-"
+                       << options.goalSpread << " rad);\n";
+            header << "# every start and goal is within the joint limits and collision-free (FCL).\n";
             writeAtomically(experienceQueriesYaml(queries, header.str()), options.out);
             std::ostringstream report;
             report << "michi experience-queries: wrote " << options.out << " (" << queries.training.size()

@@ -45,6 +45,10 @@ namespace michi
             double goalSpread{0.05};   ///< of the goals (rad; they sit in the ring)
             unsigned int seed{1};
             std::string out;  ///< file to write
+            /** \brief A task regions file (TaskRegionQueries.h): starts and goals drawn independently from hand
+                poses in the regions, solved by IK, instead of perturbing the problem's queries (the spreads are
+                then unused). */
+            std::string regions;
         };
 
         /** \brief `michi experience-queries`: generate the queries and write them to options.out (atomically,
