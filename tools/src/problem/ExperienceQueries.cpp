@@ -178,10 +178,10 @@ namespace michi
             {
                 const std::string k = kv.first.as<std::string>();
                 if (k != "queries" && k != "training_time" && k != "library" && k != "dataset" && k != "training" &&
-                    k != "held_out")
+                    k != "held_out" && k != "learned_on")
                     throw ProblemError(problemFile, "experience." + k,
-                                       "unknown key (expected queries, training_time, library, dataset, training, "
-                                       "held_out)");
+                                       "unknown key (expected queries, training_time, library, learned_on, dataset, "
+                                       "training, held_out)");
             }
             if (const YAML::Node t = e["training_time"])
             {
@@ -209,8 +209,22 @@ namespace michi
                                        "expected an existing experience file, got '" + lfull.string() + "'");
                 out.library = lfull.lexically_normal().string();
             }
+            if (const YAML::Node l = e["learned_on"])
+            {
+                const fs::path lp(l.IsScalar() ? l.Scalar() : std::string());
+                const fs::path lfull = lp.is_absolute() ? lp : fs::path(problemFile).parent_path() / lp;
+                if (!l.IsScalar() || !fs::is_regular_file(lfull))
+                    throw ProblemError(problemFile, "experience.learned_on",
+                                       "expected an existing problem file, got '" + lfull.string() + "'");
+                if (fs::equivalent(lfull, fs::path(problemFile)))
+                    throw ProblemError(problemFile, "experience.learned_on", "names this problem itself");
+                out.learnedOn = lfull.lexically_normal().string();
+            }
             if (e["dataset"])
             {
+                if (!out.learnedOn.empty())
+                    throw ProblemError(problemFile, "experience.learned_on",
+                                       "not with experience.dataset (a dataset trains on its own problems)");
                 readExperienceDataset(problemFile, problem, e, out);
                 return out;
             }
@@ -238,6 +252,11 @@ namespace michi
             }
             out.training = readList(q, "training", out.file, problem);
             out.heldOut = readList(q, "held_out", out.file, problem);
+            if (!out.learnedOn.empty() && !out.training.empty())
+                throw ProblemError(problemFile, "experience.learned_on",
+                                   "the queries file " + out.file +
+                                       " has training queries too: train on one or the other (learned_on: its "
+                                       "problem's training queries)");
             return out;
         }
 
@@ -456,6 +475,58 @@ namespace michi
             return paths;
         }
 
+        namespace
+        {
+            /** experience.learned_on: the other problem's training queries solved on its robot, in its scene; the
+                paths' joint values handed, as paths of this problem's space, to every learner, which checks them on
+                this robot as it checks any experience (PathSeed and Lightning when they use a path, Thunder's
+                roadmap when it inserts one). */
+            std::size_t trainOnOtherProblem(const Problem &problem, const PlanningContext &ctx,
+                                            const std::vector<planners::ExperiencePlanner *> &learners,
+                                            std::ostream *progress)
+            {
+                const Problem other = loadProblem(problem.experience.learnedOn);
+                const auto names = [](const Problem &p)
+                {
+                    std::vector<std::string> out;
+                    for (int v : p.groupVariables)
+                        out.push_back(p.model->variableJoint(static_cast<std::size_t>(v)).name);
+                    return out;
+                };
+                if (other.kind != Problem::Kind::ARM || problem.kind != Problem::Kind::ARM ||
+                    names(other) != names(problem))
+                    throw ProblemError(problem.file, "experience.learned_on",
+                                       other.file +
+                                           " plans other joints than this problem (a kinematic change keeps "
+                                           "the joints and changes the robot's geometry)");
+                if (other.experience.training.empty())
+                    throw ProblemError(problem.file, "experience.learned_on",
+                                       other.file + " has no training queries (experience.queries)");
+                const PlanningContext otherCtx = makePlanningContext(other, 0);
+                const auto paths = solveTrainingQueries(other, otherCtx, progress);
+                const auto otherSpace = otherCtx.setup->getStateSpace(), space = ctx.setup->getStateSpace();
+                std::vector<double> values;
+                for (const auto &path : paths)
+                {
+                    og::PathGeometric here(ctx.setup->getSpaceInformation());
+                    ob::ScopedState<> state(space);
+                    for (std::size_t i = 0; i < path.getStateCount(); ++i)
+                    {
+                        otherSpace->copyToReals(values, path.getState(i));
+                        space->copyFromReals(state.get(), values);
+                        here.append(state.get());
+                    }
+                    for (auto *learner : learners)
+                        learner->addExperience(here);
+                }
+                if (progress)
+                    *progress << "michi bench: experience learned on " << other.file << " (" << paths.size()
+                              << " paths of its robot); this problem's robot checks them when it uses them"
+                              << std::endl;
+                return paths.size();
+            }
+        }  // namespace
+
         std::size_t trainExperiencePlanners(const Problem &problem, const PlanningContext &ctx,
                                             const std::vector<ob::PlannerPtr> &planners, std::ostream *progress)
         {
@@ -469,7 +540,11 @@ namespace michi
                         *progress << "michi bench: experience.library: "
                                   << dynamic_cast<ob::Planner *>(learner)->getName() << " cannot read "
                                   << problem.experience.library << " (not its format); it starts empty" << std::endl;
-            if (learners.empty() || problem.experience.training.empty())
+            if (learners.empty())
+                return 0;
+            if (!problem.experience.learnedOn.empty())
+                return trainOnOtherProblem(problem, ctx, learners, progress);
+            if (problem.experience.training.empty())
                 return 0;
             // Solved once and handed to every learner: experience planners compared in one benchmark learn from the
             // same paths.

@@ -91,7 +91,11 @@ namespace michi
             std::vector<Query> heldOut;   ///< run i of each planner in a benchmark plans heldOut[i mod size]
             double trainingTime{5.};      ///< seconds of RRT-Connect per training query
             std::string library;          ///< experience file given to experience planners before training
-            std::string file;             ///< the file the queries came from
+            /** \brief experience.learned_on: another problem file (the same joints, another robot or scene) whose
+                training queries, solved on its robot in its scene, train the experience planners instead of this
+                problem's own (a kinematic change: a library learned on one robot used on a changed one). */
+            std::string learnedOn;
+            std::string file;  ///< the file the queries came from
             /** \brief experience.dataset: a folder of problem files (tools/problem/ExperienceDataset.h), each
                 problem with its own scene and query; empty when the queries come from experience.queries. */
             std::string dataset;
