@@ -35,6 +35,18 @@ namespace
         ASSERT_NE(at, std::string::npos) << from;
         text.replace(at, from.size(), to);
     }
+
+    /** xarm6_ring copied to \e file with absolute paths, its experience key's queries line replaced by \e experience.
+     */
+    void writePlainProblem(const fs::path &file, const std::string &experience)
+    {
+        std::string plain = slurp(PROBLEMS + "xarm6_ring.yaml");
+        replace(plain, "urdf: robots/", "urdf: " + PROBLEMS + "robots/");
+        replace(plain, "file: meshes/", "file: " + PROBLEMS + "meshes/");
+        replace(plain, "  queries: experience/ring_task_queries.yaml\n", experience);
+        replace(plain, "training_time: 5", "training_time: 2");
+        std::ofstream(file) << plain;
+    }
 }  // namespace
 
 TEST(ExperienceLearnedOn, EveryExperiencePlannerLearnsTheOtherRobotsPaths)
@@ -51,12 +63,7 @@ TEST(ExperienceLearnedOn, EveryExperiencePlannerLearnsTheOtherRobotsPaths)
         "[0.036707, 0.623765, -1.354721, -0.143245, -0.707137, 0.047612]}\n"
         "held_out: []\n";
     std::ofstream(dir / "queries.yaml") << queries;
-    std::string plain = slurp(PROBLEMS + "xarm6_ring.yaml");
-    replace(plain, "urdf: robots/", "urdf: " + PROBLEMS + "robots/");
-    replace(plain, "file: meshes/", "file: " + PROBLEMS + "meshes/");
-    replace(plain, "queries: experience/ring_task_queries.yaml", "queries: " + (dir / "queries.yaml").string());
-    replace(plain, "training_time: 5", "training_time: 2");
-    std::ofstream(dir / "plain.yaml") << plain;
+    writePlainProblem(dir / "plain.yaml", "  queries: " + (dir / "queries.yaml").string() + "\n");
 
     auto problem = tools::loadProblem(PROBLEMS + "xarm6_ring_tool.yaml");
     ASSERT_FALSE(problem.experience.learnedOn.empty());  // the bundled problem learns on xarm6_ring
@@ -84,5 +91,36 @@ TEST(ExperienceLearnedOn, EveryExperiencePlannerLearnsTheOtherRobotsPaths)
     {
         EXPECT_EQ(e.key(), "experience.learned_on") << e.what();
     }
+    fs::remove_all(dir);
+}
+
+TEST(ExperienceLearnedOn, ABadLearnedOnOrLibraryNamesItsKey)
+{
+    const fs::path dir = fs::temp_directory_path() / "michi_learned_on_keys_test";
+    fs::create_directories(dir);
+    const std::string queries = "  queries: " + PROBLEMS + "experience/ring_task_queries.yaml\n";
+    auto expectError = [&](const std::string &experience, const std::string &key, const std::string &words)
+    {
+        writePlainProblem(dir / "p.yaml", experience);
+        try
+        {
+            tools::loadProblem((dir / "p.yaml").string());
+            ADD_FAILURE() << "no error for: " << experience;
+        }
+        catch (const tools::ProblemError &e)
+        {
+            EXPECT_EQ(e.key(), key) << e.what();
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+    };
+    expectError(queries + "  learned_on: " + (dir / "none.yaml").string() + "\n", "experience.learned_on",
+                "expected an existing problem file");
+    expectError(queries + "  learned_on: " + (dir / "p.yaml").string() + "\n", "experience.learned_on",
+                "names this problem itself");
+    // the queries file has training queries of its own: one set or the other
+    expectError(queries + "  learned_on: " + PROBLEMS + "xarm6_ring.yaml\n", "experience.learned_on",
+                "has training queries too");
+    expectError(queries + "  library: " + (dir / "none.seeds").string() + "\n", "experience.library",
+                "expected an existing experience file");
     fs::remove_all(dir);
 }

@@ -198,27 +198,25 @@ namespace michi
                     throw ProblemError(problemFile, "experience.training_time",
                                        "expected a positive number of seconds");
             }
-            if (const YAML::Node l = e["library"])
+            // a file the experience key names: relative to the problem file, as for every other file a problem
+            // names, so a problem folder can be moved as a whole
+            auto existingFile = [&](const char *name, const std::string &what)
             {
-                const fs::path lp(l.IsScalar() ? l.Scalar() : std::string());
-                // Relative paths are relative to the problem file, as for every other file a problem names, so a
-                // problem folder can be moved as a whole.
-                const fs::path lfull = lp.is_absolute() ? lp : fs::path(problemFile).parent_path() / lp;
-                if (!l.IsScalar() || !fs::is_regular_file(lfull))
-                    throw ProblemError(problemFile, "experience.library",
-                                       "expected an existing experience file, got '" + lfull.string() + "'");
-                out.library = lfull.lexically_normal().string();
-            }
-            if (const YAML::Node l = e["learned_on"])
-            {
+                const YAML::Node l = e[name];
                 const fs::path lp(l.IsScalar() ? l.Scalar() : std::string());
                 const fs::path lfull = lp.is_absolute() ? lp : fs::path(problemFile).parent_path() / lp;
                 if (!l.IsScalar() || !fs::is_regular_file(lfull))
-                    throw ProblemError(problemFile, "experience.learned_on",
-                                       "expected an existing problem file, got '" + lfull.string() + "'");
-                if (fs::equivalent(lfull, fs::path(problemFile)))
+                    throw ProblemError(problemFile, std::string("experience.") + name,
+                                       "expected an existing " + what + ", got '" + lfull.string() + "'");
+                return lfull.lexically_normal().string();
+            };
+            if (e["library"])
+                out.library = existingFile("library", "experience file");
+            if (e["learned_on"])
+            {
+                out.learnedOn = existingFile("learned_on", "problem file");
+                if (fs::equivalent(fs::path(out.learnedOn), fs::path(problemFile)))
                     throw ProblemError(problemFile, "experience.learned_on", "names this problem itself");
-                out.learnedOn = lfull.lexically_normal().string();
             }
             if (e["dataset"])
             {
