@@ -201,22 +201,6 @@ TEST(PathSeedRepair, RRTConnectRepairsAnInvalidStretch)
     EXPECT_TRUE(si->equalStates(path.getState(0), problem.setup->getProblemDefinition()->getStartState(0)));
 }
 
-TEST(PathSeedRepair, StompRepairsAnInvalidStraightPath)
-{
-    ompl::RNG::setSeed(3);
-    auto problem = michi::test::makeConformanceProblem();
-    problem.setup->setup();
-    const auto si = problem.setup->getSpaceInformation();
-    auto path = makePath(si, {{0.2, 0.3}, {1.2, -0.4}});
-    ASSERT_FALSE(path.check());
-    michi::planners::StompSettings settings;
-    settings.noise = 0.3;
-    ASSERT_TRUE(michi::planners::repairWithStomp(si, path, ob::timedPlannerTerminationCondition(20.), settings));
-    EXPECT_TRUE(path.check());
-    EXPECT_EQ(michi::test::independentPathCheck(path), "");
-    EXPECT_EQ(path.getStateCount(), settings.timesteps);
-}
-
 TEST(PathSeedPlanner, RecallsALearnedPathForANearbyQuery)
 {
     ompl::RNG::setSeed(5);

@@ -117,8 +117,9 @@ namespace michi
 
         void PathSeed::setRepair(const std::string &method)
         {
-            if (method != "rrtconnect" && method != "stomp" && method != "none")
-                throw std::invalid_argument("PathSeed: repair must be rrtconnect, stomp or none, got '" + method + "'");
+            // "stomp" (the paper's repair) was removed: in 100 measured runs it repaired no path (docs/path-seed.md)
+            if (method != "rrtconnect" && method != "none")
+                throw std::invalid_argument("PathSeed: repair must be rrtconnect or none, got '" + method + "'");
             repair_ = method;
         }
 
@@ -348,12 +349,9 @@ namespace michi
                 for (std::size_t i = 0; i < decoded_.size() && !ptc && !repaired; ++i)
                 {
                     og::PathGeometric path = decoded_[i];
-                    // Paper 001 repairs the decoded path with STOMP (initial trajectory = the decoded path);
-                    // rrtconnect, michi's default, replans only the invalid stretches.
-                    if (repair_ == "stomp")
-                        repaired = repairWithStomp(si_, path, ptc, stomp_);
-                    else
-                        repaired = repairWithRRTConnect(si_, path, ptc, range_, shortcutSteps_);
+                    // Paper 001 repairs the decoded path with STOMP (initial trajectory = the decoded path); michi
+                    // replans only the invalid stretches with RRT-Connect (STOMP measured and removed, path-seed.md).
+                    repaired = repairWithRRTConnect(si_, path, ptc, range_, shortcutSteps_);
                     if (repaired)
                     {
                         out = path;

@@ -6,12 +6,10 @@
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/RandomNumbers.h>
 
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -376,127 +374,6 @@ namespace michi
             }
             path = out;
             return true;
-        }
-
-        bool repairWithStomp(const ob::SpaceInformationPtr &si, og::PathGeometric &path,
-                             const ob::PlannerTerminationCondition &ptc, const StompSettings &settings)
-        {
-            if (path.getStateCount() < 2 || settings.timesteps < 3 || settings.rollouts < 1)
-                return false;
-            if (checkPathFailFast(si, path, ptc))
-                return true;
-            const auto space = si->getStateSpace();
-            const int T = static_cast<int>(settings.timesteps), n = T - 2;
-            // STOMP optimizes a fixed number of equally spaced time steps; the ends (start and goal) stay fixed.
-            path.interpolate(settings.timesteps);
-            // theta: T x N joint values
-            std::vector<double> reals;
-            space->copyToReals(reals, path.getState(0));
-            const int N = static_cast<int>(reals.size());
-            Eigen::MatrixXd theta(T, N);
-            for (int t = 0; t < T; ++t)
-            {
-                space->copyToReals(reals, path.getState(t));
-                for (int k = 0; k < N; ++k)
-                    theta(t, k) = reals[k];
-            }
-            // accelerations at the interior time steps: a = D x + c (x: interior states, c: the fixed ends);
-            // R = D^T D; noise ~ N(0, R^-1) scaled so its largest standard deviation is settings.noise
-            Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
-            for (int i = 0; i < n; ++i)
-            {
-                D(i, i) = -2.;
-                if (i > 0)
-                    D(i, i - 1) = 1.;
-                if (i + 1 < n)
-                    D(i, i + 1) = 1.;
-            }
-            const Eigen::MatrixXd R = D.transpose() * D;
-            const Eigen::MatrixXd Rinv = R.inverse();
-            const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Rinv).matrixL();
-            const double noiseScale = settings.noise / std::sqrt(Rinv.diagonal().maxCoeff());
-            Eigen::MatrixXd M = Rinv;  // STOMP's smoothing of the update: columns of R^-1, largest entry 1
-            for (int i = 0; i < n; ++i)
-                M.col(i) /= M.col(i).cwiseAbs().maxCoeff();
-            Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, N);
-            c.row(0) += theta.row(0);
-            c.row(n - 1) += theta.row(T - 1);
-
-            ompl::RNG rng;
-            ob::State *state = si->allocState();
-            const auto stateCost = [&](const Eigen::RowVectorXd &q)
-            {
-                for (int k = 0; k < N; ++k)
-                    reals[k] = q[k];
-                space->copyFromReals(state, reals);
-                if (!si->satisfiesBounds(state))
-                    return 2.;
-                const bool valid = si->isValid(state);
-                const double d = si->getStateValidityChecker()->clearance(state);
-                // A collision costs 1, and closeness under the margin up to 1 more: the cost has a slope to follow
-                // before contact, not only a step.
-                return (valid ? 0. : 1.) + std::max(0., settings.margin - std::max(d, 0.)) / settings.margin;
-            };
-            const unsigned int K = settings.rollouts;
-            std::vector<Eigen::MatrixXd> eps(K, Eigen::MatrixXd(n, N));
-            Eigen::MatrixXd S(K, n);
-            bool solved = false;
-            og::PathGeometric candidate(si);
-            for (unsigned int it = 0; it < settings.iterations && !ptc && !solved; ++it)
-            {
-                for (unsigned int k = 0; k < K && !ptc; ++k)
-                {
-                    for (int j = 0; j < N; ++j)
-                    {
-                        Eigen::VectorXd z(n);
-                        for (int i = 0; i < n; ++i)
-                            z[i] = rng.gaussian01();
-                        eps[k].col(j) = noiseScale * (L * z);
-                    }
-                    for (int i = 0; i < n; ++i)
-                        S(k, i) = stateCost(theta.row(i + 1) + eps[k].row(i));
-                }
-                if (ptc)
-                    break;
-                // probability-weighted noise per time step
-                Eigen::MatrixXd update = Eigen::MatrixXd::Zero(n, N);
-                for (int i = 0; i < n; ++i)
-                {
-                    const double lo = S.col(i).minCoeff(), hi = S.col(i).maxCoeff();
-                    Eigen::VectorXd p(K);
-                    for (unsigned int k = 0; k < K; ++k)
-                        // Costs normalised per time step to [0, 1] before the exponential, so one sensitivity works
-                        // whatever the scale of the costs (STOMP's weighting).
-                        p[k] = hi - lo > 1e-12 ? std::exp(-settings.sensitivity * (S(k, i) - lo) / (hi - lo)) : 1.;
-                    p /= p.sum();
-                    for (unsigned int k = 0; k < K; ++k)
-                        update.row(i) += p[k] * eps[k].row(i);
-                }
-                // Smoothed by R^-1 (each column scaled to a largest entry of 1): the update keeps the trajectory smooth
-                // instead of adding each time step's noise as it is.
-                update = M * update;
-                // covariant gradient step on the acceleration cost: R^-1 D^T (D x + c)
-                const Eigen::MatrixXd x = theta.middleRows(1, n);
-                const Eigen::MatrixXd step = Rinv * (D.transpose() * (D * x + c));
-                theta.middleRows(1, n) += update - settings.smoothness * step;
-                // write back, bounded, and check
-                candidate = og::PathGeometric(si);
-                for (int t = 0; t < T; ++t)
-                {
-                    for (int k = 0; k < N; ++k)
-                        reals[k] = theta(t, k);
-                    space->copyFromReals(state, reals);
-                    // The noise may push joints past their limits: clamped (and continuous joints wrapped) so the
-                    // candidate is a path of the space.
-                    space->enforceBounds(state);
-                    candidate.append(state);
-                }
-                solved = checkPathFailFast(si, candidate, ptc);
-            }
-            si->freeState(state);
-            if (solved)
-                path = candidate;
-            return solved;
         }
     }  // namespace planners
 }  // namespace michi

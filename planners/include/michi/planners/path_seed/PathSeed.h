@@ -27,7 +27,8 @@ namespace michi
            bisection order, to fail fast); the first valid one is the solution. When none is valid, the decoded
            paths and the seeds' own paths moved to the new goal or start are stitched lazily into one valid path
            where they allow it. Failing that, the decoded paths are repaired (RRT-Connect between the nearest valid
-           waypoints, then shortcutting; or a STOMP-style optimizer, as the paper does) while RRT-Connect from
+           waypoints, then shortcutting; the paper uses STOMP, which michi measured and removed: docs/path-seed.md)
+           while RRT-Connect from
            scratch races in a second thread, as in OMPL's Lightning: the first valid path wins. Solutions that did
            not come from recall or stitching are learned as new seeds (parameter learn). clear() forgets the query,
            never the library.
@@ -83,7 +84,7 @@ namespace michi
             {
                 return maxSeeds_;
             }
-            /** \brief "rrtconnect" (default), "stomp" or "none". */
+            /** \brief "rrtconnect" (default) or "none". */
             void setRepair(const std::string &method);
             const std::string &getRepair() const
             {
@@ -168,10 +169,6 @@ namespace michi
             {
                 return shortcutSteps_;
             }
-            StompSettings &stompSettings()
-            {
-                return stomp_;
-            }
 
             /** \brief What gave the last solution: "recall", "stitch", "repair", "scratch" or "" (none). */
             std::string getLastSource() const;
@@ -213,7 +210,6 @@ namespace michi
             bool learn_{true};
             double range_{0.};
             unsigned int shortcutSteps_{20};
-            StompSettings stomp_;
 
             /// what the last solve built, for getPlannerData: decoded candidates, the solution, the racer's data
             std::vector<ompl::geometric::PathGeometric> decoded_;

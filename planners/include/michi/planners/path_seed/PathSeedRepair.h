@@ -58,26 +58,6 @@ namespace michi
                          const std::vector<ompl::geometric::PathGeometric> &paths,
                          const ompl::base::PlannerTerminationCondition &ptc, ompl::geometric::PathGeometric &out,
                          unsigned int neighbours = 3, unsigned long *checks = nullptr, unsigned int threads = 1);
-
-        /** \brief Settings of the STOMP-style optimizer (Kalakrishnan et al., ICRA 2011), the paper's repair. */
-        struct StompSettings
-        {
-            unsigned int timesteps{24};    ///< states of the trajectory, start and goal included
-            unsigned int rollouts{8};      ///< noisy trajectories per iteration
-            unsigned int iterations{200};  ///< at most
-            double noise{0.08};            ///< standard deviation of the rollouts' noise (joint units)
-            double margin{0.03};           ///< clearance (m) under which a state costs
-            double smoothness{0.01};       ///< weight of the acceleration cost
-            double sensitivity{10.};       ///< h of STOMP's exp(-h (S - min S) / (max S - min S))
-        };
-
-        /** \brief STOMP-style repair: \e path is resampled to settings.timesteps states, then improved by
-            noisy rollouts (noise smoothed by the inverse of the acceleration matrix, as in STOMP), weighted per
-            time step by exp(-h normalised cost) where a state's cost is its lack of clearance (margin - clearance,
-            FCL distance; 1 more when invalid) and the trajectory's cost adds the acceleration cost. Stops when the
-            trajectory passes checkPathFailFast (returns true) or after settings.iterations / \e ptc (false). */
-        bool repairWithStomp(const ompl::base::SpaceInformationPtr &si, ompl::geometric::PathGeometric &path,
-                             const ompl::base::PlannerTerminationCondition &ptc, const StompSettings &settings = {});
     }  // namespace planners
 }  // namespace michi
 
