@@ -222,8 +222,13 @@ namespace michi
             ExperienceQueries out;
             out.trainingTime = problem.experience.trainingTime;
             std::set<std::vector<double>> seen;
+            std::size_t draws = 0;
             while (out.training.size() + out.heldOut.size() < count)
             {
+                // regions so small that their states repeat would otherwise redraw for ever
+                if (++draws > 100 * count)
+                    throw std::runtime_error(regions.file + ": the regions give fewer than " + std::to_string(count) +
+                                             " distinct start/goal pairs (boxes and cones too small?)");
                 // start and goal drawn independently, the pair of regions first
                 const auto &pair =
                     regions
