@@ -55,7 +55,8 @@ namespace michi
             \e ikAttempts seeds); a pose whose solutions are outside the joint limits or in collision (FCL) is
             drawn again. The first \e training are the training set, the rest held out: the same distribution,
             and no query repeats another. Deterministic for a seed. Throws std::runtime_error when a region
-            yields no valid state in 2000 poses. */
+            yields no valid state in 2000 poses, or when the regions keep giving states already drawn (more than
+            100 draws per query). */
         ExperienceQueries generateTaskRegionQueries(const Problem &problem, const TaskRegions &regions,
                                                     std::size_t count, std::size_t training, unsigned int seed);
     }  // namespace tools
