@@ -156,6 +156,9 @@ TEST_F(CliOptions, NumbersMustBeFiniteAndInRange)
     expectUsageError("lattice " + p + " --out " + out() + " --angle-steps 0.1,", "lattice", "--angle-steps");
     expectUsageError("experience-queries " + p + " --out " + out() + " --start-spread nan", "experience-queries",
                      "--start-spread");
+    // task regions replace the perturbation: a spread beside them is a usage error naming both
+    expectUsageError("experience-queries " + p + " --out " + out() + " --regions r.yaml --goal-spread 0.1",
+                     "experience-queries", "--regions");
     expectUsageError("dualarm " + p + " --out " + out() + " --time 0", "dualarm", "--time");
     EXPECT_FALSE(fs::exists(out()));
 }
