@@ -173,7 +173,8 @@ namespace michi
                     a -= n_[d] * std::floor(a / n_[d]);  // into [0, n): a whole turn is n cells
                 else if (a < -1e-9 || a > n_[d] + 1e-9)
                     return false;  // outside the joint's range: not certified
-                const int i = std::min(std::max(static_cast<int>(std::floor(a)), 0), n_[d] - 1);
+                // a >= -1e-9 here: truncation is the floor, except for the tiny negatives the clamp takes to 0
+                const int i = std::min(std::max(static_cast<int>(a), 0), n_[d] - 1);
                 k += static_cast<std::size_t>(i) * stride;
                 stride *= static_cast<std::size_t>(n_[d]);
             }

@@ -11,51 +11,6 @@ namespace michi
 {
     namespace validity
     {
-        void fastSinCos(double x, double &s, double &c)
-        {
-            // x = k pi/2 + r with |r| <= pi/4; pi/2 in two parts so that k pi/2 is subtracted without rounding for
-            // the joint ranges of real robots.
-            constexpr double twoOverPi = 0.636619772367581343076, pio2Hi = 1.57079632673412561417e+00,
-                             pio2Lo = 6.07710050650619224932e-11;
-            const double k = std::nearbyint(x * twoOverPi);
-            const double r = (x - k * pio2Hi) - k * pio2Lo;
-            const double z = r * r;
-            // minimax polynomials of sin and cos on [-pi/4, pi/4] (the coefficients of the classic fdlibm kernels)
-            const double sr =
-                r + r * z *
-                        (-1.66666666666666324348e-01 +
-                         z * (8.33333333332248946124e-03 +
-                              z * (-1.98412698298579493134e-04 +
-                                   z * (2.75573137070700676789e-06 +
-                                        z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
-            const double cr =
-                1. - 0.5 * z +
-                z * z *
-                    (4.16666666666666019037e-02 +
-                     z * (-1.38888888888741095749e-03 +
-                          z * (2.48015872894767294178e-05 +
-                               z * (-2.75573143513906633035e-07 +
-                                    z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-            switch (static_cast<long>(k) & 3)
-            {
-                case 0:
-                    s = sr;
-                    c = cr;
-                    break;
-                case 1:
-                    s = cr;
-                    c = -sr;
-                    break;
-                case 2:
-                    s = -sr;
-                    c = -cr;
-                    break;
-                default:
-                    s = -cr;
-                    c = sr;
-            }
-        }
-
         namespace
         {
             RigidFrame compose(const RigidFrame &a, const RigidFrame &b)
@@ -114,8 +69,33 @@ namespace michi
                     const double zSign = joint.axis == Eigen::Vector3d::UnitZ()    ? 1.
                                          : joint.axis == -Eigen::Vector3d::UnitZ() ? -1.
                                                                                    : 0.;
-                    steps_.push_back({parent.first, origin, joint.axis, joint.type == RobotJoint::Type::PRISMATIC,
-                                      static_cast<int>(group - variables.begin()), zSign});
+                    Step step{parent.first,
+                              origin,
+                              joint.axis,
+                              joint.type == RobotJoint::Type::PRISMATIC,
+                              static_cast<int>(group - variables.begin()),
+                              zSign,
+                              true,
+                              {0, 1, 2},
+                              {1., 1., 1.}};
+                    for (int col = 0; col < 3; ++col)
+                    {
+                        // exactly one entry of +-1 per column (to rounding), the others 0
+                        int at = -1;
+                        for (int row = 0; row < 3; ++row)
+                            if (std::abs(std::abs(origin.r(row, col)) - 1.) < 1e-12)
+                                at = row;
+                            else if (std::abs(origin.r(row, col)) > 1e-12)
+                                step.permutation = false;
+                        if (at < 0)
+                            step.permutation = false;
+                        else
+                        {
+                            step.perm[col] = at;
+                            step.sign[col] = origin.r(at, col) > 0. ? 1. : -1.;
+                        }
+                    }
+                    steps_.push_back(step);
                     it = stepOfJoint.emplace(j, static_cast<int>(steps_.size())).first;
                 }
                 return {it->second, RigidFrame{}};
@@ -144,6 +124,23 @@ namespace michi
                     l.r = step.offset.r;
                     l.t.noalias() = step.offset.r * (q * step.axis);
                     l.t += step.offset.t;
+                }
+                else if (step.zSign != 0. && step.permutation)
+                {
+                    // about z after a signed-permutation offset: the parent's columns, chosen and mixed by (c, s)
+                    double s, c;
+                    fastSinCos(q, s, c);
+                    s *= step.zSign;
+                    const RigidFrame &p = out[step.parent];
+                    RigidFrame &f = out[k + 1];
+                    const Eigen::Vector3d m0 = step.sign[0] * p.r.col(step.perm[0]);
+                    const Eigen::Vector3d m1 = step.sign[1] * p.r.col(step.perm[1]);
+                    f.r.col(0) = c * m0 + s * m1;
+                    f.r.col(1) = c * m1 - s * m0;
+                    f.r.col(2) = step.sign[2] * p.r.col(step.perm[2]);
+                    f.t.noalias() = p.r * step.offset.t;
+                    f.t += p.t;
+                    continue;
                 }
                 else
                 {

@@ -136,6 +136,14 @@ namespace michi
                 // never drop an obstacle a robot sphere touches.
                 br_.push_back(static_cast<float>(bound * (1. + 1e-6) + 1e-5));
             }
+            // Padding of the broad phase to whole blocks: far away (squares stay finite in float) and of radius 0.
+            while (bx_.size() % BLOCK != 0)
+            {
+                bx_.push_back(1e15f);
+                by_.push_back(1e15f);
+                bz_.push_back(1e15f);
+                br_.push_back(0.f);
+            }
         }
 
         void SphereObstacles::addMesh(const Obstacle &obstacle)
@@ -215,28 +223,29 @@ namespace michi
             meshes_.push_back(std::move(mesh));
         }
 
-        void SphereObstacles::candidates(const Eigen::Vector3f &c, float r, std::vector<int> &out) const
+        int SphereObstacles::candidates(const Eigen::Vector3f &c, float r, int *out) const
         {
-            out.clear();
-            const std::size_t n = kind_.size();
-            // Blocks of 16 obstacles: the overlap tests of a block have no branch, so they run in SIMD lanes; the
-            // indices are collected after.
-            for (std::size_t first = 0; first < n; first += 16)
+            // Blocks of BLOCK obstacles (the arrays are padded to whole blocks with spheres that meet nothing): the
+            // overlap tests of a block have a fixed count and no branch, so they compile to whole SIMD lanes; the
+            // indices are collected after, without a branch per obstacle.
+            using Block = Eigen::Array<float, BLOCK, 1>;
+            using BlockMap = Eigen::Map<const Block>;
+            int count = 0;
+            for (std::size_t first = 0; first < bx_.size(); first += BLOCK)
             {
-                const std::size_t count = std::min<std::size_t>(16, n - first);
-                const float *x = bx_.data() + first, *y = by_.data() + first, *z = bz_.data() + first,
-                            *rad = br_.data() + first;
-                unsigned char near[16];
-                for (std::size_t o = 0; o < count; ++o)
+                const Block dx = BlockMap(bx_.data() + first) - c.x(), dy = BlockMap(by_.data() + first) - c.y(),
+                            dz = BlockMap(bz_.data() + first) - c.z(), rr = BlockMap(br_.data() + first) + r;
+                // Two spheres overlap when their centres are closer than the sum of the radii; no square root.
+                const Block gap = dx * dx + dy * dy + dz * dz - rr * rr;
+                if ((gap >= 0.f).all())
+                    continue;  // the usual case: nothing near in this block
+                for (std::size_t o = 0; o < BLOCK; ++o)
                 {
-                    const float dx = x[o] - c.x(), dy = y[o] - c.y(), dz = z[o] - c.z(), rr = rad[o] + r;
-                    // Two spheres overlap when their centres are closer than the sum of the radii; no square root.
-                    near[o] = dx * dx + dy * dy + dz * dz < rr * rr;
+                    out[count] = static_cast<int>(first + o);
+                    count += gap[static_cast<Eigen::Index>(o)] < 0.f;
                 }
-                for (std::size_t o = 0; o < count; ++o)
-                    if (near[o])
-                        out.push_back(static_cast<int>(first + o));
             }
+            return count;
         }
 
         bool SphereObstacles::hitsSphere(int o, const Eigen::Vector3f &c, float r) const

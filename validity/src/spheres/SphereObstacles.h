@@ -7,7 +7,11 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
 #include <cstdint>
+#include <limits>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -43,8 +47,15 @@ namespace michi
             {
                 return kind_.size();
             }
-            /** \brief Indices of the obstacles whose bounding sphere meets the sphere (c, r). */
-            void candidates(const Eigen::Vector3f &c, float r, std::vector<int> &out) const;
+            /** \brief Obstacles per block of the broad phase. */
+            static constexpr std::size_t BLOCK = 8;
+            /** \brief Writes to \e out the indices of the obstacles whose bounding sphere meets the sphere (c, r)
+                and returns their count; \e out holds candidateCapacity() entries. */
+            int candidates(const Eigen::Vector3f &c, float r, int *out) const;
+            std::size_t candidateCapacity() const
+            {
+                return bx_.size();
+            }
             /** \brief Does the sphere (c, r) touch obstacle \e o? (The same test as hits() for one sphere.) */
             bool hitsSphere(int o, const Eigen::Vector3f &c, float r) const;
             /** \brief Does any sphere of \e batch touch obstacle \e o? */
@@ -55,7 +66,52 @@ namespace michi
             /** \brief Distance between the bounding spheres of obstacle \e o and (c, r). */
             float boundDistance(int o, const Eigen::Vector3f &c, float r) const;
 
+            /** \brief A lower bound of the distance from \e p to every obstacle (the shapes as squaredDistances()
+                measures them), from a grid of distances made after GRID_AFTER queries on one thread have read this
+                snapshot (a scene that keeps changing never pays for one); -infinity (no bound) until then. A body
+                whose bounding sphere is closer to nothing than this skips the broad and narrow phases. */
+            float distanceBound(const Eigen::Vector3f &p) const
+            {
+                const DistanceGrid *grid = grid_.load(std::memory_order_acquire);
+                if (grid == nullptr)
+                {
+                    countQuery();
+                    return -std::numeric_limits<float>::infinity();
+                }
+                return grid->bound(p);
+            }
+            static constexpr unsigned GRID_AFTER = 4096;
+            /** \brief Make the grid now (tests; queries make it themselves). */
+            void makeGrid() const;
+            /** \brief Cells of the grid (0 before it is made, or when the scene has no obstacle). */
+            std::size_t gridCells() const;
+
         private:
+            /** Distances from cell centres to the nearest obstacle over a box around the obstacles; outside it, the
+                distance to the obstacles' bounding box. */
+            struct DistanceGrid
+            {
+                Eigen::Vector3f lo, hi;            ///< the grid's box
+                Eigen::Vector3f boundLo, boundHi;  ///< box of every obstacle's bounding sphere
+                float cell{1.f}, inverse{1.f};
+                int nx{0}, ny{0}, nz{0};
+                std::vector<float> distance;  ///< x fastest; already lowered by the float margin
+                float bound(const Eigen::Vector3f &p) const
+                {
+                    const Eigen::Vector3f u = (p - lo) * inverse;
+                    if ((u.array() >= 0.f).all() && u.x() < nx && u.y() < ny && u.z() < nz)
+                    {
+                        const int i = static_cast<int>(u.x()), j = static_cast<int>(u.y()), k = static_cast<int>(u.z());
+                        const Eigen::Vector3f centre = lo + cell * Eigen::Vector3f(i + 0.5f, j + 0.5f, k + 0.5f);
+                        // 1-Lipschitz: the distance at p is at least the centre's minus how far p is from it
+                        return distance[(static_cast<std::size_t>(k) * ny + j) * nx + i] - (p - centre).norm();
+                    }
+                    // outside the grid: at least the distance to the box that holds every obstacle
+                    return (p.cwiseMax(boundLo).cwiseMin(boundHi) - p).norm();
+                }
+            };
+            void countQuery() const;
+
             enum Kind : int
             {
                 BOX,
@@ -99,11 +155,14 @@ namespace michi
             std::uint64_t version_{0};
             std::vector<std::string> names_;
             std::vector<int> kind_, index_;         ///< per obstacle: kind and index into frames_/the kind's table
-            std::vector<float> bx_, by_, bz_, br_;  ///< bounding spheres
+            std::vector<float> bx_, by_, bz_, br_;  ///< bounding spheres, padded to whole BLOCKs
             std::vector<Frame> frames_;
             std::vector<Eigen::Vector3f> size_;  ///< box: half extents; sphere/cylinder/capsule: (r, half length, 0)
             std::vector<Prism> prisms_;
             std::vector<Mesh> meshes_;
+            mutable std::once_flag gridOnce_;
+            mutable std::unique_ptr<DistanceGrid> gridStore_;
+            mutable std::atomic<const DistanceGrid *> grid_{nullptr};
         };
     }  // namespace validity
 }  // namespace michi

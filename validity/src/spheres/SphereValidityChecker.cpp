@@ -28,6 +28,7 @@ namespace michi
             std::vector<Eigen::Vector3f> bodyCentre;
             std::vector<float> bodyRadius;
             std::vector<int> candidates;
+            std::vector<char> pairNear;  ///< per sphere pair: bounding spheres overlap
             std::vector<double> values;
             std::vector<char> wantBodies, wantPairs;
             std::vector<double> obstacleDistances, selfDistances;
@@ -186,6 +187,18 @@ namespace michi
             }
             if (exact_)
                 makeSelfPairTables();
+            // the pairs in two lists, so that a state check runs two tight loops instead of testing per pair which
+            // case it is: table lookups, then bounding-sphere tests of the pairs the spheres decide
+            for (std::size_t k = 0; k < selfPairs_.size(); ++k)
+            {
+                const auto &p = selfPairs_[k];
+                if (static_[p.first] && static_[p.second])
+                    continue;
+                if (pairTables_ && (*pairTables_)[k])
+                    tablePairs_.push_back(static_cast<int>(k));
+                else
+                    spherePairs_.push_back(static_cast<int>(k));
+            }
             realVector_ = dynamic_cast<const ompl::base::RealVectorStateSpace *>(si->getStateSpace().get());
             // the first snapshot of the scene
             obstacles();
@@ -477,6 +490,8 @@ namespace michi
             // Bodies the group does not move were decided by FCL once per scene version (staticBlocked) or once at
             // construction (staticSelfBlocked_): if they touch, every state is invalid.
             const SphereObstacles &obs = obstacles();
+            if (s.candidates.size() < obs.candidateCapacity())
+                s.candidates.resize(obs.candidateCapacity());
             if (obs.staticBlocked || staticSelfBlocked_)
             {
                 if (why != nullptr)
@@ -487,8 +502,11 @@ namespace michi
             {
                 if (static_[b])
                     continue;
-                obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates);
-                if (s.candidates.empty())
+                // clear of every obstacle by the snapshot's distance grid: one lookup instead of both phases
+                if (obs.distanceBound(s.bodyCentre[b]) > s.bodyRadius[b])
+                    continue;
+                const int found = obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates.data());
+                if (found == 0)
                     continue;
                 const int first = begin_[b];
                 const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, r + first,
@@ -497,8 +515,9 @@ namespace michi
                 // has a bounding sphere that reaches every body, its shape reaches few; the body's spheres are placed
                 // only once an obstacle's shape is within its bound
                 int hit = -1;
-                for (int o : s.candidates)
+                for (int k = 0; k < found; ++k)
                 {
+                    const int o = s.candidates[k];
                     if (!obs.hitsSphere(o, s.bodyCentre[b], s.bodyRadius[b]))
                         continue;
                     placeBody(b, s);
@@ -519,27 +538,35 @@ namespace michi
                     *why = bodies_->model()->links()[bodyLink_[b]].name + " touches obstacle '" + obs.name(hit) + "'";
                 return true;
             }
-            for (std::size_t k = 0; k < selfPairs_.size(); ++k)
+            for (int k : tablePairs_)
             {
-                const auto &p = selfPairs_[k];
-                if (static_[p.first] && static_[p.second])
-                    continue;
                 // A set table bit is a proof for its whole cell (certified with the pair's closing speed), so the table
                 // answers without spheres or FCL; in a motion, freeOver() reads every cell the values sweep.
-                if (pairTables_ && (*pairTables_)[k])
-                {
-                    const SelfPairTable &table = *(*pairTables_)[k];
-                    if (valueSpan != nullptr ? table.freeOver(values, valueSpan) : table.free(values))
-                        continue;
-                    if (why != nullptr)
-                        *why = bodies_->model()->links()[bodyLink_[p.first]].name + " touches " +
-                               bodies_->model()->links()[bodyLink_[p.second]].name + " (self-pair table)";
-                    return true;
-                }
-                const float reach = s.bodyRadius[p.first] + s.bodyRadius[p.second];
-                // Bounding spheres apart: no sphere of one body can meet a sphere of the other.
-                if ((s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() >= reach * reach)
+                const SelfPairTable &table = *(*pairTables_)[static_cast<std::size_t>(k)];
+                if (valueSpan != nullptr ? table.freeOver(values, valueSpan) : table.free(values))
                     continue;
+                if (why != nullptr)
+                {
+                    const auto &p = selfPairs_[static_cast<std::size_t>(k)];
+                    *why = bodies_->model()->links()[bodyLink_[p.first]].name + " touches " +
+                           bodies_->model()->links()[bodyLink_[p.second]].name + " (self-pair table)";
+                }
+                return true;
+            }
+            // Bounding spheres of the pairs first, without a branch per pair; most are apart.
+            s.pairNear.resize(spherePairs_.size());
+            for (std::size_t i = 0; i < spherePairs_.size(); ++i)
+            {
+                const auto &p = selfPairs_[static_cast<std::size_t>(spherePairs_[i])];
+                const float reach = s.bodyRadius[p.first] + s.bodyRadius[p.second];
+                s.pairNear[i] = (s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() < reach * reach;
+            }
+            for (std::size_t i = 0; i < spherePairs_.size(); ++i)
+            {
+                if (!s.pairNear[i])
+                    continue;
+                const std::size_t k = static_cast<std::size_t>(spherePairs_[i]);
+                const auto &p = selfPairs_[k];
                 placeBody(static_cast<std::size_t>(p.first), s);
                 placeBody(static_cast<std::size_t>(p.second), s);
                 const int fb = begin_[p.second], lb = begin_[p.second + 1];

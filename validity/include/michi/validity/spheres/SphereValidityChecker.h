@@ -160,6 +160,8 @@ namespace michi
             const ompl::base::RealVectorStateSpace *realVector_{nullptr};
             std::vector<std::pair<int, int>> selfPairs_;
             std::vector<int> selfPairIndex_;
+            /** self pairs (selfPairs_ indices) not between two static bodies: decided by a table, by spheres */
+            std::vector<int> tablePairs_, spherePairs_;
             std::vector<int> robotBody_;     ///< index of each body in bodies_->bodies()
             std::vector<char> static_;       ///< body not moved by the group (decided by FCL when exact_ is given)
             bool staticSelfBlocked_{false};  ///< index of each pair in bodies_->selfCheckPairs()
