@@ -95,7 +95,10 @@ namespace michi
                 Eigen::Vector3f boundLo, boundHi;  ///< box of every obstacle's bounding sphere
                 float cell{1.f}, inverse{1.f};
                 int nx{0}, ny{0}, nz{0};
-                std::vector<float> distance;  ///< x fastest; already lowered by the float margin
+                /** per cell, x fastest: the distance in STEPs, rounded down (already lowered by the float margin); a
+                    byte keeps the grid in a quarter of the memory, so its lookups stay in a core's cache */
+                std::vector<std::uint8_t> distance;
+                static constexpr float STEP = 0.002f;  ///< metres; 255 steps: distances from 0.51 m on read as 0.51 m
                 float bound(const Eigen::Vector3f &p) const
                 {
                     const Eigen::Vector3f u = (p - lo) * inverse;
@@ -104,7 +107,7 @@ namespace michi
                         const int i = static_cast<int>(u.x()), j = static_cast<int>(u.y()), k = static_cast<int>(u.z());
                         const Eigen::Vector3f centre = lo + cell * Eigen::Vector3f(i + 0.5f, j + 0.5f, k + 0.5f);
                         // 1-Lipschitz: the distance at p is at least the centre's minus how far p is from it
-                        return distance[(static_cast<std::size_t>(k) * ny + j) * nx + i] - (p - centre).norm();
+                        return STEP * distance[(static_cast<std::size_t>(k) * ny + j) * nx + i] - (p - centre).norm();
                     }
                     // outside the grid: at least the distance to the box that holds every obstacle
                     return (p.cwiseMax(boundLo).cwiseMin(boundHi) - p).norm();
