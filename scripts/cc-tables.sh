@@ -11,7 +11,8 @@
 #      OMPL's Benchmark checks the limit every 0.1 s (DESIGN.md, known traps), so limits under 0.1 s give RRT* and
 #      BIT* up to 0.1 s: more than 10x, in their favour; the tables give the time they really used.
 # Checker: jmap for planar_2link, planar_3dof_hand and the random scenes (planar arms); arch_3dof (not a planar arm:
-# the J-map is the FCL sweep of joints 1-2 with joint 3 held at 0, which refuses free states) keeps its default, FCL.
+# the J-map is the FCL sweep of joints 1-2 with joint 3 held at 0, which refuses free states) keeps its default, FCL,
+# and runs once more on the sphere checker (arch_3dof_spheres).
 #
 # Usage: scripts/cc-tables.sh [OUT=results/cc-tables] [SCENES=50] [SEED=101]
 #   MICHI=path/to/michi (default build/bin/michi, built with scripts/build.sh when missing)
@@ -59,6 +60,9 @@ run_one() {
 run_one planar_2link problems/planar_2link.yaml jmap
 run_one planar_3dof_hand problems/planar_3dof_hand.yaml jmap
 run_one arch_3dof problems/arch_3dof.yaml fcl
+# the same arm on the sphere checker (issue 15), for every planner alike: ConcentricCircle's clearance push then
+# climbs a sphere distance instead of FCL's
+run_one arch_3dof_spheres problems/arch_3dof.yaml spheres
 "$michi" random-scenes --out "$out/scenes/yaml" --count "$nscenes" --seed "$seed" >/dev/null
 for scene in "$out"/scenes/yaml/*.yaml; do
     run_one "scenes/$(basename "$scene" .yaml)" "$scene" jmap
@@ -98,7 +102,7 @@ def table_db(d):
 
 print(open(os.path.join(out, "meta.txt")).read().strip().replace("\n", "  \n"))
 print()
-for name in ("planar_2link", "planar_3dof_hand", "arch_3dof"):
+for name in ("planar_2link", "planar_3dof_hand", "arch_3dof", "arch_3dof_spheres"):
     pilot = load(glob.glob(os.path.join(out, name, "pilot", "*.db"))[0])["ConcentricCircle"]
     limit = float(open(os.path.join(out, name, "limit")).read())
     runs = load(table_db(name))
