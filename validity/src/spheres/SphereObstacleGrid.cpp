@@ -23,11 +23,12 @@ namespace michi
         void SphereObstacles::countQuery() const
         {
             // Per thread, queries in a row on this snapshot; a snapshot replaced before GRID_AFTER never gets a grid.
-            thread_local const SphereObstacles *last = nullptr;
+            // By serial number, not address: a snapshot made where a destroyed one lived must start from 0.
+            thread_local std::uint64_t last = 0;
             thread_local unsigned count = 0;
-            if (last != this)
+            if (last != serial_)
             {
-                last = this;
+                last = serial_;
                 count = 0;
             }
             if (++count == GRID_AFTER)

@@ -68,6 +68,8 @@ namespace michi
         SphereObstacles::SphereObstacles(const Scene &scene)
         {
             version_ = scene.changeCount();
+            static std::atomic<std::uint64_t> serials{0};
+            serial_ = ++serials;
             for (const auto &o : scene.obstacles())
             {
                 const auto &shape = *o.shape;

@@ -163,6 +163,7 @@ namespace michi
             std::vector<Eigen::Vector3f> size_;  ///< box: half extents; sphere/cylinder/capsule: (r, half length, 0)
             std::vector<Prism> prisms_;
             std::vector<Mesh> meshes_;
+            std::uint64_t serial_{0};  ///< distinct per snapshot made in this process (countQuery())
             mutable std::once_flag gridOnce_;
             mutable std::unique_ptr<DistanceGrid> gridStore_;
             mutable std::atomic<const DistanceGrid *> grid_{nullptr};
