@@ -159,11 +159,12 @@ namespace michi
             return true;
         }
 
-        bool SelfPairTable::free(const double *values) const
+        bool SelfPairTable::cellOf(const double *values, std::size_t &k) const
         {
             // A state reads one cell: the index straight from the value (the span-0 case of range(), without its
             // fmod calls, which a state check on every wrist pair felt).
-            std::size_t k = 0, stride = 1;
+            k = 0;
+            std::size_t stride = 1;
             for (std::size_t d = 0; d < variables_.size(); ++d)
             {
                 double a = (values[variables_[d]] - lo_[d]) / h_[d];
@@ -178,7 +179,13 @@ namespace michi
                 k += static_cast<std::size_t>(i) * stride;
                 stride *= static_cast<std::size_t>(n_[d]);
             }
-            return (bits_[k >> 6] >> (k & 63)) & 1u;
+            return true;
+        }
+
+        bool SelfPairTable::free(const double *values) const
+        {
+            std::size_t k = 0;
+            return cellOf(values, k) && cellFree(k);
         }
 
         bool SelfPairTable::freeOver(const double *values, const float *span) const

@@ -44,6 +44,19 @@ namespace michi
 
             /** \brief Is the pair certainly apart at group values \e values? */
             bool free(const double *values) const;
+            /** \brief free() in two steps, for a caller that starts the load early (a table is 128 KiB, and on
+                fresh states its word is a cache miss the rest of a state check can hide): the flat index of the
+                cell of \e values (false when outside the table: not certified), ... */
+            bool cellOf(const double *values, std::size_t &k) const;
+            /** \brief ... the address of its word, to prefetch, and its bit. */
+            const std::uint64_t *wordOf(std::size_t k) const
+            {
+                return &bits_[k >> 6];
+            }
+            bool cellFree(std::size_t k) const
+            {
+                return (bits_[k >> 6] >> (k & 63)) & 1u;
+            }
             /** \brief Is it apart for every value within \e span[v] of values[v] (group indices)? */
             bool freeOver(const double *values, const float *span) const;
             /** \brief FCL distance queries the build made. */
