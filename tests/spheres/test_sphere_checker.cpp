@@ -60,8 +60,8 @@ namespace
 TEST_P(SphereChecker, NeverAcceptsWhatFclRejects)
 {
     SphereSetup s(GetParam());
-    // Enough queries in a row for the scene snapshot to make its distance grid (after 4096): the comparison below
-    // runs with the grid's broad phase, as every long run does.
+    // Enough queries in a row for the scene snapshot to make its distance grid (after 4096 bounds, one per moving body
+    // and state): the comparison below runs with the grid's broad phase, as every long run does.
     for (const auto &q : s.samples(5000, 4))
         s.spheres->isValidConfiguration(q.data());
     int accepted = 0, falseInvalid = 0, fclValid = 0;

@@ -67,8 +67,9 @@ namespace michi
             float boundDistance(int o, const Eigen::Vector3f &c, float r) const;
 
             /** \brief A lower bound of the distance from \e p to every obstacle (the shapes as squaredDistances()
-                measures them), from a grid of distances made after GRID_AFTER queries on one thread have read this
-                snapshot (a scene that keeps changing never pays for one); -infinity (no bound) until then. A body
+                measures them), from a grid of distances made after GRID_AFTER calls in a row on one thread (the sphere
+                checker asks once per moving body: about 400 state checks of a 10-body arm), so a scene that keeps
+                changing never pays for one; -infinity (no bound) until then. A body
                 whose bounding sphere is closer to nothing than this skips the broad and narrow phases. */
             float distanceBound(const Eigen::Vector3f &p) const
             {
