@@ -69,33 +69,8 @@ namespace michi
                     const double zSign = joint.axis == Eigen::Vector3d::UnitZ()    ? 1.
                                          : joint.axis == -Eigen::Vector3d::UnitZ() ? -1.
                                                                                    : 0.;
-                    Step step{parent.first,
-                              origin,
-                              joint.axis,
-                              joint.type == RobotJoint::Type::PRISMATIC,
-                              static_cast<int>(group - variables.begin()),
-                              zSign,
-                              true,
-                              {0, 1, 2},
-                              {1., 1., 1.}};
-                    for (int col = 0; col < 3; ++col)
-                    {
-                        // exactly one entry of +-1 per column (to rounding), the others 0
-                        int at = -1;
-                        for (int row = 0; row < 3; ++row)
-                            if (std::abs(std::abs(origin.r(row, col)) - 1.) < 1e-12)
-                                at = row;
-                            else if (std::abs(origin.r(row, col)) > 1e-12)
-                                step.permutation = false;
-                        if (at < 0)
-                            step.permutation = false;
-                        else
-                        {
-                            step.perm[col] = at;
-                            step.sign[col] = origin.r(at, col) > 0. ? 1. : -1.;
-                        }
-                    }
-                    steps_.push_back(step);
+                    steps_.push_back({parent.first, origin, joint.axis, joint.type == RobotJoint::Type::PRISMATIC,
+                                      static_cast<int>(group - variables.begin()), zSign});
                     it = stepOfJoint.emplace(j, static_cast<int>(steps_.size())).first;
                 }
                 return {it->second, RigidFrame{}};
@@ -124,23 +99,6 @@ namespace michi
                     l.r = step.offset.r;
                     l.t.noalias() = step.offset.r * (q * step.axis);
                     l.t += step.offset.t;
-                }
-                else if (step.zSign != 0. && step.permutation)
-                {
-                    // about z after a signed-permutation offset: the parent's columns, chosen and mixed by (c, s)
-                    double s, c;
-                    fastSinCos(q, s, c);
-                    s *= step.zSign;
-                    const RigidFrame &p = out[step.parent];
-                    RigidFrame &f = out[k + 1];
-                    const Eigen::Vector3d m0 = step.sign[0] * p.r.col(step.perm[0]);
-                    const Eigen::Vector3d m1 = step.sign[1] * p.r.col(step.perm[1]);
-                    f.r.col(0) = c * m0 + s * m1;
-                    f.r.col(1) = c * m1 - s * m0;
-                    f.r.col(2) = step.sign[2] * p.r.col(step.perm[2]);
-                    f.t.noalias() = p.r * step.offset.t;
-                    f.t += p.t;
-                    continue;
                 }
                 else
                 {

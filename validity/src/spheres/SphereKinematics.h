@@ -110,12 +110,6 @@ namespace michi
                 bool prismatic;
                 int value;     ///< group index of its value
                 double zSign;  ///< axis +z: 1, -z: -1, other: 0 (general rotation)
-                /** the offset's rotation is a signed permutation to 1e-12 (a URDF rpy of exact multiples of 90
-                    degrees; the bundled Panda and xArm6 write pi/2 with too few digits for it): column j is sign[j]
-                   times unit vector perm[j], so the parent's rotation times it is a choice of columns, no product */
-                bool permutation;
-                int perm[3];
-                double sign[3];
             };
             const RobotModel &model_;
             std::vector<Step> steps_;  ///< frame s + 1 is made by step s; parents come first
