@@ -427,14 +427,14 @@ namespace michi
             si_->getStateSpace()->copyToReals(values, state);
         }
 
-        void SphereValidityChecker::place(const double *values, Scratch &s) const
+        void SphereValidityChecker::place(const double *values, Scratch &s, bool tableCells) const
         {
             // the self-pair tables' cells first, their words prefetched: on fresh states each is a cache miss, and the
             // loads then overlap the kinematics instead of stalling the pair loop (verify-checker, Panda: 475 -> 385
             // ns)
             s.tableCell.resize(tablePairs_.size());
             s.tableInside.resize(tablePairs_.size());
-            for (std::size_t i = 0; i < tablePairs_.size(); ++i)
+            for (std::size_t i = 0; tableCells && i < tablePairs_.size(); ++i)
             {
                 const SelfPairTable &table = *(*pairTables_)[static_cast<std::size_t>(tablePairs_[i])];
                 s.tableInside[i] = table.cellOf(values, s.tableCell[i]);
@@ -639,21 +639,21 @@ namespace michi
             // Per thread: planners and benchmarks query from several threads, and the scratch arrays are reused without
             // allocation.
             thread_local Scratch s;
-            place(values, s);
+            place(values, s, valueSpan == nullptr);
             return !collides(s, values, inflation, bodyInflation, valueSpan, exactStates_, nullptr);
         }
 
         bool SphereValidityChecker::spheresFree(const double *values) const
         {
             thread_local Scratch s;
-            place(values, s);
+            place(values, s, true);
             return !collides(s, values, nullptr, nullptr, nullptr, false, nullptr);
         }
 
         std::string SphereValidityChecker::describeCollision(const double *values) const
         {
             Scratch s;
-            place(values, s);
+            place(values, s, true);
             std::string why;
             collides(s, values, nullptr, nullptr, nullptr, exactStates_, &why);
             return why;
@@ -662,7 +662,7 @@ namespace michi
         double SphereValidityChecker::clearanceConfiguration(const double *values) const
         {
             thread_local Scratch s;
-            place(values, s);
+            place(values, s, false);
             const SphereObstacles &obs = obstacles();
             float best = std::numeric_limits<float>::infinity();
             for (std::size_t b = 0; b < bodyLink_.size(); ++b)

@@ -132,8 +132,9 @@ namespace michi
         private:
             struct Scratch;
             void toReals(const ompl::base::State *state, std::vector<double> &values) const;
-            /** Frames and bodies' bounding spheres for \e values into \e s; no sphere is placed yet. */
-            void place(const double *values, Scratch &s) const;
+            /** Frames and bodies' bounding spheres for \e values into \e s; no sphere is placed yet. \e tableCells:
+                also the self-pair tables' cells of a state check (a motion piece reads ranges instead). */
+            void place(const double *values, Scratch &s, bool tableCells) const;
             /** World centres of body \e b's spheres into \e s (once per state). */
             void placeBody(std::size_t b, Scratch &s) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *bodyInflation,
