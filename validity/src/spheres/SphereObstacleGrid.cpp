@@ -61,8 +61,7 @@ namespace michi
                                grid->boundLo = lo;
                                grid->boundHi = hi;
                                grid->lo = lo - Eigen::Vector3f::Constant(REACH);
-                               grid->hi = hi + Eigen::Vector3f::Constant(REACH);
-                               const Eigen::Vector3f extent = grid->hi - grid->lo;
+                               const Eigen::Vector3f extent = hi + Eigen::Vector3f::Constant(REACH) - grid->lo;
                                // the finest cell that keeps the grid within MAX_CELLS and MAX_PER_AXIS
                                float cell = std::cbrt(extent.prod() / static_cast<float>(MAX_CELLS));
                                cell = std::max(cell, extent.maxCoeff() / static_cast<float>(MAX_PER_AXIS));

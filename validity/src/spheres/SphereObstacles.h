@@ -92,7 +92,7 @@ namespace michi
                 distance to the obstacles' bounding box. */
             struct DistanceGrid
             {
-                Eigen::Vector3f lo, hi;            ///< the grid's box
+                Eigen::Vector3f lo;                ///< the grid's lowest corner
                 Eigen::Vector3f boundLo, boundHi;  ///< box of every obstacle's bounding sphere
                 float cell{1.f}, inverse{1.f};
                 int nx{0}, ny{0}, nz{0};
