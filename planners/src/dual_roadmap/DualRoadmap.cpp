@@ -103,6 +103,9 @@ namespace michi
             goalVertices_.clear();
             queryHistory_.clear();
             learnedWorkingEdges_ = 0;
+            // vertex ids are used again from 0: no cached heuristic may be taken for a new vertex
+            heuristicGoals_.clear();
+            ++goalSet_;
         }
 
         void DualRoadmap::clear()
@@ -406,6 +409,13 @@ namespace michi
                 heuristicStamp_.resize(n, 0);
                 heuristic_.resize(n, 0.);
             }
+            // The cache holds while the goal vertices stay the same: replanning to one goal, query after query (the
+            // goal state is one vertex, addQueryVertex), reuses it; vertices added since are computed on demand.
+            if (goals != heuristicGoals_)
+            {
+                heuristicGoals_ = goals;
+                ++goalSet_;
+            }
             // Admissible and consistent: the distance to the nearest goal never exceeds the path length through the
             // roadmap's edges, whose lengths are the same distances.
             const auto h = [&](Vertex v)
@@ -623,7 +633,6 @@ namespace michi
             // with the previous queries' vertices, is kept)
             startVertices_.clear();
             goalVertices_.clear();
-            ++goalSet_;  // the searches' cached heuristic is per goal set
             pis_.restart();
 
             std::vector<ob::State *> starts;
@@ -678,7 +687,6 @@ namespace michi
                     {
                         const Vertex v = rememberQueryVertex(addQueryVertex(g));
                         goalVertices_.push_back(v);
-                        ++goalSet_;
                         connectLazily(v);
                     }
                     if (goalVertices_.empty())

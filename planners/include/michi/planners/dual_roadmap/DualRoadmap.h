@@ -330,6 +330,7 @@ namespace michi
             std::vector<double> heuristic_;
             std::vector<std::uint64_t> heuristicStamp_;
             std::uint64_t goalSet_{0};
+            std::vector<Vertex> heuristicGoals_;  ///< the goal vertices goalSet_ stands for
             std::size_t learnedWorkingEdges_{0};  ///< working edges that are in the learning roadmap
             Work work_;
             std::atomic<std::size_t> learningEdgeCountAtomic_{0};  ///< for the progress property (other thread)
