@@ -183,6 +183,55 @@ TEST(GridTable, LocalUpdateEqualsRebuild)
                 ASSERT_EQ(table.valid(i, j, k), original.valid(i, j, k));
 }
 
+TEST(GridTable, FreeOnGridAnswersAsFreePoseThroughItsBlockSummaries)
+{
+    // Thick walls (whole 8 x 8 summary blocks occupied, where freeOnGrid() answers from the block alone) and thin
+    // ones, a robot holding its origin; the block summaries must follow a local update both ways (a room filled,
+    // then emptied again).
+    auto g = emptyGrid(96, 80, 0.025);
+    for (int j = 16; j < 40; ++j)
+        for (int i = 24; i < 48; ++i)
+            g.cells[j * 96 + i] = 1;
+    for (int i = 0; i < 96; ++i)
+        g.cells[60 * 96 + i] = 1;
+    const std::vector<Eigen::Vector2d> robot{{-0.04, -0.025}, {0.04, -0.025}, {0.04, 0.025}, {-0.04, 0.025}};
+    validity::HeadingTable table(g, robot, 16);
+    ompl::RNG rng(11);
+    const auto agree = [&](const char *when)
+    {
+        int refused = 0;
+        for (int n = 0; n < 20000; ++n)
+        {
+            // a footprint radius and two cells inside the grid, as GridValidityChecker pads it (beyond, the table
+            // and freePose() differ on purpose: cells past the edge are free to one, blocked to the other)
+            const double x = rng.uniformReal(0.1, 2.3), y = rng.uniformReal(0.1, 1.9),
+                         yaw = rng.uniformReal(-M_PI, M_PI);
+            const bool free = table.freePose(x, y, yaw);
+            ASSERT_EQ(table.freeOnGrid(x, y, yaw), free) << when << ": " << x << " " << y << " " << yaw;
+            refused += free ? 0 : 1;
+        }
+        EXPECT_GT(refused, 1000) << when;  // the walls were hit: the blocked answers were exercised
+    };
+    agree("built");
+    std::vector<std::pair<int, int>> room;
+    for (int j = 64; j < 80; ++j)
+        for (int i = 64; i < 96; ++i)
+            room.emplace_back(i, j);
+    table.setOccupied(room, true);
+    agree("room filled");
+    EXPECT_FALSE(table.freeOnGrid(2.0, 1.8, 0.3));  // inside the filled room
+    // emptied but for one column: its blocks turn mixed (neither all free nor all colliding), where a block
+    // summary left over from the filled room would refuse free poses
+    std::vector<std::pair<int, int>> open;
+    for (const auto &c : room)
+        if (c.first != 84)
+            open.push_back(c);
+    table.setOccupied(open, false);
+    agree("room emptied but a column");
+    EXPECT_TRUE(table.freeOnGrid(2.0, 1.8, M_PI / 2));  // beside the column, along it
+    EXPECT_FALSE(table.freeOnGrid(2.1, 1.8, 0.));       // across it
+}
+
 TEST(GridTable, A512MapWith16HeadingsStaysUnder64MiB)
 {
     const auto g = emptyGrid(512, 512, 0.1);

@@ -138,10 +138,13 @@ namespace michi
             // reads past the grid, where freePose() would call it blocked.
             const double pad = radius + 2. * res;
             const Eigen::Vector2d o = settings.origin;
-            // Whole cells from the map's origin, so the table's cells line up with the map's.
-            const double i0 = std::floor((bounds[0] - pad - o.x()) / res),
+            // Whole cells from the map's origin, so the table's cells line up with the map's, and the first cell a
+            // multiple of the table's summary blocks from it: a map cell of 2, 4 or 8 table cells then lies in one
+            // block, and the poses inside an occupied one are refused by their block alone.
+            const double block = HeadingTable::blockCells();
+            const double i0 = block * std::floor(std::floor((bounds[0] - pad - o.x()) / res) / block),
                          i1 = std::ceil((bounds[1] + pad - o.x()) / res);
-            const double j0 = std::floor((bounds[2] - pad - o.y()) / res),
+            const double j0 = block * std::floor(std::floor((bounds[2] - pad - o.y()) / res) / block),
                          j1 = std::ceil((bounds[3] + pad - o.y()) / res);
             if ((i1 - i0) * (j1 - j0) > 2e8)
                 throw std::invalid_argument("GridValidityChecker: a grid of " + std::to_string(i1 - i0) + " x " +

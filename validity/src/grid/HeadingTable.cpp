@@ -112,6 +112,7 @@ namespace michi
                 }
                 originInside_ = originInside_ || inside;
             }
+            originMask_ = originInside_ ? ~std::uint64_t{0} : 0;
             // Bit rows padded to whole 64-bit words, so that every row starts on a word and a row range is a few word
             // masks.
             wordsPerRow_ = (static_cast<std::size_t>(grid_.width) + 63) / 64;
@@ -127,6 +128,7 @@ namespace michi
             const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
             blockAllValid_.assign(blocks / 64 + 1, 0);
             blockAllInvalid_.assign(blocks / 64 + 1, 0);
+            blockAllBlocked_.assign(blocks / 64 + 1, 0);
             cellAllInvalid_.assign(wordsPerRow_ * grid_.height, 0);
             computeRegion(CellBox{0, grid_.width - 1, 0, grid_.height - 1});
         }
@@ -158,15 +160,17 @@ namespace michi
             for (int bj = box.j0 >> s; bj <= box.j1 >> s; ++bj)
                 for (int bi = box.i0 >> s; bi <= box.i1 >> s; ++bi)
                 {
-                    bool allValid = true, allInvalid = true;
-                    for (int k = 0; k < headings_ && (allValid || allInvalid); ++k)
-                        for (int j = bj * size; j < (bj + 1) * size && (allValid || allInvalid); ++j)
+                    bool allValid = true, allInvalid = true, allBlocked = true;
+                    for (int k = 0; k < headings_ && (allValid || allInvalid || allBlocked); ++k)
+                        for (int j = bj * size; j < (bj + 1) * size && (allValid || allInvalid || allBlocked); ++j)
                             for (int i = bi * size; i < (bi + 1) * size; ++i)
                             {
-                                // cells outside the grid count as invalid (validPose never reaches them)
+                                // cells outside the grid count as invalid (validPose never reaches them) and as
+                                // blocked (freeOnGrid() refuses a pose outside the grid before its block)
                                 const bool v = valid(i, j, k);
                                 allValid = allValid && v && grid_.inside(i, j);
                                 allInvalid = allInvalid && !v;
+                                allBlocked = allBlocked && (!grid_.inside(i, j) || entryBlocked(i, j, k));
                             }
                     const std::size_t b = static_cast<std::size_t>(bj) * blocksPerRow_ + static_cast<std::size_t>(bi);
                     const std::uint64_t bit = std::uint64_t{1} << (b & 63);
@@ -174,6 +178,8 @@ namespace michi
                         allValid ? (blockAllValid_[b >> 6] | bit) : (blockAllValid_[b >> 6] & ~bit);
                     blockAllInvalid_[b >> 6] =
                         allInvalid ? (blockAllInvalid_[b >> 6] | bit) : (blockAllInvalid_[b >> 6] & ~bit);
+                    blockAllBlocked_[b >> 6] =
+                        allBlocked ? (blockAllBlocked_[b >> 6] | bit) : (blockAllBlocked_[b >> 6] & ~bit);
                 }
         }
 
@@ -679,8 +685,8 @@ namespace michi
 
         std::size_t HeadingTable::bytes() const
         {
-            return (words_.size() + blockAllValid_.size() + blockAllInvalid_.size() + cells_.size() +
-                    cellAllInvalid_.size()) *
+            return (words_.size() + blockAllValid_.size() + blockAllInvalid_.size() + blockAllBlocked_.size() +
+                    cells_.size() + cellAllInvalid_.size()) *
                        sizeof(std::uint64_t) +
                    grid_.cells.size() + band_.bytes();
         }

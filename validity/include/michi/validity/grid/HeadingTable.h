@@ -137,8 +137,13 @@ namespace michi
                 const int i = static_cast<int>(fx), j = static_cast<int>(fy);
                 const std::size_t b = static_cast<std::size_t>(j >> BLOCK_SHIFT) * blocksPerRow_ +
                                       static_cast<std::size_t>(i >> BLOCK_SHIFT);
-                if ((blockAllValid_[b >> 6] >> (b & 63)) & 1u)
-                    return true;
+                // Most queries end at their block: free at every pose, or colliding at every pose (inside a wall:
+                // with the table aligned to the map, an occupied map cell is whole blocks). One branch for "the
+                // block decides" and the answer as data: a branch on the answer itself mispredicts as often as
+                // free and colliding poses alternate.
+                const std::uint64_t blockValid = blockAllValid_[b >> 6], blockBlocked = blockAllBlocked_[b >> 6];
+                if (((blockValid | blockBlocked) >> (b & 63)) & 1u)
+                    return (blockValid >> (b & 63)) & 1u;
                 double fb;
                 const int k = fastHeadingBin(yaw, fb);
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
@@ -149,16 +154,15 @@ namespace michi
                     __builtin_prefetch(&band_.prefix()[word]);
                 // the cell's "valid at every heading" and "occupied" bits share a cache line
                 const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ + static_cast<std::size_t>(i >> 6);
-                if ((cells_[2 * c] >> (i & 63)) & 1u)
-                    return true;
-                if (originInside_ && ((cells_[2 * c + 1] >> (i & 63)) & 1u))
-                    return false;  // the footprint holds the origin, in an occupied cell
+                // valid at every heading, or occupied while the footprint holds the origin: the cell decides
+                const std::uint64_t cellValid = cells_[2 * c];
+                const std::uint64_t cellBlocked = cells_[2 * c + 1] & originMask_;
+                if (((cellValid | cellBlocked) >> (i & 63)) & 1u)
+                    return (cellValid >> (i & 63)) & 1u;
                 const std::uint64_t valid = words_[2 * word];
-                if ((valid >> (i & 63)) & 1u)
-                    return true;
                 const std::uint64_t blocked = words_[2 * word + 1];  // the same cache line
-                if ((blocked >> (i & 63)) & 1u)
-                    return false;
+                if (((valid | blocked) >> (i & 63)) & 1u)
+                    return (valid >> (i & 63)) & 1u;
                 if (!band_.empty())
                 {
                     const std::uint64_t below = (std::uint64_t{1} << (i & 63)) - 1;
@@ -200,6 +204,22 @@ namespace michi
                 decide: an invalid entry only says that \e some pose of its cell and heading bin collides. The
                 tolerance given at construction is added to the margin. False outside the grid. */
             bool freePose(double x, double y, double yaw, double margin = 0.) const;
+            /** \brief Is every pose of entry (i, j, k) in collision (an occupied cell lies in its core stamp, or
+                the cell is occupied and the footprint holds the origin)? False outside the grid. */
+            bool entryBlocked(int i, int j, int k) const
+            {
+                if (!grid_.inside(i, j))
+                    return false;
+                const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+                const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6);
+                return (((words_[2 * word + 1] | (cells_[2 * c + 1] & originMask_)) >> (i & 63)) & 1u) != 0;
+            }
+            /** \brief Cells per side of the summary blocks: a grid whose origin is a multiple of it from the map's
+                origin has whole map cells in its blocks (when the map cell is a whole number of table cells). */
+            static constexpr int blockCells()
+            {
+                return 1 << BLOCK_SHIFT;
+            }
             /** \brief Is cell (i, j) occupied? False outside the grid. */
             bool occupied(int i, int j) const
             {
@@ -264,7 +284,7 @@ namespace michi
             void computeRegion(const CellBox &box);
             /** \brief Recompute the block summaries of the blocks meeting \e box. */
             void summarise(const CellBox &box);
-            static constexpr int BLOCK_SHIFT = 3;  ///< summary blocks of 8 x 8 cells
+            static constexpr int BLOCK_SHIFT = 3;  ///< summary blocks of BLOCK_CELLS x BLOCK_CELLS cells
             CellBox affected(const CellBox &changed) const;
             OccupancyGrid grid_;
             int headings_{16};
@@ -281,6 +301,8 @@ namespace michi
             std::size_t blocksPerRow_{0};
             std::vector<std::uint64_t> blockAllValid_;    ///< per 8 x 8 block: every entry valid
             std::vector<std::uint64_t> blockAllInvalid_;  ///< per 8 x 8 block: every entry invalid
+            std::vector<std::uint64_t> blockAllBlocked_;  ///< per 8 x 8 block: every entry blocked (all poses collide)
+            std::uint64_t originMask_{0};  ///< all ones when originInside_: an occupied cell then blocks its poses
             /** per cell, two words per 64 cells (j, i / 64): valid at every heading, then occupied */
             std::vector<std::uint64_t> cells_;
             std::vector<std::uint64_t>
