@@ -412,6 +412,26 @@ TEST(JMap, QueriesMatchBoostGeometry)
             EXPECT_EQ(map->collides(p.x(), p.y()), bg::covered_by(p, map->polygons())) << p.x() << ", " << p.y();
         EXPECT_NEAR(map->distanceToBoundary(p.x(), p.y(), 0.2), std::min(d, 0.2), 1e-12);
     }
+    // near the edges, where the index's raster cells are mixed or border mixed ones (a cell an edge touches but the
+    // raster missed would answer by its centre, wrongly, on one side of the edge)
+    std::vector<std::pair<Point2, Point2>> edges;
+    for (const auto &line : boundary)
+        for (std::size_t i = 0; i + 1 < line.size(); ++i)
+            edges.emplace_back(line[i], line[i + 1]);
+    ASSERT_FALSE(edges.empty());
+    int checked = 0;
+    for (int k = 0; k < 40000; ++k)
+    {
+        const auto &e = edges[static_cast<std::size_t>(rng.uniformInt(0, static_cast<int>(edges.size()) - 1))];
+        const double t = rng.uniform01(), r = rng.uniformReal(0., 0.03), a = rng.uniformReal(-M_PI, M_PI);
+        const Point2 p(e.first.x() + t * (e.second.x() - e.first.x()) + r * std::cos(a),
+                       e.first.y() + t * (e.second.y() - e.first.y()) + r * std::sin(a));
+        if (bg::distance(p, boundary) <= 1e-9)
+            continue;
+        ++checked;
+        ASSERT_EQ(map->collides(p.x(), p.y()), bg::covered_by(p, map->polygons())) << p.x() << ", " << p.y();
+    }
+    EXPECT_GT(checked, 39000);
 }
 
 namespace
