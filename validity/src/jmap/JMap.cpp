@@ -369,9 +369,11 @@ namespace michi
                         double ya = ay, yb = by;
                         if (bx > ax)
                         {
+                            // the heights over the column widened by eps: a steep edge's height at a column border
+                            // moves by its slope times the rounding of that border
                             const double m = (by - ay) / (bx - ax);
-                            ya = ay + m * (std::clamp(xa, ax, bx) - ax);
-                            yb = ay + m * (std::clamp(xb, ax, bx) - ax);
+                            ya = ay + m * (std::clamp(xa - eps, ax, bx) - ax);
+                            yb = ay + m * (std::clamp(xb + eps, ax, bx) - ax);
                         }
                         const int r0 = std::max(0, row(std::min(ya, yb) - eps)),
                                   r1 = std::min(rasterRows_ - 1, row(std::max(ya, yb) + eps));

@@ -138,9 +138,9 @@ namespace michi
                 const std::size_t b = static_cast<std::size_t>(j >> BLOCK_SHIFT) * blocksPerRow_ +
                                       static_cast<std::size_t>(i >> BLOCK_SHIFT);
                 // Most queries end at their block: free at every pose, or colliding at every pose (inside a wall:
-                // with the table aligned to the map, an occupied map cell is whole blocks). One branch for "the
-                // block decides" and the answer as data: a branch on the answer itself mispredicts as often as
-                // free and colliding poses alternate.
+                // with the table aligned to the map, an occupied map cell of 8 x 8 table cells is a whole block).
+                // One branch for "the block decides" and the answer as data: a branch on the answer itself
+                // mispredicts as often as free and colliding poses alternate.
                 const std::uint64_t blockValid = blockAllValid_[b >> 6], blockBlocked = blockAllBlocked_[b >> 6];
                 if (((blockValid | blockBlocked) >> (b & 63)) & 1u)
                     return (blockValid >> (b & 63)) & 1u;
@@ -284,7 +284,7 @@ namespace michi
             void computeRegion(const CellBox &box);
             /** \brief Recompute the block summaries of the blocks meeting \e box. */
             void summarise(const CellBox &box);
-            static constexpr int BLOCK_SHIFT = 3;  ///< summary blocks of BLOCK_CELLS x BLOCK_CELLS cells
+            static constexpr int BLOCK_SHIFT = 3;  ///< summary blocks of 8 x 8 cells (blockCells())
             CellBox affected(const CellBox &changed) const;
             OccupancyGrid grid_;
             int headings_{16};
