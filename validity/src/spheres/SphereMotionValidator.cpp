@@ -38,7 +38,7 @@ namespace michi
             certified = 0.;
             const auto &space = si_->getStateSpace();
             thread_local std::vector<double> a, b, mid;
-            thread_local Eigen::VectorXf delta, grow, growBody, span;
+            thread_local Eigen::VectorXf delta, whole, grow, span;
             space->copyToReals(a, s1);
             space->copyToReals(b, s2);
             const std::size_t dim = a.size();
@@ -57,8 +57,7 @@ namespace michi
             }
             const Eigen::MatrixXf &coefficients = checker_->displacementCoefficients();
             // the sphere displacement over the whole motion; a piece of fraction f moves f of it
-            const Eigen::VectorXf whole = coefficients * delta;
-            const Eigen::VectorXf wholeBody = checker_->bodyDisplacementCoefficients() * delta;
+            whole.noalias() = coefficients * delta;
             ompl::base::State *m = si_->allocState();
             // pieces in order, left first, so the certified prefix is known when one fails
             struct Piece
@@ -89,10 +88,9 @@ namespace michi
                 // spheres grown by that hold every pose of the piece, so one check certifies it all. 1e-6 covers float
                 // rounding.
                 grow = whole * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
-                growBody = wholeBody * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
                 span = delta * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
                 ++checks_;
-                if (checker_->isFreeInflated(mid.data(), grow.data(), growBody.data(), span.data()))
+                if (checker_->isFreeInflated(mid.data(), grow.data(), span.data()))
                 {
                     certified = p.t1;
                     continue;

@@ -115,6 +115,8 @@ namespace michi
                 }
             };
             void countQuery() const;
+            /** The distance grid of this snapshot (null without obstacles); makeGrid() publishes it once. */
+            std::unique_ptr<DistanceGrid> buildGrid() const;
 
             enum Kind : int
             {

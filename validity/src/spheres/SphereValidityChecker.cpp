@@ -480,8 +480,7 @@ namespace michi
         }
 
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
-                                             const float *bodyInflation, const float *valueSpan, bool useExact,
-                                             std::string *why) const
+                                             const float *valueSpan, bool useExact, std::string *why) const
         {
             const std::size_t nb = bodyLink_.size();
             const float *r = radius_.data();
@@ -630,24 +629,24 @@ namespace michi
         {
             // No inflation: a state check. The motion validator passes the spheres' growth over a piece of motion
             // instead.
-            return isFreeInflated(values, nullptr, nullptr, nullptr);
+            return isFreeInflated(values, nullptr, nullptr);
         }
 
         bool SphereValidityChecker::isFreeInflated(const double *values, const float *inflation,
-                                                   const float *bodyInflation, const float *valueSpan) const
+                                                   const float *valueSpan) const
         {
             // Per thread: planners and benchmarks query from several threads, and the scratch arrays are reused without
             // allocation.
             thread_local Scratch s;
             place(values, s, valueSpan == nullptr);
-            return !collides(s, values, inflation, bodyInflation, valueSpan, exactStates_, nullptr);
+            return !collides(s, values, inflation, valueSpan, exactStates_, nullptr);
         }
 
         bool SphereValidityChecker::spheresFree(const double *values) const
         {
             thread_local Scratch s;
             place(values, s, true);
-            return !collides(s, values, nullptr, nullptr, nullptr, false, nullptr);
+            return !collides(s, values, nullptr, nullptr, false, nullptr);
         }
 
         std::string SphereValidityChecker::describeCollision(const double *values) const
@@ -655,7 +654,7 @@ namespace michi
             Scratch s;
             place(values, s, true);
             std::string why;
-            collides(s, values, nullptr, nullptr, nullptr, exactStates_, &why);
+            collides(s, values, nullptr, nullptr, exactStates_, &why);
             return why;
         }
 

@@ -58,10 +58,8 @@ namespace michi
             /** \brief The same with every sphere grown by \e inflation[s] metres (sphereCount() values), and
                 for self pairs a table decides, every group value within \e valueSpan[v] of values[v]: true means
                 nothing touches while each sphere moves by up to its inflation. With an inflation, spheres decide
-                every other self pair (no FCL query). \e bodyInflation (bodyCount() values) is kept for callers
-                and may be null. */
-            bool isFreeInflated(const double *values, const float *inflation, const float *bodyInflation,
-                                const float *valueSpan) const;
+                every other self pair (no FCL query). */
+            bool isFreeInflated(const double *values, const float *inflation, const float *valueSpan) const;
             /** \brief The spheres (and self-pair tables) alone, without asking FCL: true means free for the
                 spheres, hence for the real geometry; false may be a state whose real geometry is free (a grasp:
                 the hand's spheres stand out of its surface). */
@@ -137,8 +135,8 @@ namespace michi
             void place(const double *values, Scratch &s, bool tableCells) const;
             /** World centres of body \e b's spheres into \e s (once per state). */
             void placeBody(std::size_t b, Scratch &s) const;
-            bool collides(Scratch &s, const double *values, const float *inflation, const float *bodyInflation,
-                          const float *valueSpan, bool useExact, std::string *why) const;
+            bool collides(Scratch &s, const double *values, const float *inflation, const float *valueSpan,
+                          bool useExact, std::string *why) const;
             void makeSelfPairTables();
             const SphereObstacles &obstacles() const;
 
