@@ -153,5 +153,7 @@ TEST(GridBandTable, LocalUpdateEqualsRebuild)
         validity::HeadingTable rebuilt(h, robot, 16);
         rebuilt.buildBand();
         expectSame(table, rebuilt);
+        // and the queries read the updated entries (freeOnGrid's per-entry codes are made again)
+        checkAgainstFreePose(table, rng, 20000);
     }
 }
