@@ -117,6 +117,8 @@ TEST(GridTable, FreePoseIsExactWhereTheTableIsConservative)
                 g.cells[j * 40 + i] = 1;
     const std::vector<Eigen::Vector2d> robot{{-0.03, -0.02}, {0.03, -0.02}, {0.03, 0.02}, {-0.03, 0.02}};
     validity::HeadingTable table(g, robot, 16);
+    // the wall and the door are whole 4 x 4 blocks: the exact test reads a bit per block
+    EXPECT_EQ(table.coarseFactor(), 4);
     // in the door along it: the entry is invalid (the footprint grown by the cell and swept over the heading bin
     // reaches the wall), the pose itself is free with 0.03 m either side
     EXPECT_FALSE(table.validPose(0.55, 0.55, M_PI / 2));
@@ -132,8 +134,107 @@ TEST(GridTable, FreePoseIsExactWhereTheTableIsConservative)
     EXPECT_FALSE(table.freePose(0.2, 0.2, std::nan("")));
     // marking cells changes it
     table.setOccupied({{22, 22}}, true);
+    EXPECT_EQ(table.coarseFactor(), 1);  // one cell of a block: the table's own rows from now on
     EXPECT_FALSE(table.freePose(0.55, 0.55, M_PI / 2));
     EXPECT_TRUE(table.occupied(22, 22));
+}
+
+namespace
+{
+    /** Does the convex polygon \e poly meet the square [x0, x1] x [y0, y1] (closed sets)? Separating axes: the
+        square's two and the polygon's edge normals. Independent of HeadingTable's row walk. */
+    bool convexMeetsBox(const std::vector<Eigen::Vector2d> &poly, double x0, double x1, double y0, double y1)
+    {
+        double px0 = 1e300, px1 = -1e300, py0 = 1e300, py1 = -1e300;
+        for (const auto &p : poly)
+        {
+            px0 = std::min(px0, p.x());
+            px1 = std::max(px1, p.x());
+            py0 = std::min(py0, p.y());
+            py1 = std::max(py1, p.y());
+        }
+        if (px1 < x0 || px0 > x1 || py1 < y0 || py0 > y1)
+            return false;
+        const Eigen::Vector2d corners[4]{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+        for (std::size_t e = 0; e < poly.size(); ++e)
+        {
+            const Eigen::Vector2d d = poly[(e + 1) % poly.size()] - poly[e];
+            const Eigen::Vector2d n(d.y(), -d.x());
+            double lo = 1e300, hi = -1e300, blo = 1e300, bhi = -1e300;
+            for (const auto &p : poly)
+            {
+                lo = std::min(lo, n.dot(p));
+                hi = std::max(hi, n.dot(p));
+            }
+            for (const auto &c : corners)
+            {
+                blo = std::min(blo, n.dot(c));
+                bhi = std::max(bhi, n.dot(c));
+            }
+            if (hi < blo || bhi < lo)
+                return false;
+        }
+        return true;
+    }
+}  // namespace
+
+TEST(GridTable, ExactTestOnWholeMapCellsAgreesWithSeparatingAxes)
+{
+    // Map cells of 4 x 4 table cells (the table's split of a map): the exact test reads one bit per map cell. Checked
+    // at random poses and margins against the footprint grown by the margin (a square growth: each cell grown by it)
+    // meeting an occupied table cell, by separating axes; then again after a map cell is occupied (still whole
+    // blocks) and after a single table cell is (the table's own rows).
+    ompl::RNG rng(21);
+    const double r = 0.025;
+    auto g = emptyGrid(96, 80, r);
+    g.origin = Eigen::Vector2d(-0.4, 0.3);
+    for (int bj = 0; bj < 20; ++bj)
+        for (int bi = 0; bi < 24; ++bi)
+            if (rng.uniform01() < 0.15)
+                for (int j = 4 * bj; j < 4 * bj + 4; ++j)
+                    for (int i = 4 * bi; i < 4 * bi + 4; ++i)
+                        g.cells[static_cast<std::size_t>(j) * 96 + i] = 1;
+    const std::vector<Eigen::Vector2d> robot{{-0.09, -0.04}, {0.07, -0.05}, {0.09, 0.04}, {-0.06, 0.05}};
+    validity::HeadingTable table(g, robot, 16);
+    ASSERT_EQ(table.coarseFactor(), 4);
+    auto check = [&](int poses)
+    {
+        int free = 0, blocked = 0;
+        for (int n = 0; n < poses; ++n)
+        {
+            const double x = g.origin.x() + rng.uniformReal(0.15, 96 * r - 0.15);
+            const double y = g.origin.y() + rng.uniformReal(0.15, 80 * r - 0.15);
+            const double yaw = rng.uniformReal(-M_PI, M_PI);
+            const double margin = n % 2 ? rng.uniformReal(0., 0.03) : 0.;
+            std::vector<Eigen::Vector2d> poly;
+            for (const auto &p : robot)
+                poly.push_back(Eigen::Rotation2Dd(yaw) * p + Eigen::Vector2d(x, y));
+            bool meets = false;
+            for (int j = 0; j < 80 && !meets; ++j)
+                for (int i = 0; i < 96 && !meets; ++i)
+                    if (table.occupied(i, j))
+                    {
+                        const double x0 = g.origin.x() + i * r - margin, y0 = g.origin.y() + j * r - margin;
+                        meets = convexMeetsBox(poly, x0, x0 + r + 2 * margin, y0, y0 + r + 2 * margin);
+                    }
+            // a pose within 1e-7 m of touching may go either way (round-off); none are drawn at random
+            EXPECT_EQ(table.freePose(x, y, yaw, margin), !meets) << x << " " << y << " " << yaw << " " << margin;
+            (meets ? blocked : free) += 1;
+        }
+        EXPECT_GT(free, poses / 10);
+        EXPECT_GT(blocked, poses / 10);
+    };
+    check(4000);
+    std::vector<std::pair<int, int>> block;
+    for (int j = 40; j < 44; ++j)
+        for (int i = 48; i < 52; ++i)
+            block.emplace_back(i, j);
+    table.setOccupied(block, !table.occupied(48, 40));
+    EXPECT_EQ(table.coarseFactor(), 4);
+    check(2000);
+    table.setOccupied({{10, 10}}, !table.occupied(10, 10));
+    EXPECT_EQ(table.coarseFactor(), 1);
+    check(2000);
 }
 
 TEST(GridTable, SweepsTheFootprintOverTheHeadingBin)

@@ -122,10 +122,12 @@ namespace michi
                     if (grid_.cells[static_cast<std::size_t>(j) * grid_.width + i])
                         cells_[2 * (static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)) + 1] |= std::uint64_t{1}
                                                                                                    << (i & 63);
+            makeCoarse();
             words_.assign(2 * wordsPerRow_ * grid_.height * headings_, 0);
             makeCoreStamps();
-            blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> BLOCK_SHIFT) + 1;
-            const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> BLOCK_SHIFT) + 1);
+            blockShift_ = coarse_ == 4 ? 2 : MAX_BLOCK_SHIFT;
+            blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> blockShift_) + 1;
+            const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> blockShift_) + 1);
             blockAllValid_.assign(blocks / 64 + 1, 0);
             blockAllInvalid_.assign(blocks / 64 + 1, 0);
             blockAllBlocked_.assign(blocks / 64 + 1, 0);
@@ -137,7 +139,7 @@ namespace michi
         {
             if (box.empty())
                 return;
-            const int s = BLOCK_SHIFT, size = 1 << BLOCK_SHIFT;
+            const int s = blockShift_, size = 1 << blockShift_;
             for (int j = box.j0; j <= box.j1; ++j)
                 for (int i = box.i0; i <= box.i1; ++i)
                 {
@@ -207,30 +209,47 @@ namespace michi
 
         bool HeadingTable::footprintFree(double x, double y, double yaw, double margin) const
         {
-            const double inv = inverseResolution_;
-            // The footprint grown by the caller's margin (a motion's spacing) and the table's tolerance, in cells; the
-            // 1e-9 turns a touch at round-off into a collision.
-            const double m = (margin + tolerance_) * inv + 1e-9;
             const double c = std::cos(yaw), s = std::sin(yaw);
+            // cells beyond the grid may hold obstacles the grid does not know: a footprint reaching there is not free
+            // (in table cells, whichever rows answer below; the 1e-9 turns a touch at round-off into a collision)
+            const double inv = inverseResolution_;
+            const double m = (margin + tolerance_) * inv + 1e-9;
+            const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
+            for (const auto &piece : pieces_)
+                for (const auto &p : piece)
+                {
+                    const double u = ox + (c * p.x() - s * p.y()) * inv, v = oy + (s * p.x() + c * p.y()) * inv;
+                    if (u - m < 0. || v - m < 0. || u + m >= grid_.width || v + m >= grid_.height)
+                        return false;
+                }
+            // On a map whose cells are whole blocks of table cells the coarse rows hold the same obstacles in a
+            // fraction of the memory, so the test reads a few lines that stay in the cache (checking.md).
+            if (coarse_ > 1)
+                return rowsFree(coarseCells_.data(), coarseWordsPerRow_, 1, coarseWidth_, coarseHeight_, inv / coarse_,
+                                x, y, c, s, margin);
+            return rowsFree(cells_.data() + 1, wordsPerRow_, 2, grid_.width, grid_.height, inv, x, y, c, s, margin);
+        }
+
+        bool HeadingTable::rowsFree(const std::uint64_t *occupied, std::size_t wordsPerRow, std::size_t stride,
+                                    int width, int height, double inv, double x, double y, double c, double s,
+                                    double margin) const
+        {
+            // The footprint grown by the caller's margin (a motion's spacing) and the table's tolerance, in cells of
+            // these rows.
+            const double m = (margin + tolerance_) * inv + 1e-9;
             const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
             double u[16], v[16];
             for (const auto &piece : pieces_)
             {
                 const std::size_t n = std::min<std::size_t>(piece.size(), 16);
                 double vmin = std::numeric_limits<double>::infinity(), vmax = -vmin;
-                double umin = vmin, umax = vmax;
                 for (std::size_t p = 0; p < n; ++p)
                 {
                     u[p] = ox + (c * piece[p].x() - s * piece[p].y()) * inv;
                     v[p] = oy + (s * piece[p].x() + c * piece[p].y()) * inv;
                     vmin = std::min(vmin, v[p]);
                     vmax = std::max(vmax, v[p]);
-                    umin = std::min(umin, u[p]);
-                    umax = std::max(umax, u[p]);
                 }
-                // cells beyond the grid may hold obstacles the grid does not know: not free
-                if (umin - m < 0. || vmin - m < 0. || umax + m >= grid_.width || vmax + m >= grid_.height)
-                    return false;
                 // Row j's grown band [j - m, j + 1 + m] meets [vmin, vmax] exactly for these j.
                 const int j0 = static_cast<int>(std::ceil(vmin - m - 1.)), j1 = static_cast<int>(std::floor(vmax + m));
                 // each edge's x per unit of y, once (not a division per row)
@@ -240,7 +259,7 @@ namespace michi
                     const std::size_t q = p + 1 == n ? 0 : p + 1;
                     slope[p] = v[q] != v[p] ? (u[q] - u[p]) / (v[q] - v[p]) : 0.;
                 }
-                for (int j = std::max(0, j0); j <= j1; ++j)
+                for (int j = std::max(0, j0); j <= std::min(height - 1, j1); ++j)
                 {
                     const double lo = j - m, hi = j + 1. + m;
                     double xa = std::numeric_limits<double>::infinity(), xb = -xa;
@@ -270,8 +289,8 @@ namespace michi
                         continue;
                     // The same for columns: cell i's grown span [i - m, i + 1 + m] meets the piece's x range [xa, xb].
                     const int i0 = std::max(0, static_cast<int>(std::ceil(xa - m - 1.)));
-                    const int i1 = std::min(grid_.width - 1, static_cast<int>(std::floor(xb + m)));
-                    const std::uint64_t *row = cells_.data() + 2 * static_cast<std::size_t>(j) * wordsPerRow_ + 1;
+                    const int i1 = std::min(width - 1, static_cast<int>(std::floor(xb + m)));
+                    const std::uint64_t *row = occupied + stride * static_cast<std::size_t>(j) * wordsPerRow;
                     for (int w = i0 >> 6; w <= i1 >> 6; ++w)
                     {
                         std::uint64_t mask = ~std::uint64_t{0};
@@ -281,12 +300,74 @@ namespace michi
                             mask &= ~std::uint64_t{0} << (i0 & 63);
                         if (w == i1 >> 6 && (i1 & 63) != 63)
                             mask &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
-                        if (row[2 * w] & mask)
+                        if (row[stride * static_cast<std::size_t>(w)] & mask)
                             return false;
                     }
                 }
             }
             return true;
+        }
+
+        void HeadingTable::makeCoarse()
+        {
+            // The largest block of f x f table cells (from cell 0, 0) in which every cell is occupied or every cell is
+            // free, all over the grid: the map's own cells when the table splits them (GridValidityChecker aligns the
+            // table to them). A block cut by the grid's edge counts by its cells inside.
+            coarse_ = 1;
+            coarseCells_.clear();
+            const auto cell = [&](int i, int j)
+            {
+                return grid_.cells[static_cast<std::size_t>(j) * grid_.width + i] != 0;
+            };
+            for (int f : {8, 4, 2})
+            {
+                const int bw = (grid_.width + f - 1) / f, bh = (grid_.height + f - 1) / f;
+                const std::size_t wpr = (static_cast<std::size_t>(bw) + 63) / 64;
+                std::vector<std::uint64_t> bits(wpr * static_cast<std::size_t>(bh), 0);
+                bool uniform = true;
+                for (int bj = 0; bj < bh && uniform; ++bj)
+                    for (int bi = 0; bi < bw && uniform; ++bi)
+                    {
+                        const bool first = cell(bi * f, bj * f);
+                        for (int j = bj * f; j < std::min(grid_.height, bj * f + f) && uniform; ++j)
+                            for (int i = bi * f; i < std::min(grid_.width, bi * f + f) && uniform; ++i)
+                                uniform = cell(i, j) == first;
+                        if (first)
+                            bits[static_cast<std::size_t>(bj) * wpr + (bi >> 6)] |= std::uint64_t{1} << (bi & 63);
+                    }
+                if (!uniform)
+                    continue;
+                coarse_ = f;
+                coarseWidth_ = bw;
+                coarseHeight_ = bh;
+                coarseWordsPerRow_ = wpr;
+                coarseCells_ = std::move(bits);
+                return;
+            }
+        }
+
+        void HeadingTable::updateCoarse(const CellBox &changed)
+        {
+            // a change that splits a block ends the coarse rows (the table's own rows answer from then on)
+            if (coarse_ <= 1 || changed.empty())
+                return;
+            const int f = coarse_;
+            for (int bj = changed.j0 / f; bj <= changed.j1 / f; ++bj)
+                for (int bi = changed.i0 / f; bi <= changed.i1 / f; ++bi)
+                {
+                    const bool first = grid_.cells[static_cast<std::size_t>(bj * f) * grid_.width + bi * f] != 0;
+                    for (int j = bj * f; j < std::min(grid_.height, bj * f + f); ++j)
+                        for (int i = bi * f; i < std::min(grid_.width, bi * f + f); ++i)
+                            if ((grid_.cells[static_cast<std::size_t>(j) * grid_.width + i] != 0) != first)
+                            {
+                                coarse_ = 1;
+                                coarseCells_.clear();
+                                return;
+                            }
+                    std::uint64_t &word = coarseCells_[static_cast<std::size_t>(bj) * coarseWordsPerRow_ + (bi >> 6)];
+                    const std::uint64_t bit = std::uint64_t{1} << (bi & 63);
+                    word = first ? (word | bit) : (word & ~bit);
+                }
         }
 
         void HeadingTable::buildBand()
@@ -638,6 +719,7 @@ namespace michi
             }
             if (changed.empty())
                 return CellBox{};
+            updateCoarse(changed);
             const CellBox box = affected(changed);
             computeRegion(box);
             if (!band_.empty())
@@ -686,7 +768,7 @@ namespace michi
         std::size_t HeadingTable::bytes() const
         {
             return (words_.size() + blockAllValid_.size() + blockAllInvalid_.size() + blockAllBlocked_.size() +
-                    cells_.size() + cellAllInvalid_.size()) *
+                    cells_.size() + cellAllInvalid_.size() + coarseCells_.size()) *
                        sizeof(std::uint64_t) +
                    grid_.cells.size() + band_.bytes();
         }

@@ -44,8 +44,9 @@ namespace michi
             (the table is conservative). The table is the occupancy grid dilated by each heading's stamp, computed
             with row prefix sums (cells x stamp rows per heading).
 
-            Summaries of 8 x 8-cell blocks and of cells (valid at every heading, invalid at every heading) answer
-            most queries from a few kilobytes and two bits a cell that stay in the cache; the rest read the table.
+            Summaries of blocks (8 x 8 cells, or a map cell of 4 x 4) and of cells (valid at every heading, invalid at
+           every heading) answer most queries from a few kilobytes and two bits a cell that stay in the cache; the rest
+           read the table.
 
             Memory: two bits per entry (valid; blocked: every pose collides), interleaved per 64 entries so that a
             query finds both in one cache line, a byte of occupancy per cell (and, while computing, a 32-bit running
@@ -106,9 +107,9 @@ namespace michi
                 if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height && std::abs(yaw) < 1e6))
                     return false;
                 const int i = static_cast<int>(fx), j = static_cast<int>(fy);  // >= 0: truncation is floor
-                // most queries end here: blocks of 8 x 8 cells valid (or invalid) at every heading, a few kB
-                const std::size_t b = static_cast<std::size_t>(j >> BLOCK_SHIFT) * blocksPerRow_ +
-                                      static_cast<std::size_t>(i >> BLOCK_SHIFT);
+                // most queries end here: blocks valid (or invalid) at every heading, a few kB
+                const std::size_t b = static_cast<std::size_t>(j >> blockShift_) * blocksPerRow_ +
+                                      static_cast<std::size_t>(i >> blockShift_);
                 if ((blockAllValid_[b >> 6] >> (b & 63)) & 1u)
                     return true;
                 if ((blockAllInvalid_[b >> 6] >> (b & 63)) & 1u)
@@ -135,11 +136,11 @@ namespace michi
                 if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height && std::abs(yaw) < 1e6))
                     return false;
                 const int i = static_cast<int>(fx), j = static_cast<int>(fy);
-                const std::size_t b = static_cast<std::size_t>(j >> BLOCK_SHIFT) * blocksPerRow_ +
-                                      static_cast<std::size_t>(i >> BLOCK_SHIFT);
+                const std::size_t b = static_cast<std::size_t>(j >> blockShift_) * blocksPerRow_ +
+                                      static_cast<std::size_t>(i >> blockShift_);
                 // Most queries end at their block: free at every pose, or colliding at every pose (inside a wall:
-                // with the table aligned to the map, an occupied map cell of 8 x 8 table cells is a whole block).
-                // One branch for "the block decides" and the answer as data: a branch on the answer itself
+                // with the table aligned to the map, an occupied map cell of 8 x 8 or 4 x 4 table cells is a whole
+                // block). One branch for "the block decides" and the answer as data: a branch on the answer itself
                 // mispredicts as often as free and colliding poses alternate.
                 const std::uint64_t blockValid = blockAllValid_[b >> 6], blockBlocked = blockAllBlocked_[b >> 6];
                 if (((blockValid | blockBlocked) >> (b & 63)) & 1u)
@@ -218,7 +219,7 @@ namespace michi
                 origin has whole map cells in its blocks (when the map cell is a whole number of table cells). */
             static constexpr int blockCells()
             {
-                return 1 << BLOCK_SHIFT;
+                return 1 << MAX_BLOCK_SHIFT;
             }
             /** \brief Is cell (i, j) occupied? False outside the grid. */
             bool occupied(int i, int j) const
@@ -231,6 +232,12 @@ namespace michi
             const std::vector<GridSpan> &stamp(int k) const
             {
                 return stamps_[static_cast<std::size_t>(k)];
+            }
+            /** \brief Table cells per side of the coarse occupancy the exact test reads (1: it reads the table's own
+                rows). */
+            int coarseFactor() const
+            {
+                return coarse_;
             }
             /** \brief Radius of the smallest circle about the robot's origin holding the footprint. */
             double circumradius() const
@@ -277,14 +284,27 @@ namespace michi
             void makeCoreStamps();
             /** \brief Is entry (cell of x, y; bin of yaw) known to collide at every pose (its blocked bit)? */
             bool certainlyBlocked(double x, double y, double yaw) const;
-            /** \brief freePose() without its shortcuts: the footprint's pieces against the rows of cells. */
+            /** \brief freePose() without its shortcuts: the footprint's pieces against the rows of cells (the coarse
+                rows when the grid has them). */
             bool footprintFree(double x, double y, double yaw, double margin) const;
+            /** \brief The pieces at pose (x, y; cos c, sin s of the yaw), grown by \e margin, against occupied bits in
+                rows of \e wordsPerRow words (\e stride apart), \e width x \e height cells of 1 / \e inv metres from
+                the grid's origin. */
+            bool rowsFree(const std::uint64_t *occupied, std::size_t wordsPerRow, std::size_t stride, int width,
+                          int height, double inv, double x, double y, double c, double s, double margin) const;
+            /** \brief coarseCells_ from the grid (none when no block size fits every cell). */
+            void makeCoarse();
+            /** \brief Keep coarseCells_ after the cells in \e changed changed (or drop them). */
+            void updateCoarse(const CellBox &changed);
             /** \brief Recompute the band's sub-entries of the entries in \e box (all when null), keep the others. */
             void computeBand(const CellBox *box);
             void computeRegion(const CellBox &box);
             /** \brief Recompute the block summaries of the blocks meeting \e box. */
             void summarise(const CellBox &box);
-            static constexpr int BLOCK_SHIFT = 3;  ///< summary blocks of 8 x 8 cells (blockCells())
+            static constexpr int MAX_BLOCK_SHIFT = 3;  ///< summary blocks of at most 8 x 8 cells (blockCells())
+            /** summary blocks of 2^blockShift_ cells a side: a map cell when the map's cells are 4 x 4 table cells
+                (coarse_), so that an occupied map cell is a blocked block; else 8 x 8 (measured, checking.md) */
+            int blockShift_{MAX_BLOCK_SHIFT};
             CellBox affected(const CellBox &changed) const;
             OccupancyGrid grid_;
             int headings_{16};
@@ -299,9 +319,9 @@ namespace michi
             std::vector<std::uint64_t> words_;
             std::vector<std::vector<GridSpan>> coreStamps_;
             std::size_t blocksPerRow_{0};
-            std::vector<std::uint64_t> blockAllValid_;    ///< per 8 x 8 block: every entry valid
-            std::vector<std::uint64_t> blockAllInvalid_;  ///< per 8 x 8 block: every entry invalid
-            std::vector<std::uint64_t> blockAllBlocked_;  ///< per 8 x 8 block: every entry blocked (all poses collide)
+            std::vector<std::uint64_t> blockAllValid_;    ///< per block: every entry valid
+            std::vector<std::uint64_t> blockAllInvalid_;  ///< per block: every entry invalid
+            std::vector<std::uint64_t> blockAllBlocked_;  ///< per block: every entry blocked (all poses collide)
             std::uint64_t originMask_{0};  ///< all ones when originInside_: an occupied cell then blocks its poses
             /** per cell, two words per 64 cells (j, i / 64): valid at every heading, then occupied */
             std::vector<std::uint64_t> cells_;
@@ -313,6 +333,13 @@ namespace michi
             /** the robot's origin lies in its footprint: a pose in an occupied cell collides (freePose's shortcut) */
             bool originInside_{false};
             std::vector<std::vector<GridSpan>> stamps_;
+            /** Occupancy at f x f table cells a bit (f = coarse_, 2, 4 or 8; 1: none), for the exact test: every block
+                of the grid is wholly occupied or wholly free (a map cell split by the table), so the rows hold the same
+                obstacles; on arena 51 x 51 bits instead of 406 x 406 */
+            int coarse_{1};
+            int coarseWidth_{0}, coarseHeight_{0};
+            std::size_t coarseWordsPerRow_{0};
+            std::vector<std::uint64_t> coarseCells_;
             BandTable band_;            ///< empty until buildBand()
             int reach_[4]{0, 0, 0, 0};  ///< min dx, max dx, min dy, max dy over all stamps
         };
