@@ -44,9 +44,9 @@ namespace michi
             (the table is conservative). The table is the occupancy grid dilated by each heading's stamp, computed
             with row prefix sums (cells x stamp rows per heading).
 
-            Summaries of blocks (8 x 8 cells, or a map cell of 4 x 4) and of cells (valid at every heading, invalid at
-           every heading) answer most queries from a few kilobytes and two bits a cell that stay in the cache; the rest
-           read the table.
+            Summaries of blocks (8 x 8 cells, or a map cell of 4 x 4) and of cells (valid at every heading, invalid
+            at every heading) answer most queries from a few kilobytes and two bits a cell that stay in the cache;
+            the rest read the table.
 
             Memory: two bits per entry (valid; blocked: every pose collides), interleaved per 64 entries so that a
             query finds both in one cache line, a byte of occupancy per cell (and, while computing, a 32-bit running
