@@ -114,3 +114,27 @@ TEST(ReplanCli, SameSeedGivesTheSameEpisodes)
     EXPECT_EQ(outcomes[0], outcomes[1]);
     EXPECT_NE(outcomes[0].find("\"replans\": "), std::string::npos);
 }
+
+TEST(ReplanCli, CorridorWithCrossingWalkersIsDrivenThroughWithoutCollision)
+{
+    // Issue 18's harder mobile scenario: four walkers cross a corridor and one walks down it towards the robot, none
+    // of them yielding. With real_time 0 (a fixed charge per query, so the episode is the same on every run), one
+    // episode per seed: DualRoadmap reaches the goal and nothing touches the robot.
+    michi::test::TempDir dir;
+    std::string text = readFile(michi::test::sourcePath("problems/dynamic_mobile_walkers.yaml"));
+    const auto realTime = text.find("real_time: 1");
+    ASSERT_NE(realTime, std::string::npos);
+    text.replace(realTime, 12, "real_time: 0");
+    const std::string file = dir.write("walkers.yaml", text);
+    for (const char *seed : {"1", "2"})
+    {
+        SCOPED_TRACE(seed);
+        const std::string out = dir.path() + "/run" + seed;
+        const auto run = runMichi("replan " + file + " --episodes 1 --seed " + seed + " --methods dual --out " + out);
+        ASSERT_EQ(run.exitCode, 0) << run.output;
+        const std::string json = readFile(out + "/replan.json");
+        for (const char *key : {"\"reached_goal\": 1,", "\"collisions\": 0,", "\"motion_collisions\": 0,",
+                                "\"unavoidable_collisions\": 0,"})
+            EXPECT_NE(json.find(key), std::string::npos) << key << " missing in\n" << json;
+    }
+}
