@@ -30,6 +30,18 @@ namespace
         s << in.rdbuf();
         return s.str();
     }
+
+    /** A copy of a bundled scenario with extras.replan.real_time 0 (planning charged a fixed time on the simulated
+        clock, limited by a work count), written to \e dir: its episodes repeat from run to run. */
+    std::string realTimeZeroCopy(michi::test::TempDir &dir, const std::string &problem)
+    {
+        std::string text = readFile(michi::test::sourcePath("problems/" + problem + ".yaml"));
+        const auto realTime = text.find("real_time: 1");
+        EXPECT_NE(realTime, std::string::npos) << problem;
+        if (realTime != std::string::npos)
+            text.replace(realTime, 12, "real_time: 0");
+        return dir.write(problem + ".yaml", text);
+    }
 }  // namespace
 
 TEST(ReplanCli, WritesResultsForMethodAndBaselines)
@@ -88,11 +100,7 @@ TEST(ReplanCli, SameSeedGivesTheSameEpisodes)
     // count, so two runs with the same --seed have the same outcomes (wall-clock latencies aside). The scenario's
     // own setting (real_time 1, clock cpu) charges the CPU time really spent, which no two runs share exactly.
     michi::test::TempDir dir;
-    std::string text = readFile(michi::test::sourcePath("problems/dynamic_mobile_passage.yaml"));
-    const auto realTime = text.find("real_time: 1");
-    ASSERT_NE(realTime, std::string::npos);
-    text.replace(realTime, 12, "real_time: 0");
-    const std::string file = dir.write("passage.yaml", text);
+    const std::string file = realTimeZeroCopy(dir, "dynamic_mobile_passage");
     std::vector<std::string> outcomes;
     for (const char *name : {"/a", "/b"})
     {
@@ -121,11 +129,7 @@ TEST(ReplanCli, CorridorWithCrossingWalkersIsDrivenThroughWithoutCollision)
     // of them yielding. With real_time 0 (a fixed charge per query, so the episode is the same on every run), one
     // episode per seed: DualRoadmap reaches the goal and nothing touches the robot.
     michi::test::TempDir dir;
-    std::string text = readFile(michi::test::sourcePath("problems/dynamic_mobile_walkers.yaml"));
-    const auto realTime = text.find("real_time: 1");
-    ASSERT_NE(realTime, std::string::npos);
-    text.replace(realTime, 12, "real_time: 0");
-    const std::string file = dir.write("walkers.yaml", text);
+    const std::string file = realTimeZeroCopy(dir, "dynamic_mobile_walkers");
     for (const char *seed : {"1", "2"})
     {
         SCOPED_TRACE(seed);
