@@ -12,6 +12,8 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <boost/filesystem.hpp>
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
 
 #include <gtest/gtest.h>
 
@@ -139,51 +141,14 @@ TEST(GridTable, FreePoseIsExactWhereTheTableIsConservative)
     EXPECT_TRUE(table.occupied(22, 22));
 }
 
-namespace
-{
-    /** Does the convex polygon \e poly meet the square [x0, x1] x [y0, y1] (closed sets)? Separating axes: the
-        square's two and the polygon's edge normals. Independent of HeadingTable's row walk. */
-    bool convexMeetsBox(const std::vector<Eigen::Vector2d> &poly, double x0, double x1, double y0, double y1)
-    {
-        double px0 = 1e300, px1 = -1e300, py0 = 1e300, py1 = -1e300;
-        for (const auto &p : poly)
-        {
-            px0 = std::min(px0, p.x());
-            px1 = std::max(px1, p.x());
-            py0 = std::min(py0, p.y());
-            py1 = std::max(py1, p.y());
-        }
-        if (px1 < x0 || px0 > x1 || py1 < y0 || py0 > y1)
-            return false;
-        const Eigen::Vector2d corners[4]{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-        for (std::size_t e = 0; e < poly.size(); ++e)
-        {
-            const Eigen::Vector2d d = poly[(e + 1) % poly.size()] - poly[e];
-            const Eigen::Vector2d n(d.y(), -d.x());
-            double lo = 1e300, hi = -1e300, blo = 1e300, bhi = -1e300;
-            for (const auto &p : poly)
-            {
-                lo = std::min(lo, n.dot(p));
-                hi = std::max(hi, n.dot(p));
-            }
-            for (const auto &c : corners)
-            {
-                blo = std::min(blo, n.dot(c));
-                bhi = std::max(bhi, n.dot(c));
-            }
-            if (hi < blo || bhi < lo)
-                return false;
-        }
-        return true;
-    }
-}  // namespace
-
-TEST(GridTable, ExactTestOnWholeMapCellsAgreesWithSeparatingAxes)
+TEST(GridTable, ExactTestOnWholeMapCellsAgreesWithBoostGeometry)
 {
     // Map cells of 4 x 4 table cells (the table's split of a map): the exact test reads one bit per map cell. Checked
     // at random poses and margins against the footprint grown by the margin (a square growth: each cell grown by it)
-    // meeting an occupied table cell, by separating axes; then again after a map cell is occupied (still whole
+    // meeting an occupied table cell, by Boost.Geometry; then again after a map cell is occupied (still whole
     // blocks) and after a single table cell is (the table's own rows).
+    namespace bg = boost::geometry;
+    using Point = bg::model::d2::point_xy<double>;
     ompl::RNG rng(21);
     const double r = 0.025;
     auto g = emptyGrid(96, 80, r);
@@ -206,16 +171,21 @@ TEST(GridTable, ExactTestOnWholeMapCellsAgreesWithSeparatingAxes)
             const double y = g.origin.y() + rng.uniformReal(0.15, 80 * r - 0.15);
             const double yaw = rng.uniformReal(-M_PI, M_PI);
             const double margin = n % 2 ? rng.uniformReal(0., 0.03) : 0.;
-            std::vector<Eigen::Vector2d> poly;
-            for (const auto &p : robot)
-                poly.push_back(Eigen::Rotation2Dd(yaw) * p + Eigen::Vector2d(x, y));
+            bg::model::polygon<Point> poly;
+            for (std::size_t c = 0; c <= robot.size(); ++c)
+            {
+                const Eigen::Vector2d q = Eigen::Rotation2Dd(yaw) * robot[c % robot.size()] + Eigen::Vector2d(x, y);
+                bg::append(poly.outer(), Point(q.x(), q.y()));
+            }
+            bg::correct(poly);
             bool meets = false;
             for (int j = 0; j < 80 && !meets; ++j)
                 for (int i = 0; i < 96 && !meets; ++i)
                     if (table.occupied(i, j))
                     {
                         const double x0 = g.origin.x() + i * r - margin, y0 = g.origin.y() + j * r - margin;
-                        meets = convexMeetsBox(poly, x0, x0 + r + 2 * margin, y0, y0 + r + 2 * margin);
+                        meets = bg::intersects(poly, bg::model::box<Point>(Point(x0, y0), Point(x0 + r + 2 * margin,
+                                                                                                y0 + r + 2 * margin)));
                     }
             // a pose within 1e-7 m of touching may go either way (round-off); none are drawn at random
             EXPECT_EQ(table.freePose(x, y, yaw, margin), !meets) << x << " " << y << " " << yaw << " " << margin;
