@@ -486,22 +486,7 @@ namespace michi
             if (exec_ == ExecState::IDLE || exec_ == ExecState::FINISHED)
                 return;
             takeReplies();
-            switch (exec_)
-            {
-                case ExecState::EXECUTE:
-                case ExecState::REPLANNING:
-                    // Speeding up uses the deceleration's magnitude too: one rate, so braking distances and start-up
-                    // are symmetric.
-                    velocity_ = std::min(settings_.speed, velocity_ + settings_.deceleration * dt);
-                    break;
-                case ExecState::STOPPING:
-                    velocity_ = std::max(0., velocity_ - settings_.deceleration * dt);
-                    break;
-                default:
-                    velocity_ = 0.;
-            }
-            // Explicit Euler on the arc length; clamped so a large dt never runs past the path's end.
-            s_ = std::min(pathLength(), s_ + velocity_ * dt);
+            advance(exec_, s_, velocity_, dt);
             current_ = at(s_);
 
             if (exec_ == ExecState::EXECUTE && s_ >= pathLength() - EPS)
@@ -539,6 +524,146 @@ namespace michi
                 else if (activeQuery_ == 0)
                     sendQuery(current_, s_);
             }
+        }
+        void NonStopExecutor::advance(ExecState state, double &s, double &v, double dt) const
+        {
+            const double length = pathLength();
+            switch (state)
+            {
+                case ExecState::EXECUTE:
+                case ExecState::REPLANNING:
+                    // Speeding up uses the deceleration's magnitude too: one rate, so braking distances and start-up
+                    // are symmetric.
+                    v = std::min(settings_.speed, v + settings_.deceleration * dt);
+                    // At most the speed from which the robot still stops at the path's end, losing deceleration x dt
+                    // per step of this length: n such steps cover a dt^2 n (n + 1) / 2, so v = n a dt with n solving
+                    // that for the distance left. It arrives at a speed of at most a dt.
+                    if (settings_.brakeAtEnd && dt > 0.)
+                    {
+                        const double unit = settings_.deceleration * dt * dt;
+                        const double n = 0.5 * (std::sqrt(1. + 8. * std::max(0., length - s) / unit) - 1.);
+                        // and no faster than lands on the end in this step
+                        v = std::min({v, n * settings_.deceleration * dt, std::max(0., length - s) / dt});
+                    }
+                    break;
+                case ExecState::STOPPING:
+                    v = std::max(0., v - settings_.deceleration * dt);
+                    break;
+                default:
+                    v = 0.;
+            }
+            // Explicit Euler on the arc length; clamped so a large dt never runs past the path's end.
+            s = std::min(length, s + v * dt);
+        }
+
+        bool NonStopExecutor::track(const Configuration &measured, double tolerance)
+        {
+            if (!(tolerance > 0.))
+                throw std::invalid_argument("NonStopExecutor::track: the tolerance must be positive");
+            if (exec_ == ExecState::IDLE || path_.empty())
+            {
+                current_ = measured;
+                return true;
+            }
+            // The robot may lag or lead the model (it is not the model): it is looked for along the arcs it can
+            // have covered in a second at cruise speed, beyond the tolerance, either side of the model's position;
+            // first every quarter tolerance, then by golden sections round the nearest sample.
+            const double window = tolerance + settings_.speed;
+            const double a = std::max(0., s_ - window), b = std::min(pathLength(), s_ + window);
+            const int n = std::clamp(static_cast<int>(std::ceil((b - a) / (0.25 * tolerance))), 1, 64);
+            const double h = (b - a) / n;
+            double best = s_, bestDistance = hooks_.distance(measured, at(s_));
+            for (int i = 0; i <= n; ++i)
+            {
+                const double arc = a + h * i;
+                const double d = hooks_.distance(measured, at(arc));
+                if (d < bestDistance)
+                {
+                    bestDistance = d;
+                    best = arc;
+                }
+            }
+            double lo = std::max(a, best - h), hi = std::min(b, best + h);
+            const double ratio = 0.5 * (std::sqrt(5.) - 1.);
+            for (int i = 0; i < 24 && hi - lo > EPS; ++i)
+            {
+                const double m1 = hi - ratio * (hi - lo), m2 = lo + ratio * (hi - lo);
+                if (hooks_.distance(measured, at(m1)) <= hooks_.distance(measured, at(m2)))
+                    hi = m2;
+                else
+                    lo = m1;
+            }
+            const double refined = 0.5 * (lo + hi);
+            const double refinedDistance = hooks_.distance(measured, at(refined));
+            if (refinedDistance < bestDistance)
+            {
+                bestDistance = refinedDistance;
+                best = refined;
+            }
+            if (bestDistance <= tolerance)
+            {
+                // The model may have reached the goal before the robot (a robot slower than commanded): the goal is
+                // reached when the robot is within the tolerance of it, until then the path goes on.
+                if (exec_ == ExecState::FINISHED)
+                {
+                    if (hooks_.distance(measured, goal_) <= tolerance)
+                        return true;
+                    transition(ExecState::EXECUTE, Signal::STEP);
+                }
+                s_ = best;
+                current_ = at(s_);
+                return true;
+            }
+            ++stats_.offPath;
+            // Waiting for a path from where it stood: the query goes on (the answer is joined from the measured
+            // state, whose motion to the new path is checked like every new path's).
+            if (exec_ == ExecState::STOPPED && path_.size() == 1 && activeQuery_ != 0)
+            {
+                setPath({measured});
+                return false;
+            }
+            // Off the path: nothing the executor planned starts where the robot is. Plan again from there.
+            cancelQuery();
+            velocity_ = 0.;
+            setPath({measured});
+            transition(ExecState::STOPPED, Signal::STEP);
+            sendQuery(measured, 0.);
+            return false;
+        }
+
+        TimedPath NonStopExecutor::preview(double horizon, double period) const
+        {
+            if (!(period > 0.) || !(horizon >= 0.))
+                throw std::invalid_argument(
+                    "NonStopExecutor::preview: the period must be positive, the horizon not "
+                    "negative");
+            TimedPath out;
+            ExecState state = exec_;
+            double s = s_, v = velocity_;
+            const int samples = static_cast<int>(std::floor(horizon / period + 1e-9));
+            out.times.reserve(static_cast<std::size_t>(samples) + 1);
+            out.configurations.reserve(static_cast<std::size_t>(samples) + 1);
+            out.speeds.reserve(static_cast<std::size_t>(samples) + 1);
+            out.times.push_back(0.);
+            out.configurations.push_back(current_);
+            out.speeds.push_back(v);
+            for (int i = 1; i <= samples; ++i)
+            {
+                advance(state, s, v, period);
+                // the transitions of step() that follow from the motion alone
+                if (state == ExecState::REPLANNING && s >= stopArc_ - EPS)
+                    state = ExecState::STOPPING;
+                if ((state == ExecState::STOPPING && v <= 0.) ||
+                    (state == ExecState::EXECUTE && s >= pathLength() - EPS))
+                {
+                    state = ExecState::STOPPED;
+                    v = 0.;
+                }
+                out.times.push_back(period * i);
+                out.configurations.push_back(at(s));
+                out.speeds.push_back(v);
+            }
+            return out;
         }
     }  // namespace planners
 }  // namespace michi

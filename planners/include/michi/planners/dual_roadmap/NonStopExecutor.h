@@ -66,6 +66,19 @@ namespace michi
                 With synchronous, a simulation whose outcomes follow from the planner's real cost, reproducible up
                 to that time. */
             double cpuTimeScale{0.};
+            /** \brief Slow down before the end of a path so the robot arrives there at rest (at most the
+                deceleration), as a real robot must; false: it runs into the end at speed and stops there, the model
+                of `michi replan`'s simulations. */
+            bool brakeAtEnd{false};
+        };
+
+        /** \brief The motion the executor plans for the robot from now on: configurations at times (seconds from
+            now, the first at 0) and the speed along the path there (distance() units per second). */
+        struct TimedPath
+        {
+            std::vector<double> times;
+            ConfigurationPath configurations;
+            std::vector<double> speeds;
         };
 
         /** \brief Non-stop planning and execution (paper 002, Fig. 1): a planning thread and an execution thread
@@ -128,6 +141,7 @@ namespace michi
                 std::vector<double> latencies;  ///< wall-clock seconds from Query to Path found
                 /** planning-thread CPU seconds of the same queries (the plan hook's, on its thread CPU clock) */
                 std::vector<double> cpuLatencies;
+                unsigned int offPath{0};  ///< measured states (track()) farther from the path than the tolerance
             };
 
             NonStopExecutor(NonStopHooks hooks, NonStopSettings settings);
@@ -143,6 +157,17 @@ namespace michi
             void geoChange();
             /** \brief Advance the simulated clock by \e dt: take in the planner's signals, move the robot. */
             void step(double dt);
+            /** \brief A measured configuration of the robot (closed loop): the robot's position on the path becomes
+                the arc nearest \e measured (looked for within the tolerance plus a second of travel either side of
+                where the model has it). Farther than \e tolerance (> 0) from the path, the robot is off it: the
+                executor stops following it and plans again from \e measured (STOPPED). A robot slower than
+                commanded is still on its way when the model reached the goal: FINISHED only holds while it is within
+                the tolerance of the goal. Returns whether the robot was on the path. Call it after step(). */
+            bool track(const Configuration &measured, double tolerance);
+            /** \brief The motion the executor will command over the next \e horizon seconds, sampled every \e period
+                seconds, if nothing changes (no new path, no Geo. change): the same speed law as step(), the stop at
+                the replanning stop point, the end of the path. Does not change the executor. */
+            TimedPath preview(double horizon, double period) const;
             /** \brief Block until the planning thread has nothing to do and its signals are queued (tests). */
             void waitForPlanner();
             /** \brief The same for at most \e seconds of wall-clock time; true when the planner is idle. */
@@ -204,7 +229,9 @@ namespace michi
             void updateProblem();
             void takeReplies();
             void onPathFound(Reply &reply);
-            void move(double dt);
+            /** \brief Advance arc \e s and speed \e v by \e dt in state \e state (the speed law of step() and
+                preview()). */
+            void advance(ExecState state, double &s, double &v, double dt) const;
             /** \brief Configuration at arc length \e s of path_ (clamped). */
             Configuration at(double s) const;
             /** \brief The part of path_ between arc lengths \e a and \e b (in that direction). */
