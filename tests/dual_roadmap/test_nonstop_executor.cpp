@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
+#include <functional>
 #include <limits>
 #include <mutex>
 
@@ -39,9 +40,27 @@ namespace
         int sawCancel{0};    // queries that ended because they were cancelled
     };
 
+    /** A disc moving along y at constant speed: at absolute time T its centre is (x, y0 + vy T); gone after
+        \e until. */
+    struct Crosser
+    {
+        double x, y0, vy, r;
+        double until{std::numeric_limits<double>::infinity()};
+    };
+
     struct World
     {
-        std::vector<Box> boxes;
+        std::vector<Box> boxes;  ///< what the spatial checks see (a crosser's predicted region is a box too)
+        std::vector<Crosser> crossers;
+        double now{0.};  ///< advanced by Harness::steps
+
+        bool freeAt(const Configuration &q, double time) const
+        {
+            for (const auto &c : crossers)
+                if (time <= c.until && std::hypot(q[0] - c.x, q[1] - (c.y0 + c.vy * time)) <= c.r)
+                    return false;
+            return true;
+        }
 
         static double boxDistance(const Box &b, const Configuration &q)
         {
@@ -75,7 +94,8 @@ namespace
         }
 
         explicit Harness(double safety = 0., double planningDelay = 0., bool synchronous = false,
-                         double cpuTimeScale = 0.)
+                         double cpuTimeScale = 0.,
+                         const std::function<void(michi::planners::NonStopSettings &)> &configure = {})
         {
             michi::planners::NonStopHooks hooks;
             hooks.distance = [](const Configuration &a, const Configuration &b)
@@ -147,6 +167,13 @@ namespace
             {
                 return std::uint64_t(0);
             };
+            hooks.freeInTime = [this](const ConfigurationPath &configurations, const std::vector<double> &times)
+            {
+                for (std::size_t k = 0; k < configurations.size(); ++k)
+                    if (!world.freeAt(configurations[k], world.now + times[k]))
+                        return false;
+                return true;
+            };
             michi::planners::NonStopSettings settings;
             settings.speed = 1.;
             settings.deceleration = 2.;  // braking distance at full speed: 0.25
@@ -155,6 +182,8 @@ namespace
             settings.planningDelay = planningDelay;
             settings.synchronous = synchronous;
             settings.cpuTimeScale = cpuTimeScale;
+            if (configure)
+                configure(settings);
             exec = std::make_unique<NonStopExecutor>(hooks, settings);
         }
 
@@ -181,7 +210,10 @@ namespace
         void steps(int n, double dt = 0.01)
         {
             for (int i = 0; i < n; ++i)
+            {
+                world.now += dt;
                 exec->step(dt);
+            }
         }
         /** Start and get going on the straight path (the first query answered by a straight line). */
         void startStraight()
@@ -472,4 +504,124 @@ TEST(NonStopExecutor, CpuTimeOfAQueryIsChargedOnTheSimulatedClock)
     EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
     ASSERT_EQ(h.exec->statistics().cpuLatencies.size(), 1u);
     EXPECT_GE(h.exec->statistics().cpuLatencies[0], 0.1);
+}
+
+namespace
+{
+    /** A harness with time-scale adaptation (retiming) checked over 6 s, so that the whole crossing below is seen. */
+    Harness retimingHarness(bool retiming)
+    {
+        return Harness(0., 0., false, 0.,
+                       [retiming](michi::planners::NonStopSettings &s)
+                       {
+                           s.retiming = retiming;
+                           s.retimingHorizon = 6.;
+                       });
+    }
+
+    /** The robot at full speed on y = 2; a disc (radius 0.3) crosses the path 3 m ahead, upwards at 1 m/s, reaching
+        y = 2 just when the robot would at full speed. Its predicted region (what the spatial check sees) is a box. */
+    double crossAhead(Harness &h, double vy = 1.)
+    {
+        h.startStraight();
+        h.steps(300);
+        const double x0 = h.exec->configuration()[0];
+        EXPECT_NEAR(h.exec->configuration()[1], 2., 1e-9);
+        EXPECT_NEAR(h.exec->velocity(), 1., 1e-9);
+        h.world.crossers.push_back({x0 + 3., 2. - 3. * vy - vy * h.world.now, vy, 0.3});
+        h.world.boxes.push_back({x0 + 2.7, x0 + 3.3, 0.5, 3.5});
+        h.exec->geoChange();
+        return x0;
+    }
+}  // namespace
+
+TEST(NonStopExecutor, RetimingSlowsDownForACrossingObstacleInsteadOfReplanning)
+{
+    auto h = retimingHarness(true);
+    crossAhead(h);
+    // at full speed the robot would meet the disc; at 3/4 of it the disc has passed: no query, no deformation
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_EQ(h.exec->statistics().retimings, 1u);
+    EXPECT_EQ(h.exec->statistics().queries, 1u);
+    EXPECT_EQ(h.deformCalls, 0);
+    h.steps(100);
+    EXPECT_NEAR(h.exec->velocity(), 0.75, 1e-9);
+    // and it goes through where the disc was, never touching it
+    for (int i = 0; i < 600; ++i)
+    {
+        h.steps(1);
+        ASSERT_TRUE(h.world.freeAt(h.exec->configuration(), h.world.now)) << "t " << h.world.now;
+    }
+    EXPECT_EQ(h.gate.started, 1);
+}
+
+TEST(NonStopExecutor, WithoutRetimingTheSameCrossingIsReplanned)
+{
+    auto h = retimingHarness(false);
+    crossAhead(h);
+    EXPECT_EQ(h.exec->execState(), Exec::REPLANNING);
+    EXPECT_EQ(h.exec->statistics().retimings, 0u);
+    EXPECT_EQ(h.exec->statistics().queries, 2u);
+}
+
+TEST(NonStopExecutor, RetimingWaitsForAnObstacleThatLeaves)
+{
+    // A disc (radius 0.3 m) stands on the path 1 m ahead and is gone 2.45 s from now; the spatial prediction is its
+    // box. At any speed the robot would reach it while it is there (at 1/4 speed, x0 + 0.75 after 2.4 s); stopping,
+    // waiting until 2 s and starting again, the robot reaches x0 + 0.7 after 2.67 s: only that wait is free.
+    auto h = retimingHarness(true);
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.crossers.push_back({x0 + 1., 2., 0., 0.3, h.world.now + 2.45});
+    h.world.boxes.push_back({x0 + 0.7, x0 + 1.3, 1.7, 2.3});
+    h.exec->geoChange();
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
+    EXPECT_EQ(h.exec->statistics().retimings, 1u);
+    h.steps(60);
+    EXPECT_NEAR(h.exec->velocity(), 0., 1e-9) << "standing while it waits";
+    for (int i = 0; i < 400; ++i)
+    {
+        h.steps(1);
+        ASSERT_TRUE(h.world.freeAt(h.exec->configuration(), h.world.now)) << "t " << h.world.now;
+    }
+    EXPECT_GT(h.exec->velocity(), 0.9) << "going again at full speed";
+    EXPECT_EQ(h.exec->statistics().queries, 1u);
+}
+
+TEST(NonStopExecutor, RetimingFallsBackToReplanningWhenNoTimingIsFree)
+{
+    auto h = retimingHarness(true);
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.crossers.push_back({x0 + 3., 2., 0., 0.3});  // standing on the path
+    h.world.boxes.push_back({x0 + 2.7, x0 + 3.3, 1.7, 2.3});
+    h.exec->geoChange();
+    EXPECT_EQ(h.exec->execState(), Exec::REPLANNING);
+    EXPECT_EQ(h.exec->statistics().retimings, 0u);
+}
+
+TEST(NonStopExecutor, StopAndReplanBrakesFirstAndPlansOnceStanding)
+{
+    Harness h(0., 0., false, 0.,
+              [](michi::planners::NonStopSettings &s)
+              {
+                  s.nonStop = false;
+              });
+    h.startStraight();
+    h.steps(300);
+    const double x0 = h.exec->configuration()[0];
+    h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});  // 2 m ahead: a non-stop executor would move on
+    h.exec->geoChange();
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPING);
+    EXPECT_EQ(h.exec->statistics().queries, 1u) << "no query while moving";
+    h.steps(60);  // braking from 1 m/s at 2 m/s^2 takes 0.5 s
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_EQ(h.exec->statistics().queries, 2u) << "the query once it stands";
+    EXPECT_EQ(h.exec->statistics().stops, 1u);
+    h.waitStarted(2);
+    h.release();
+    h.exec->step(0.01);
+    EXPECT_EQ(h.exec->execState(), Exec::EXECUTE);
 }

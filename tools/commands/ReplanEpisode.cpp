@@ -30,6 +30,9 @@ namespace michi
                 // crossing or an escape must really avoid.
                 planNow_.build(statics, movers, 3, settings.escapeHorizon, false);
                 moving_.build({}, movers, 3, settings.escapeHorizon, false);
+                // The movers alone, grown by the margin, one copy each: put where their observed velocity takes them
+                // at a given time, for the timed checks of retiming.
+                timed_.build({}, movers, 1, 0.);
                 // The true world, with the movers on their key frames: only collisions are judged here; no method ever
                 // reads it.
                 world_ = std::make_shared<validity::Scene>();
@@ -60,6 +63,7 @@ namespace michi
                 execCtx_ = context(execSensed_.scene);
                 worldCtx_ = context(world_);
                 movingCtx_ = context(moving_.scene);
+                timedCtx_ = context(timed_.scene);
                 planner_ = allocatePlanner(method.planner, planCtx_.setup->getSpaceInformation());
                 std::map<std::string, std::string> params = method.params;
                 if (method.reuse == Method::Reuse::DUAL)
@@ -101,6 +105,7 @@ namespace michi
                     snapshots_.clear();
                 }
                 lastPoses_.clear();
+                lastVelocities_.clear();
 
                 NonStopExecutor exec(hooks(), executorSettings());
                 double t = 0.;
@@ -242,6 +247,7 @@ namespace michi
                 results.collisions += collided ? 1 : 0;
                 results.stops += st.stops;
                 results.deformations += st.deformations;
+                results.retimings += st.retimings;
                 results.replans += st.queries > 0 ? st.queries - 1 : 0;
                 results.failures += st.failures;
                 results.cancelled += st.cancelled;
@@ -278,6 +284,9 @@ namespace michi
                 s.deceleration = settings_.deceleration;
                 s.safetyDistance = settings_.safetyDistance;
                 s.stopMargin = settings_.stopMargin;
+                s.retiming = settings_.retiming && method_.retiming;
+                s.retimingHorizon = settings_.retimingHorizon;
+                s.nonStop = method_.nonStop;
                 if (settings_.realTime <= 0.)
                 {
                     s.planningDelay = settings_.planningDelay;
@@ -307,6 +316,7 @@ namespace michi
                     snap.velocities.push_back(v);
                 }
                 lastPoses_ = snap.poses;
+                lastVelocities_ = snap.velocities;
                 lastSenseTime_ = t;
                 execSensed_.update(movers_, snap.poses, snap.velocities);
                 moving_.update(movers_, snap.poses, snap.velocities);

@@ -255,6 +255,50 @@ namespace michi
                         return true;
                     };
                 }
+                if (settings_.retiming && method_.retiming)
+                {
+                    const auto tsi = timedCtx_.setup->getSpaceInformation();
+                    const double slack = settings_.retimingSlack;
+                    h.freeInTime =
+                        [this, tsi, slack](const ConfigurationPath &configurations, const std::vector<double> &times)
+                    {
+                        if (lastPoses_.size() != movers_.size() || lastVelocities_.size() != movers_.size())
+                            return false;
+                        // At each time, the movers (grown by the margin) where their observed velocity takes them
+                        // then, and retiming_slack earlier and later: the state, and the motions to it and from it,
+                        // are checked against them, so every piece of the motion is checked at both its ends'
+                        // times. In between a mover is within half a step's travel of one of those places, which
+                        // the margin covers up to margin / (step / 2) (4 m/s for the bundled scenarios' 0.2 m).
+                        ob::ScopedState<> previous(tsi), state(tsi), next(tsi);
+                        const double shifts[] = {0., -slack, slack};
+                        for (std::size_t k = 0; k < configurations.size(); ++k)
+                            for (int i = 0; i < (slack > 0. ? 3 : 1); ++i)
+                            {
+                                for (std::size_t m = 0; m < movers_.size(); ++m)
+                                {
+                                    Eigen::Isometry3d pose = lastPoses_[m];
+                                    pose.translation() += lastVelocities_[m] * std::max(0., times[k] + shifts[i]);
+                                    timed_.predicted->observe(movers_[m].name, pose, lastVelocities_[m]);
+                                }
+                                toState(tsi, configurations[k], state.get());
+                                if (!tsi->isValid(state.get()))
+                                    return false;
+                                if (k > 0)
+                                {
+                                    toState(tsi, configurations[k - 1], previous.get());
+                                    if (!tsi->checkMotion(previous.get(), state.get()))
+                                        return false;
+                                }
+                                if (k + 1 < configurations.size())
+                                {
+                                    toState(tsi, configurations[k + 1], next.get());
+                                    if (!tsi->checkMotion(state.get(), next.get()))
+                                        return false;
+                                }
+                            }
+                        return true;
+                    };
+                }
                 const auto psi = planCtx_.setup->getSpaceInformation();
                 h.plan = [this, psi](const Configuration &from, const Configuration &goal, std::uint64_t id,
                                      const std::atomic<bool> &cancel, ConfigurationPath &path)

@@ -72,12 +72,14 @@ namespace michi
                 SensedWorld planSensed_, execSensed_, planNow_;
                 validity::ScenePtr world_;
                 SensedWorld moving_;  ///< the movers only, true shapes over escape_horizon (clearance, deformation)
-                PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_;
+                SensedWorld timed_;   ///< the movers only, grown, one copy each (retiming's checks in time)
+                PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_, timedCtx_;
                 ompl::base::PlannerPtr planner_;
                 std::vector<std::vector<validity::TimedPose>> trajectories_;
                 std::vector<validity::ScenePtr> yieldScenes_;
                 std::vector<PlanningContext> yieldCtx_;
                 std::vector<Eigen::Isometry3d> lastPoses_;
+                std::vector<Eigen::Vector3d> lastVelocities_;  ///< of the last sensing (execution thread)
                 double lastSenseTime_{0.};
                 std::mutex snapshotMutex_;
                 std::map<std::uint64_t, Snapshot> snapshots_;

@@ -26,6 +26,23 @@ namespace michi
                      {{"use_learning", "0"}},
                      Method::Reuse::DUAL,
                      false},
+                    // the executor's ablations, with DualRoadmap planning: no time-scale adaptation; and stop and
+                    // replan (no planning while moving, hence no deformation or retiming either)
+                    {"dual-no-retiming",
+                     "michi::DualRoadmap (no retiming)",
+                     "michi::DualRoadmap",
+                     {},
+                     Method::Reuse::DUAL,
+                     false,
+                     false},
+                    {"stop-and-replan",
+                     "michi::DualRoadmap (stop and replan)",
+                     "michi::DualRoadmap",
+                     {},
+                     Method::Reuse::DUAL,
+                     false,
+                     false,
+                     false},
                 };
             }
         }  // namespace replan

@@ -46,6 +46,7 @@ namespace michi
                         << indent << "\"collision_steps\": " << r.collisionSteps << ",\n"
                         << indent << "\"stops\": " << r.stops << ",\n"
                         << indent << "\"deformations\": " << r.deformations << ",\n"
+                        << indent << "\"retimings\": " << r.retimings << ",\n"
                         << indent << "\"replans\": " << r.replans << ",\n"
                         << indent << "\"replans_found\": " << r.replanLatency.size() << ",\n"
                         << indent << "\"cancelled_queries\": " << r.cancelled << ",\n"

@@ -56,11 +56,13 @@ namespace michi
                     {"deformation_window", &s.deform.window},
                     {"deformation_spacing", &s.deform.spacing},
                     {"frames", &s.frames},
+                    {"retiming_horizon", &s.retimingHorizon},
+                    {"retiming_slack", &s.retimingSlack},
                 };
                 std::string expected;
                 for (const auto &kv : numbers)
                     expected += kv.first + ", ";
-                expected += "clock, deformation, obstacles_yield, dual_roadmap_params";
+                expected += "clock, deformation, retiming, obstacles_yield, dual_roadmap_params";
                 for (const auto &kv : r)
                 {
                     const std::string key = kv.first.as<std::string>();
@@ -81,11 +83,13 @@ namespace michi
                         s.cpuClock = clock == "cpu";
                         continue;
                     }
-                    if (key == "deformation" || key == "obstacles_yield")
+                    if (key == "deformation" || key == "obstacles_yield" || key == "retiming")
                     {
                         try
                         {
-                            (key == "deformation" ? s.deformation : s.obstaclesYield) = kv.second.as<bool>();
+                            (key == "deformation" ? s.deformation
+                             : key == "retiming"  ? s.retiming
+                                                  : s.obstaclesYield) = kv.second.as<bool>();
                         }
                         catch (const std::exception &)
                         {
@@ -103,7 +107,7 @@ namespace michi
                     const bool mayBeZero = key == "safety_distance" || key == "margin" || key == "timing_jitter" ||
                                            key == "speed_jitter" || key == "real_time" || key == "stop_margin" ||
                                            key == "prediction_horizon" || key == "frames" || key == "escape_horizon" ||
-                                           key == "cross_time" || key == "planning_delay";
+                                           key == "cross_time" || key == "planning_delay" || key == "retiming_slack";
                     if (!std::isfinite(v) || v < 0. || (!mayBeZero && v == 0.))
                         fail(file, path, mayBeZero ? "expected a number >= 0" : "expected a number > 0");
                     *it->second = v;

@@ -68,6 +68,14 @@ namespace michi
                 double escapeHorizon{0.};  ///< escapes avoid the obstacles' true shapes over this many seconds
                 double crossTime{0.6};  ///< s: a robot inside a predicted region keeps going if it leaves it this fast
                 bool deformation{true};
+                /** retiming: paper 002's time-scale adaptation in the executor (NonStopSettings::retiming): a slower
+                    speed or a wait on the current path before deforming or replanning, checked against the moving
+                    obstacles' predicted motion over retiming_horizon seconds. */
+                bool retiming{true};
+                double retimingHorizon{5.};
+                /** s: a timing must also miss the movers as predicted this much earlier and later (a mover a little
+                    faster or slower than observed, or that turns, does not meet the robot on it) */
+                double retimingSlack{0.3};
                 /** obstacles_yield: a moving obstacle that would move into the robot waits (its key frames are
                     delayed by a step) instead; a robot that moves into an obstacle still collides. */
                 bool obstaclesYield{false};
@@ -136,6 +144,8 @@ namespace michi
                     DUAL           ///< DualRoadmap: clear() keeps the learning roadmap
                 } reuse{Reuse::SCRATCH};
                 bool simplify{true};
+                bool retiming{true};  ///< false: the ablation without time-scale adaptation
+                bool nonStop{true};   ///< false: stop and replan (the executor brakes, then plans)
             };
 
             /** michi::DualRoadmap first, then the baselines. */
@@ -144,7 +154,7 @@ namespace michi
             struct Results
             {
                 unsigned int episodes{0}, reached{0}, collisions{0}, collisionSteps{0}, stops{0}, deformations{0},
-                    replans{0}, cancelled{0}, failures{0}, obstacleWaits{0};
+                    replans{0}, cancelled{0}, failures{0}, obstacleWaits{0}, retimings{0};
                 /** contacts (a step in collision after one free of it) while the robot moved: caused by its motion */
                 unsigned int motionCollisions{0};
                 /** contacts with a robot that stood still during the step: an obstacle drove into it */

@@ -39,6 +39,9 @@ namespace michi
                 throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive");
             if (!(settings_.planningDelay >= 0.) || !(settings_.cpuTimeScale >= 0.))
                 throw std::invalid_argument("NonStopExecutor: planningDelay and cpuTimeScale must not be negative");
+            if (settings_.retiming && (!(settings_.retimingHorizon > 0.) || !(settings_.retimingStep > 0.)))
+                throw std::invalid_argument("NonStopExecutor: retimingHorizon and retimingStep must be positive");
+            clearTiming();
             // Paper 002, Fig. 1: the planning thread is the executor's own; the caller's thread is the execution
             // thread. Started last, once every member it reads is set.
             thread_ = std::thread(
@@ -259,6 +262,7 @@ namespace michi
             s_ = 0.;
             if (!path_.empty())
                 current_ = path_.front();
+            clearTiming();  // a new path, a new timing
         }
 
         Configuration NonStopExecutor::at(double s) const
@@ -342,7 +346,22 @@ namespace michi
                     transition(ExecState::UPDATE_PROBLEM, Signal::GEO_CHANGE);
                     if (free)
                     {
+                        clearTiming();
                         transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                        return;
+                    }
+                    // Paper 002's temporal adaptation: the same path at another speed, or after a wait, may miss the
+                    // moving obstacles in time; neither deformation nor the planner is needed then.
+                    if (settings_.nonStop && retime())
+                    {
+                        transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                        return;
+                    }
+                    if (!settings_.nonStop)
+                    {
+                        // stop and replan: brake now, the query goes when the robot stands (step())
+                        stopArc_ = s_;
+                        transition(ExecState::STOPPING, Signal::GEO_CHANGE);
                         return;
                     }
                     // Paper 002, Fig. 3: small interference is first handled by deforming the path, without calling the
@@ -382,9 +401,12 @@ namespace michi
                 case ExecState::REPLANNING:
                 case ExecState::STOPPING:
                 case ExecState::STOPPED:
-                    if (free)
+                    // the predicted interference is gone, or (retiming) the original path misses the obstacles at a
+                    // slower speed or after a wait: cancel replanning, go on with the original path
+                    if (free || (settings_.nonStop && retime()))
                     {
-                        // the predicted interference is gone: cancel replanning, go on with the original path
+                        if (free)
+                            clearTiming();
                         cancelQuery();
                         transitions_.push_back(Transition{exec_, Signal::CANCELLED, exec_});
                         transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
@@ -486,7 +508,8 @@ namespace michi
             if (exec_ == ExecState::IDLE || exec_ == ExecState::FINISHED)
                 return;
             takeReplies();
-            advance(exec_, s_, velocity_, dt);
+            // a wait holds the steps that begin before its end (as retime() and preview() count them)
+            advance(exec_, s_, velocity_, dt, speedCap_, time_ - dt < holdUntil_);
             current_ = at(s_);
 
             if (exec_ == ExecState::EXECUTE && s_ >= pathLength() - EPS)
@@ -525,16 +548,19 @@ namespace michi
                     sendQuery(current_, s_);
             }
         }
-        void NonStopExecutor::advance(ExecState state, double &s, double &v, double dt) const
+        void NonStopExecutor::advance(ExecState state, double &s, double &v, double dt, double cap, bool hold) const
         {
             const double length = pathLength();
             switch (state)
             {
                 case ExecState::EXECUTE:
                 case ExecState::REPLANNING:
-                    // Speeding up uses the deceleration's magnitude too: one rate, so braking distances and start-up
-                    // are symmetric.
-                    v = std::min(settings_.speed, v + settings_.deceleration * dt);
+                {
+                    // Towards the cruise speed (a retiming's cap, 0 while it waits), speeding up and slowing down at
+                    // the deceleration's rate: one rate, so braking distances and start-up are symmetric.
+                    const double target = hold ? 0. : std::min(settings_.speed, cap);
+                    v = v < target ? std::min(target, v + settings_.deceleration * dt)
+                                   : std::max(target, v - settings_.deceleration * dt);
                     // At most the speed from which the robot still stops at the path's end, losing deceleration x dt
                     // per step of this length: n such steps cover a dt^2 n (n + 1) / 2, so v = n a dt with n solving
                     // that for the distance left. It arrives at a speed of at most a dt.
@@ -546,6 +572,7 @@ namespace michi
                         v = std::min({v, n * settings_.deceleration * dt, std::max(0., length - s) / dt});
                     }
                     break;
+                }
                 case ExecState::STOPPING:
                     v = std::max(0., v - settings_.deceleration * dt);
                     break;
@@ -554,6 +581,48 @@ namespace michi
             }
             // Explicit Euler on the arc length; clamped so a large dt never runs past the path's end.
             s = std::min(length, s + v * dt);
+        }
+
+        bool NonStopExecutor::retime()
+        {
+            if (!settings_.retiming || !hooks_.freeInTime || pathLength() - s_ <= EPS)
+                return false;
+            // Fastest first: full speed (the obstacle may pass before the robot comes), slower, then waits.
+            struct Timing
+            {
+                double cap, wait;
+            };
+            static const Timing timings[] = {{1., 0.},  {0.75, 0.}, {0.5, 0.}, {0.25, 0.},
+                                             {1., 0.5}, {1., 1.},   {1., 2.},  {1., 4.}};
+            const double step = settings_.retimingStep;
+            const int samples = std::max(1, static_cast<int>(std::ceil(settings_.retimingHorizon / step - 1e-9)));
+            ConfigurationPath configurations;
+            std::vector<double> times;
+            for (const Timing &timing : timings)
+            {
+                const double cap = timing.cap * settings_.speed;
+                double s = s_, v = velocity_;
+                configurations.assign(1, current_);
+                times.assign(1, 0.);
+                for (int i = 1; i <= samples && s < pathLength() - EPS; ++i)
+                {
+                    advance(ExecState::EXECUTE, s, v, step, cap, step * (i - 1) < timing.wait);
+                    configurations.push_back(at(s));
+                    times.push_back(step * i);
+                }
+                // Accepted only if it takes the robot past every predicted interference within the horizon (the
+                // rest of the path from where it then is meets none), and misses the obstacles on the way in time: a
+                // crawl that merely has not reached a standing obstacle by the horizon is no timing.
+                if (std::isinf(hooks_.firstInterference(segment(s, pathLength()))) &&
+                    hooks_.freeInTime(configurations, times))
+                {
+                    speedCap_ = cap;
+                    holdUntil_ = time_ + timing.wait;
+                    ++stats_.retimings;
+                    return true;
+                }
+            }
+            return false;
         }
 
         bool NonStopExecutor::track(const Configuration &measured, double tolerance)
@@ -649,7 +718,7 @@ namespace michi
             out.speeds.push_back(v);
             for (int i = 1; i <= samples; ++i)
             {
-                advance(state, s, v, period);
+                advance(state, s, v, period, speedCap_, time_ + period * i - period < holdUntil_);
                 // the transitions of step() that follow from the motion alone
                 if (state == ExecState::REPLANNING && s >= stopArc_ - EPS)
                     state = ExecState::STOPPING;

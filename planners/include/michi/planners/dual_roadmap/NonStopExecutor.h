@@ -44,6 +44,10 @@ namespace michi
             /** \brief Optional: deform \e path (starting at the robot) away from the obstacles; true when the deformed
                 path is free, false to fall back to replanning (then \e path is unchanged). */
             std::function<bool(ConfigurationPath &path)> deform;
+            /** \brief Optional (paper 002's temporal adaptation: a time axis given to the path): is the motion
+                through \e configurations, the robot at configurations[k] at times[k] (seconds from now, the first 0),
+                free of the moving obstacles, each where its predicted motion takes it at that time? */
+            std::function<bool(const ConfigurationPath &configurations, const std::vector<double> &times)> freeInTime;
         };
 
         struct NonStopSettings
@@ -70,6 +74,18 @@ namespace michi
                 deceleration), as a real robot must; false: it runs into the end at speed and stops there, the model
                 of `michi replan`'s simulations. */
             bool brakeAtEnd{false};
+            /** \brief Time-scale adaptation (needs NonStopHooks::freeInTime): when the world changes and the path
+                meets an obstacle's predicted region, first look for a timing of the same path that misses the
+                obstacles in time (full speed, 3/4, 1/2, 1/4 of it, or a wait of 0.5, 1 or 2 s, checked every
+                retimingStep seconds) and takes the robot past every predicted interference within retimingHorizon
+                seconds, before deforming or replanning. */
+            bool retiming{false};
+            double retimingHorizon{2.};
+            double retimingStep{0.1};
+            /** \brief false: the stop-and-replan baseline: a path that meets an obstacle is not followed on while a
+                new one is planned; the robot brakes at once and the query is sent once it stands (no deformation,
+                no retiming). */
+            bool nonStop{true};
         };
 
         /** \brief The motion the executor plans for the robot from now on: configurations at times (seconds from
@@ -141,7 +157,8 @@ namespace michi
                 std::vector<double> latencies;  ///< wall-clock seconds from Query to Path found
                 /** planning-thread CPU seconds of the same queries (the plan hook's, on its thread CPU clock) */
                 std::vector<double> cpuLatencies;
-                unsigned int offPath{0};  ///< measured states (track()) farther from the path than the tolerance
+                unsigned int offPath{0};    ///< measured states (track()) farther from the path than the tolerance
+                unsigned int retimings{0};  ///< Geo. changes answered by a new timing of the same path
             };
 
             NonStopExecutor(NonStopHooks hooks, NonStopSettings settings);
@@ -231,7 +248,16 @@ namespace michi
             void onPathFound(Reply &reply);
             /** \brief Advance arc \e s and speed \e v by \e dt in state \e state (the speed law of step() and
                 preview()). */
-            void advance(ExecState state, double &s, double &v, double dt) const;
+            void advance(ExecState state, double &s, double &v, double dt, double cap, bool hold) const;
+            /** \brief Time-scale adaptation: a speed cap or a wait under which the rest of the path is free in time
+                (NonStopSettings::retiming); false when none is or it is off. */
+            bool retime();
+            /** \brief Back to full speed, no wait. */
+            void clearTiming()
+            {
+                speedCap_ = settings_.speed;
+                holdUntil_ = -1.;
+            }
             /** \brief Configuration at arc length \e s of path_ (clamped). */
             Configuration at(double s) const;
             /** \brief The part of path_ between arc lengths \e a and \e b (in that direction). */
@@ -257,6 +283,8 @@ namespace michi
             double s_{0.};             ///< robot's arc position on path_
             double stopArc_{0.};       ///< REPLANNING: where the safe stop begins
             double planStartArc_{0.};  ///< arc of path_ the outstanding query plans from
+            double speedCap_{0.};      ///< retiming: cruise speed on the current path
+            double holdUntil_{-1.};    ///< retiming: simulated time until which the robot stands
             std::uint64_t activeQuery_{0};
             double activeSentAt_{0.};  ///< simulated time the outstanding query was sent
             bool pendingPath_{false};
