@@ -519,6 +519,18 @@ namespace
                        });
     }
 
+    /** \e n steps of 0.01 s; false (and where) at the first one that puts the robot into a crosser. */
+    ::testing::AssertionResult stepsClearOfCrossers(Harness &h, int n)
+    {
+        for (int i = 0; i < n; ++i)
+        {
+            h.steps(1);
+            if (!h.world.freeAt(h.exec->configuration(), h.world.now))
+                return ::testing::AssertionFailure() << "inside a crosser at t " << h.world.now;
+        }
+        return ::testing::AssertionSuccess();
+    }
+
     /** The robot at full speed on y = 2; a disc (radius 0.3) crosses the path 3 m ahead, upwards at 1 m/s, reaching
         y = 2 just when the robot would at full speed. Its predicted region (what the spatial check sees) is a box. */
     double crossAhead(Harness &h, double vy = 1.)
@@ -547,11 +559,7 @@ TEST(NonStopExecutor, RetimingSlowsDownForACrossingObstacleInsteadOfReplanning)
     h.steps(100);
     EXPECT_NEAR(h.exec->velocity(), 0.75, 1e-9);
     // and it goes through where the disc was, never touching it
-    for (int i = 0; i < 600; ++i)
-    {
-        h.steps(1);
-        ASSERT_TRUE(h.world.freeAt(h.exec->configuration(), h.world.now)) << "t " << h.world.now;
-    }
+    ASSERT_TRUE(stepsClearOfCrossers(h, 600));
     EXPECT_EQ(h.gate.started, 1);
 }
 
@@ -580,11 +588,7 @@ TEST(NonStopExecutor, RetimingWaitsForAnObstacleThatLeaves)
     EXPECT_EQ(h.exec->statistics().retimings, 1u);
     h.steps(60);
     EXPECT_NEAR(h.exec->velocity(), 0., 1e-9) << "standing while it waits";
-    for (int i = 0; i < 400; ++i)
-    {
-        h.steps(1);
-        ASSERT_TRUE(h.world.freeAt(h.exec->configuration(), h.world.now)) << "t " << h.world.now;
-    }
+    ASSERT_TRUE(stepsClearOfCrossers(h, 400));
     EXPECT_GT(h.exec->velocity(), 0.9) << "going again at full speed";
     EXPECT_EQ(h.exec->statistics().queries, 1u);
 }
