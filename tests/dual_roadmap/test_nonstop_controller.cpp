@@ -311,10 +311,14 @@ TEST(NonStopController, RejectsBadSettingsAndBadUse)
     b[1] = 0.;
     EXPECT_THROW(controller.start(a.get(), b.get()), std::logic_error);  // no world observed
     EXPECT_THROW(controller.observeWorld(nullptr), std::invalid_argument);
-    // before start() the robot is held where it is measured
-    const TimedPath hold = controller.update(a.get(), 1.);
+    // before start() the robot is held where it is measured, wherever that is
+    controller.update(a.get(), 1.);
+    b[0] = 3.;
+    b[1] = 1.;
+    const TimedPath hold = controller.update(b.get(), 1.5);
     ASSERT_FALSE(hold.configurations.empty());
-    EXPECT_EQ(hold.configurations.back(), (Configuration{0., 0.}));
-    EXPECT_THROW(controller.update(a.get(), 0.5), std::invalid_argument);  // time went back
+    for (const auto &q : hold.configurations)
+        EXPECT_EQ(q, (Configuration{3., 1.}));
+    EXPECT_THROW(controller.update(a.get(), 1.), std::invalid_argument);  // time went back
     EXPECT_EQ(controller.state(), Exec::IDLE);
 }

@@ -563,7 +563,8 @@ namespace michi
                                    : std::max(target, v - settings_.deceleration * dt);
                     // At most the speed from which the robot still stops at the path's end, losing deceleration x dt
                     // per step of this length: n such steps cover a dt^2 n (n + 1) / 2, so v = n a dt with n solving
-                    // that for the distance left. It arrives at a speed of at most a dt.
+                    // that for the distance left. It arrives braked, within a step or two of a dt (two when a
+                    // measured robot moved the model between steps, track()).
                     if (settings_.brakeAtEnd && dt > 0.)
                     {
                         const double unit = settings_.deceleration * dt * dt;
@@ -631,7 +632,7 @@ namespace michi
                 throw std::invalid_argument("NonStopExecutor::track: the tolerance must be positive");
             if (exec_ == ExecState::IDLE || path_.empty())
             {
-                current_ = measured;
+                setPath({measured});  // held where it is (preview() commands the path's states)
                 return true;
             }
             // The robot may lag or lead the model (it is not the model): it is looked for along the arcs it can
