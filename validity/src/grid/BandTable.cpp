@@ -196,7 +196,7 @@ namespace michi
             }
         }
 
-        void BandTable::assign(std::vector<std::uint32_t> prefix, const std::vector<Entry> &entries)
+        void BandTable::assign(const std::vector<std::uint32_t> &prefix, const std::vector<Entry> &entries)
         {
             struct Hash
             {
@@ -206,7 +206,6 @@ namespace michi
                 }
             };
             std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::uint16_t, Hash> seen;
-            prefix_ = std::move(prefix);
             patterns_.assign(1, Entry{});
             seen.emplace(std::make_pair(std::uint64_t{0}, std::uint64_t{0}), 0);
             index_.resize(entries.size());
@@ -227,6 +226,15 @@ namespace michi
                 index_[n] = it->second;
             }
             patterns_.shrink_to_fit();
+            records_.assign(prefix.size(), Record{});
+            for (std::size_t w = 0; w < prefix.size(); ++w)
+            {
+                Record &r = records_[w];
+                r.rank = prefix[w];
+                const std::size_t count = w + 1 < prefix.size() ? prefix[w + 1] - prefix[w] : 0;
+                for (unsigned n = 0; n < INLINE && n < count; ++n)
+                    r.first[n] = index_[r.rank + n];
+            }
         }
 
         BandTable::Entry BandTable::compute(int i, int j, int k, const std::uint64_t *occupied, std::size_t wordsPerRow,

@@ -388,7 +388,6 @@ namespace michi
             const int h = grid_.height;
             const std::uint64_t lastMask =
                 (grid_.width & 63) ? (std::uint64_t{1} << (grid_.width & 63)) - 1 : ~std::uint64_t{0};
-            const std::vector<std::uint32_t> &oldPrefix = band_.prefix();
             std::vector<std::uint32_t> prefix(words + 1, 0);
             std::vector<BandTable::Entry> entries;
             entries.reserve(box ? band_.size() + band_.size() / 8 : 0);
@@ -417,9 +416,9 @@ namespace michi
                         }
                         // old entries of this word: those outside the box are the same (before the box's columns,
                         // then after them)
-                        const std::size_t oldStart = box ? oldPrefix[w] : 0;
+                        const std::size_t oldStart = box ? band_.rank(w) : 0;
                         const std::size_t oldInBox =
-                            box ? oldPrefix[w + 1] - oldPrefix[w] -
+                            box ? band_.rank(w + 1) - band_.rank(w) -
                                       static_cast<std::size_t>(__builtin_popcountll(mask & ~fresh))
                                 : 0;
                         for (std::uint64_t bits = mask; bits; bits &= bits - 1)

@@ -29,7 +29,10 @@ namespace michi
             cell near it. Cells outside the grid count as occupied (valid bits stay conservative).
 
             Storage: a 16-bit index per band entry into the distinct entries, in the order of the table's bits,
-            found by rank (a running count of band entries per 64-bit table word and a popcount). */
+            found by rank (a running count of band entries per 64-bit table word and a popcount). Each table word's
+            record (16 bytes) holds its rank and the indices of its first INLINE band entries, so that a query reads
+            the record beside the table word, both at once, and then only the distinct entries (a few kilobytes,
+            in the cache): not the index array after the rank, a second cache miss that waited for the first. */
         class BandTable
         {
         public:
@@ -85,10 +88,23 @@ namespace michi
             Entry compute(int i, int j, int k, const std::uint64_t *occupied, std::size_t wordsPerRow, int width,
                           int height) const;
 
-            /** \brief Band entries before table word \e w (rank). */
+            /** \brief Band entries before table word \e w (rank); w may be the number of words (then: all). */
             std::uint32_t rank(std::size_t w) const
             {
-                return prefix_[w];
+                return records_[w].rank;
+            }
+            /** \brief Band entries of a table word kept in its record. */
+            static constexpr unsigned INLINE = 6;
+            /** \brief The \e n-th band entry of table word \e w (n counts the word's band entries before it). */
+            const Entry &entry(std::size_t w, unsigned n) const
+            {
+                const Record &r = records_[w];
+                return patterns_[n < INLINE ? r.first[n] : index_[r.rank + n]];
+            }
+            /** \brief Where table word \e w's record lies (for a prefetch). */
+            const void *record(std::size_t w) const
+            {
+                return &records_[w];
             }
             /** \brief Band entry number \e n (in the order of the table's bits). */
             const Entry &entry(std::size_t n) const
@@ -107,20 +123,17 @@ namespace michi
             }
             std::size_t bytes() const
             {
-                std::size_t b = prefix_.size() * sizeof(std::uint32_t) + index_.size() * sizeof(std::uint16_t) +
+                std::size_t b = records_.size() * sizeof(Record) + index_.size() * sizeof(std::uint16_t) +
                                 patterns_.size() * sizeof(Entry);
                 for (const auto &o : offsets_)
                     b += (o.may.size() + o.blocks.size()) * sizeof(std::uint64_t);
                 return b;
             }
-            /** \brief Take new ranks and entries (HeadingTable fills them); the entries are stored as 16-bit
-                indices into their distinct values (along a straight wall most entries repeat), so that the band
-                stays in the cache: the first 65535 distinct values, any other entry as "undecided" (no bits). */
-            void assign(std::vector<std::uint32_t> prefix, const std::vector<Entry> &entries);
-            const std::vector<std::uint32_t> &prefix() const
-            {
-                return prefix_;
-            }
+            /** \brief Take new ranks (one per table word and the total) and entries (HeadingTable fills them); the
+                entries are stored as 16-bit indices into their distinct values (along a straight wall most entries
+                repeat), so that the band stays in the cache: the first 65535 distinct values, any other entry as
+                "undecided" (no bits). */
+            void assign(const std::vector<std::uint32_t> &prefix, const std::vector<Entry> &entries);
             /** \brief Offsets an entry's bits read: min dx, max dx, min dy, max dy over all headings. */
             const int *reach() const
             {
@@ -136,8 +149,15 @@ namespace michi
             };
             int positions_{1};
             int subHeadings_{64};
+            /** per table word: its rank and the indices of its first INLINE band entries (0 past its last) */
+            struct Record
+            {
+                std::uint32_t rank{0};
+                std::uint16_t first[INLINE]{};
+            };
+            static_assert(sizeof(Record) == 16, "a record is 16 bytes: four to a cache line, never across two");
             std::vector<Offsets> offsets_;
-            std::vector<std::uint32_t> prefix_;
+            std::vector<Record> records_;
             std::vector<std::uint16_t> index_;  ///< per band entry: its value in patterns_
             std::vector<Entry> patterns_;       ///< distinct values; patterns_[0] has no bits
             int reach_[4]{0, 0, 0, 0};

@@ -152,7 +152,7 @@ namespace michi
                 // large map, after other work, each is a miss)
                 __builtin_prefetch(&words_[2 * word]);
                 if (!band_.empty())
-                    __builtin_prefetch(&band_.prefix()[word]);
+                    __builtin_prefetch(band_.record(word));
                 // the cell's "valid at every heading" and "occupied" bits share a cache line
                 const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ + static_cast<std::size_t>(i >> 6);
                 // valid at every heading, or occupied while the footprint holds the origin: the cell decides
@@ -167,8 +167,8 @@ namespace michi
                 if (!band_.empty())
                 {
                     const std::uint64_t below = (std::uint64_t{1} << (i & 63)) - 1;
-                    const BandTable::Entry &e = band_.entry(
-                        band_.rank(word) + static_cast<std::size_t>(__builtin_popcountll(~valid & ~blocked & below)));
+                    const BandTable::Entry &e =
+                        band_.entry(word, static_cast<unsigned>(__builtin_popcountll(~valid & ~blocked & below)));
                     const int s = band_.subEntry(fx, fy, fb);
                     if ((e.valid >> s) & 1u)
                         return true;
@@ -196,8 +196,7 @@ namespace michi
                 if (((valid | blocked) >> (i & 63)) & 1u)
                     return nullptr;
                 const std::uint64_t below = (std::uint64_t{1} << (i & 63)) - 1;
-                return &band_.entry(band_.rank(word) +
-                                    static_cast<std::size_t>(__builtin_popcountll(~valid & ~blocked & below)));
+                return &band_.entry(word, static_cast<unsigned>(__builtin_popcountll(~valid & ~blocked & below)));
             }
             /** \brief Is the footprint at pose (x, y, yaw), grown by \e margin metres (a square growth, so at least
                 as far in every direction), clear of every occupied cell? Exact on the grid (each convex piece of the
