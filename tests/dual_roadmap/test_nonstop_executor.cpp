@@ -224,6 +224,14 @@ namespace
             release();
             exec->step(0.01);
         }
+        /** Start on the planner's path (up to (0, 2), along y = 2, down to (10, 0)) and drive 3 s: at full speed
+            along y = 2, near x = 0.75. Returns the robot's x. */
+        double underWay()
+        {
+            startStraight();
+            steps(300);
+            return exec->configuration()[0];
+        }
         bool saw(Exec from, Sig signal, Exec to) const
         {
             for (const auto &t : exec->transitions())
@@ -275,9 +283,7 @@ TEST(NonStopExecutor, GeoChangeWithFreePathGoesBackToExecute)
 TEST(NonStopExecutor, InterferenceStartsReplanningFromTheStopPointWhileMoving)
 {
     Harness h;
-    h.startStraight();  // path: up to (0, 2), along y = 2, down to (10, 0)
-    h.steps(300);       // at about (0, 2) -> moving along x
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});  // 2 m ahead on the path
     h.exec->geoChange();
     EXPECT_EQ(h.exec->execState(), Exec::REPLANNING);
@@ -303,9 +309,7 @@ TEST(NonStopExecutor, InterferenceStartsReplanningFromTheStopPointWhileMoving)
 TEST(NonStopExecutor, InterferenceGoneWhileReplanningCancelsAndContinues)
 {
     Harness h;
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});
     h.exec->geoChange();
     ASSERT_EQ(h.exec->execState(), Exec::REPLANNING);
@@ -325,9 +329,7 @@ TEST(NonStopExecutor, InterferenceGoneWhileReplanningCancelsAndContinues)
 TEST(NonStopExecutor, NoPathByTheStopPointDeceleratesStopsAndResumes)
 {
     Harness h;
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});
     h.exec->geoChange();
     ASSERT_EQ(h.exec->execState(), Exec::REPLANNING);
@@ -351,9 +353,7 @@ TEST(NonStopExecutor, NoPathByTheStopPointDeceleratesStopsAndResumes)
 TEST(NonStopExecutor, PathFoundWhileStoppingIsTakenOnceStopped)
 {
     Harness h;
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});
     h.exec->geoChange();
     h.steps(172);
@@ -370,9 +370,7 @@ TEST(NonStopExecutor, PathFoundWhileStoppingIsTakenOnceStopped)
 TEST(NonStopExecutor, CloserThanSafetyDistanceStops)
 {
     Harness h(0.5);
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 3., x0 + 4., 1.5, 2.5});
     h.exec->geoChange();
     ASSERT_EQ(h.exec->execState(), Exec::REPLANNING);
@@ -389,9 +387,7 @@ TEST(NonStopExecutor, CloserThanSafetyDistanceStops)
 TEST(NonStopExecutor, TooCloseToTheInterferenceBrakesAtOnce)
 {
     Harness h;
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 0.3, x0 + 1., 1.5, 2.5});
     h.exec->geoChange();
     EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::STOPPING));
@@ -405,9 +401,7 @@ TEST(NonStopExecutor, InterferenceGoneWhileStoppingOrStoppedContinues)
     for (const bool waitUntilStopped : {false, true})
     {
         Harness h;
-        h.startStraight();
-        h.steps(300);
-        const double x0 = h.exec->configuration()[0];
+        const double x0 = h.underWay();
         h.world.boxes.push_back({x0 + 0.3, x0 + 1., 1.5, 2.5});
         h.exec->geoChange();
         ASSERT_EQ(h.exec->execState(), Exec::STOPPING);
@@ -427,9 +421,7 @@ TEST(NonStopExecutor, SmallInterferenceIsDeformedWithoutAQuery)
 {
     Harness h;
     h.deformOk = true;
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 2., x0 + 2.5, 1.9, 2.5});
     h.exec->geoChange();
     EXPECT_EQ(h.deformCalls, 1);
@@ -535,9 +527,7 @@ namespace
         y = 2 just when the robot would at full speed. Its predicted region (what the spatial check sees) is a box. */
     double crossAhead(Harness &h, double vy = 1.)
     {
-        h.startStraight();
-        h.steps(300);
-        const double x0 = h.exec->configuration()[0];
+        const double x0 = h.underWay();
         EXPECT_NEAR(h.exec->configuration()[1], 2., 1e-9);
         EXPECT_NEAR(h.exec->velocity(), 1., 1e-9);
         h.world.crossers.push_back({x0 + 3., 2. - 3. * vy - vy * h.world.now, vy, 0.3});
@@ -578,9 +568,7 @@ TEST(NonStopExecutor, RetimingWaitsForAnObstacleThatLeaves)
     // box. At any speed the robot would reach it while it is there (at 1/4 speed, x0 + 0.75 after 2.4 s); stopping,
     // waiting until 2 s and starting again, the robot reaches x0 + 0.7 after 2.67 s: only that wait is free.
     auto h = retimingHarness(true);
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.crossers.push_back({x0 + 1., 2., 0., 0.3, h.world.now + 2.45});
     h.world.boxes.push_back({x0 + 0.7, x0 + 1.3, 1.7, 2.3});
     h.exec->geoChange();
@@ -596,9 +584,7 @@ TEST(NonStopExecutor, RetimingWaitsForAnObstacleThatLeaves)
 TEST(NonStopExecutor, RetimingFallsBackToReplanningWhenNoTimingIsFree)
 {
     auto h = retimingHarness(true);
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.crossers.push_back({x0 + 3., 2., 0., 0.3});  // standing on the path
     h.world.boxes.push_back({x0 + 2.7, x0 + 3.3, 1.7, 2.3});
     h.exec->geoChange();
@@ -613,9 +599,7 @@ TEST(NonStopExecutor, StopAndReplanBrakesFirstAndPlansOnceStanding)
               {
                   s.nonStop = false;
               });
-    h.startStraight();
-    h.steps(300);
-    const double x0 = h.exec->configuration()[0];
+    const double x0 = h.underWay();
     h.world.boxes.push_back({x0 + 2., x0 + 3., 1.5, 2.5});  // 2 m ahead: a non-stop executor would move on
     h.exec->geoChange();
     EXPECT_EQ(h.exec->execState(), Exec::STOPPING);
