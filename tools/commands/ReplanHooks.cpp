@@ -268,7 +268,8 @@ namespace michi
                         // then, and retiming_slack earlier and later: the state, and the motions to it and from it,
                         // are checked against them, so every piece of the motion is checked at both its ends'
                         // times. In between a mover is within half a step's travel of one of those places, which
-                        // the margin covers up to margin / (step / 2) (4 m/s for the bundled scenarios' 0.2 m).
+                        // the margin covers up to margin / (step / 2) (4 m/s for the mobile scenarios' 0.2 m, 1 m/s
+                        // for the bin's 0.05 m, whose parts move at 0.26 m/s at most with the speed jitter).
                         ob::ScopedState<> previous(tsi), state(tsi), next(tsi);
                         const double shifts[] = {0., -slack, slack};
                         for (std::size_t k = 0; k < configurations.size(); ++k)
