@@ -233,7 +233,9 @@ namespace michi
             if (!solution)
                 return false;
             og::PathGeometric p(*solution);
-            if (settings_.simplify && p.getStateCount() > 2)
+            // DualRoadmap smooths its own paths (paper 002: redundant parts removed); smoothing them again would
+            // only repeat its motion checks
+            if (settings_.simplify && !dual && p.getStateCount() > 2)
             {
                 og::PathSimplifier simplifier(planSi_);
                 simplifier.reduceVertices(p);

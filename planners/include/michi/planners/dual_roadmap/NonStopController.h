@@ -39,7 +39,8 @@ namespace michi
             double period{0.05};
             /** \brief Resolution of the motion checks (OMPL's longest valid segment fraction). */
             double checkResolution{0.01};
-            /** \brief Smooth every path found (OMPL's PathSimplifier: redundant vertices, shortcuts). */
+            /** \brief Smooth every path found by a planner other than DualRoadmap (which smooths its own) with OMPL's
+                PathSimplifier: redundant vertices, shortcuts. */
             bool simplify{true};
         };
 
