@@ -1,5 +1,7 @@
 // Dataset experience problems (issue 17): problems/mbm_<environment>.yaml names a MotionBenchMaker folder whose
 // problems 0-49 train the experience planners and 50-99 are held out, each with its own scene.
+#include "support/TestScenes.h"
+
 #include <michi/planners/experience/ExperiencePeers.h>
 #include <michi/planners/path_seed/PathSeed.h>
 #include <michi/tools/bench/BenchmarkRunner.h>
@@ -45,7 +47,9 @@ namespace
             text.insert(at, SOURCE.string() + "/");
         }
         text = text.substr(0, text.find("\nexperience:") + 1) + experience + "\n";
-        const fs::path dir = fs::temp_directory_path() / fs::unique_path("michi-dataset-%%%%%%");
+        // one folder per test process, removed when it exits
+        static const michi::test::TempDir root("michi-dataset");
+        const fs::path dir = fs::path(root.path()) / fs::unique_path("%%%%%%");
         fs::create_directories(dir);
         const std::string file = (dir / "mbm.yaml").string();
         std::ofstream(file) << text;

@@ -1,5 +1,6 @@
 // Path seed library, fail-fast path check, repairs and the michi::PathSeed planner (paper 001).
 #include "support/ConformanceProblem.h"
+#include "support/TestScenes.h"
 
 #include <michi/planners/path_seed/PathSeed.h>
 #include <michi/planners/path_seed/PathSeedLibrary.h>
@@ -40,7 +41,9 @@ namespace
 
     std::string tempFile(const std::string &name)
     {
-        const fs::path dir = fs::temp_directory_path() / fs::unique_path("michi-path-seed-%%%%%%");
+        // one folder per test process, removed when it exits; a file name is used once per test
+        static const michi::test::TempDir root("michi-path-seed");
+        const fs::path dir = fs::path(root.path()) / fs::unique_path("%%%%%%");
         fs::create_directories(dir);
         return (dir / name).string();
     }
