@@ -3,7 +3,8 @@
 // change counter decides when the working roadmap is rebuilt; the learning roadmap survives a save/load round trip
 // and bad files are rejected with their name; the ablation (use_learning = 0) learns nothing; the learning roadmap
 // reduces the planning work (counted, not timed) on a repeated scene change and after clear(); a change confined to a
-// region keeps what was proved elsewhere.
+// region keeps what was proved elsewhere; edge probes refute a blocked motion without its motion check; a search weight
+// above 1 expands fewer vertices.
 #include "support/TestScenes.h"
 
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
@@ -294,4 +295,80 @@ TEST(DualRoadmap, ChangeConfinedToARegionKeepsWhatWasProvedElsewhere)
     ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
     EXPECT_GT(f.planner->lastWork().motionChecks, 0u);
     EXPECT_TRUE(f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->check());
+}
+
+namespace
+{
+    /** The fixture's query solved, then a small box put on the middle of the path's longest motion, away from its
+        ends, and the same query solved again with \e probes edge probes; the box's centre in \e boxX, \e boxY. */
+    planners::DualRoadmap::Work afterABoxOnThePath(unsigned int probes, double &boxX, double &boxY)
+    {
+        ompl::RNG::setSeed(31);
+        Fixture f;
+        f.planner->setSmooth(false);
+        EXPECT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+        const auto *path = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+        std::size_t longest = 0;
+        for (std::size_t i = 0; i + 1 < path->getStateCount(); ++i)
+            if (f.setup.si->distance(path->getState(i), path->getState(i + 1)) >
+                f.setup.si->distance(path->getState(longest), path->getState(longest + 1)))
+                longest = i;
+        ob::ScopedState<> middle(f.setup.si);
+        f.setup.si->getStateSpace()->interpolate(path->getState(longest), path->getState(longest + 1), 0.5,
+                                                 middle.get());
+        boxX = middle[0];
+        boxY = middle[1];
+        validity::Obstacle box;
+        box.name = "box";
+        box.shape = validity::Shape::box({0.3, 0.3, 1.});
+        box.pose.translation() = Eigen::Vector3d(boxX, boxY, 0.);
+        f.setup.scene->add(box);
+        EXPECT_TRUE(f.setup.si->isValid(path->getState(longest)));  // the box leaves the motion's ends free
+        EXPECT_TRUE(f.setup.si->isValid(path->getState(longest + 1)));
+        f.planner->setEdgeProbes(probes);
+        f.query({1., 5., 0.}, {9., 5., 0.});
+        EXPECT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+        EXPECT_TRUE(f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->check());
+        return f.planner->lastWork();
+    }
+}  // namespace
+
+TEST(DualRoadmap, EdgeProbesRefuteABlockedMotionWithoutAMotionCheck)
+{
+    double x0 = 0., y0 = 0., x3 = 0., y3 = 0.;
+    const auto without = afterABoxOnThePath(0, x0, y0);
+    const auto with = afterABoxOnThePath(3, x3, y3);
+    EXPECT_EQ(x0, x3);  // the same roadmap and box before the second query
+    EXPECT_EQ(y0, y3);
+    // the blocked motion costs a motion check without probes, a state check (its middle) with them
+    EXPECT_LT(with.motionChecks, without.motionChecks)
+        << "motion checks with probes " << with.motionChecks << ", without " << without.motionChecks;
+    EXPECT_GT(with.stateChecks, without.stateChecks);
+}
+
+TEST(DualRoadmap, SearchWeightExpandsFewerVertices)
+{
+    // The same roadmap (a first query with a batch of 400 samples), then another query searched with weight 1 and
+    // with weight 3 (the bound on the path's cost is RoadmapSearch's test).
+    std::uint64_t expansions[2] = {0, 0};
+    for (int i = 0; i < 2; ++i)
+    {
+        ompl::RNG::setSeed(33);
+        Fixture f;
+        f.planner->setSmooth(false);
+        f.planner->setBatchSize(400);
+        ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+        ASSERT_GE(f.planner->workingVertexCount(), 300u);  // the samples in the walls are dropped
+        f.planner->setSearchWeight(i == 0 ? 1. : 3.);
+        f.query({1., 9., 0.}, {9., 1., 0.});
+        f.planner->notifySceneChanged();  // every record stale: the search meets unknown edges everywhere
+        ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+        EXPECT_TRUE(f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->check());
+        expansions[i] = f.planner->lastWork().expansions;
+    }
+    EXPECT_LT(2 * expansions[1], expansions[0])
+        << "weight 3 expanded " << expansions[1] << " vertices, weight 1 " << expansions[0];
+    Fixture f;
+    EXPECT_THROW(f.planner->setSearchWeight(0.5), ompl::Exception);  // below 1 the heuristic would only mislead
+    EXPECT_EQ(f.planner->params().getParam("search_weight")->getValue(), "1");
 }

@@ -1,6 +1,7 @@
 // FlatRoadmap and RoadmapAStar (DualRoadmap's graph and search) against a plain Dijkstra written here, on random
 // planar roadmaps: the same shortest-path costs, with and without an admissible heuristic, with impassable edges and
-// vertices, and with buffers reused over many searches on a growing graph.
+// vertices, and with buffers reused over many searches on a growing graph; with an inflated heuristic (weighted A*),
+// a path within the weight of the shortest after fewer expansions.
 #include <michi/planners/dual_roadmap/RoadmapSearch.h>
 
 #include <gtest/gtest.h>
@@ -218,4 +219,55 @@ TEST(RoadmapSearch, RepeatedSearchesOnAGrowingRoadmapWithRefutedEdges)
             }
         }
     }
+}
+
+TEST(RoadmapSearch, WeightedHeuristicBoundsTheCostAndExpandsFewerVertices)
+{
+    // DualRoadmap's search_weight: the heuristic times w >= 1 (inconsistent, no vertex expanded twice) gives a path
+    // costing at most w times the shortest, after fewer expansions: the point of the setting on large roadmaps.
+    std::mt19937 rng(11);
+    michi::planners::RoadmapAStar astar;
+    std::vector<std::size_t> path;
+    std::size_t plain = 0, weighted = 0;
+    int compared = 0;
+    for (int round = 0; round < 20; ++round)
+    {
+        const Roadmap g = randomRoadmap(rng, 400, 0.09, 0.);
+        const double best = dijkstra(g, 0, 1);
+        if (std::isinf(best))
+            continue;
+        for (const double w : {1., 2.})
+        {
+            ASSERT_TRUE(astar.search(
+                g, 0,
+                [](std::size_t v)
+                {
+                    return v == 1;
+                },
+                [&](std::size_t, const Roadmap::Arc &arc)
+                {
+                    return arc.length * g.edge(arc.edge).factor;
+                },
+                [](const Roadmap::Arc &)
+                {
+                    return true;
+                },
+                [&](std::size_t v)
+                {
+                    return w * dist(g[v], g[1]);
+                },
+                path));
+            const double cost = pathCost(g, path);
+            if (w == 1.)
+                EXPECT_NEAR(cost, best, 1e-9) << "round " << round;
+            EXPECT_LE(cost, w * best + 1e-9) << "round " << round << " weight " << w;
+            EXPECT_GE(cost, best - 1e-9);
+            (w == 1. ? plain : weighted) += astar.expanded();
+        }
+        ++compared;
+    }
+    EXPECT_GT(compared, 10);
+    RecordProperty("expanded_plain", std::to_string(plain));
+    RecordProperty("expanded_weight_2", std::to_string(weighted));
+    EXPECT_LT(2 * weighted, plain) << "weight 2 expanded " << weighted << " vertices, weight 1 " << plain;
 }

@@ -59,6 +59,10 @@ namespace michi
                                  &DualRoadmap::getRefutedEdgePenalty, "1.:0.5:20.");
             declareParam<unsigned int>("max_working_vertices", this, &DualRoadmap::setMaxWorkingVertices,
                                        &DualRoadmap::getMaxWorkingVertices, "10:10:1000000");
+            declareParam<double>("search_weight", this, &DualRoadmap::setSearchWeight, &DualRoadmap::getSearchWeight,
+                                 "1.:0.5:10.");
+            declareParam<unsigned int>("edge_probes", this, &DualRoadmap::setEdgeProbes, &DualRoadmap::getEdgeProbes,
+                                       "0:1:15");
 
             // Benchmark reads progress properties from its own thread while solve() runs: hence the atomic copy of the
             // count.
@@ -73,6 +77,8 @@ namespace michi
         {
             freeWorking();
             clearLearningRoadmap();
+            if (probe_ != nullptr)
+                si_->freeState(probe_);
         }
 
         void DualRoadmap::setup()
@@ -89,6 +95,8 @@ namespace michi
             }
             if (!sampler_)
                 sampler_ = si_->allocStateSampler();
+            if (probe_ == nullptr)
+                probe_ = si_->allocState();
         }
 
         void DualRoadmap::freeWorking()
@@ -416,8 +424,9 @@ namespace michi
                 heuristicGoals_ = goals;
                 ++goalSet_;
             }
-            // Admissible and consistent: the distance to the nearest goal never exceeds the path length through the
-            // roadmap's edges, whose lengths are the same distances.
+            // The distance to the nearest goal is admissible and consistent (it never exceeds the path length through
+            // the roadmap's edges, whose lengths are the same distances); times the search weight, the path found
+            // costs at most that many times the shortest (weighted A*, no vertex expanded twice).
             const auto h = [&](Vertex v)
             {
                 if (heuristicStamp_[v] != goalSet_)
@@ -425,7 +434,8 @@ namespace michi
                     double best = std::numeric_limits<double>::infinity();
                     for (Vertex g : goals)
                         best = std::min(best, si_->distance(graph_[v].state, graph_[g].state));
-                    heuristic_[v] = best;
+                    // weighted A* (setSearchWeight): the stored heuristic is the inflated one
+                    heuristic_[v] = searchWeight_ * best;
                     heuristicStamp_[v] = goalSet_;
                 }
                 return heuristic_[v];
@@ -453,6 +463,7 @@ namespace michi
                 return !knownInvalidEdge(arc.edge) && !knownInvalid(arc.to);
             };
             astar_.search(graph_, start, isGoal, cost, passable, h, path);
+            work_.expansions += astar_.expanded();
         }
 
         bool DualRoadmap::validatePath(const std::vector<Vertex> &path, const ob::PlannerTerminationCondition &ptc)
@@ -481,6 +492,23 @@ namespace michi
             }
             if (!statesValid)
                 return false;
+            // then a few states inside every unproved motion, for the same reason (setEdgeProbes())
+            bool probesValid = true;
+            for (std::size_t i = 0; i + 1 < path.size() && edgeProbes_ > 0; ++i)
+            {
+                if (ptc)
+                    return false;
+                const auto e = graph_.findEdge(path[i], path[i + 1]);
+                if (!e.second || knownValidEdge(e.first) || knownInvalidEdge(e.first))
+                    continue;
+                if (refutedByProbes(path[i], path[i + 1]))
+                {
+                    refuteEdge(e.first);
+                    probesValid = false;
+                }
+            }
+            if (!probesValid)
+                return false;
             for (std::size_t i = 0; i + 1 < path.size(); ++i)
             {
                 if (ptc)
@@ -502,9 +530,7 @@ namespace michi
                 {
                     // Invalid in this scene only: the edge stays (a moving obstacle may leave it free again), the
                     // next search avoids it. Edges checked valid before the failing one stay checked and learned.
-                    graph_.edge(e.first).invalidIn = epoch_;
-                    graph_.edge(e.first).refutedIn = epoch_;
-                    graph_.edge(e.first).validIn = 0;
+                    refuteEdge(e.first);
                     return false;
                 }
             }
@@ -523,17 +549,42 @@ namespace michi
                 if (knownInvalidEdge(e.first) || recentlyRefuted(graph_.edge(e.first).refutedIn))
                     return false;
             }
-            ++work_.motionChecks;
-            if (si_->checkMotion(graph_[a].state, graph_[b].state))
+            if (!refutedByProbes(a, b))
             {
-                graph_.edge(e.first).validIn = epoch_;
-                graph_.edge(e.first).invalidIn = 0;
-                learnEdge(a, b);
-                return true;
+                ++work_.motionChecks;
+                if (si_->checkMotion(graph_[a].state, graph_[b].state))
+                {
+                    graph_.edge(e.first).validIn = epoch_;
+                    graph_.edge(e.first).invalidIn = 0;
+                    learnEdge(a, b);
+                    return true;
+                }
             }
-            graph_.edge(e.first).invalidIn = epoch_;
-            graph_.edge(e.first).refutedIn = epoch_;
-            graph_.edge(e.first).validIn = 0;
+            refuteEdge(e.first);
+            return false;
+        }
+
+        void DualRoadmap::refuteEdge(Edge e)
+        {
+            graph_.edge(e).invalidIn = epoch_;
+            graph_.edge(e).refutedIn = epoch_;
+            graph_.edge(e).validIn = 0;
+        }
+
+        bool DualRoadmap::refutedByProbes(Vertex a, Vertex b)
+        {
+            // van der Corput order: 1/2, 1/4, 3/4, 1/8, ...: spread over the motion whatever their number
+            for (unsigned int k = 1; k <= edgeProbes_; ++k)
+            {
+                double t = 0., f = 0.5;
+                for (unsigned int bits = k; bits != 0; bits >>= 1, f *= 0.5)
+                    if (bits & 1u)
+                        t += f;
+                si_->getStateSpace()->interpolate(graph_[a].state, graph_[b].state, t, probe_);
+                ++work_.stateChecks;
+                if (!si_->isValid(probe_))
+                    return true;
+            }
             return false;
         }
 

@@ -3,6 +3,7 @@
 
 #include <ompl/base/Planner.h>
 #include <ompl/datastructures/NearestNeighbors.h>
+#include <ompl/util/Exception.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <michi/planners/dual_roadmap/RoadmapSearch.h>
@@ -115,10 +116,11 @@ namespace michi
                 work without a clock. */
             struct Work
             {
-                std::uint64_t stateChecks{0};   ///< isValid() calls (seeding, lazy vertex checks, samples)
+                std::uint64_t stateChecks{0};   ///< isValid() calls (seeding, lazy vertex checks, edge probes, samples)
                 std::uint64_t motionChecks{0};  ///< checkMotion() calls (seeding, lazy edge checks)
                 std::uint64_t samples{0};       ///< uniform samples drawn to expand the roadmap
                 std::uint64_t searches{0};      ///< A* searches
+                std::uint64_t expansions{0};    ///< vertices the searches expanded
             };
             const Work &lastWork() const
             {
@@ -238,6 +240,37 @@ namespace michi
                 return refutedPenalty_;
             }
 
+            /** \brief Weight of the heuristic in the roadmap search (weighted A*): 1 gives the shortest path in the
+                search's edge costs; w > 1 a path at most w times as costly, found after expanding far fewer vertices.
+                A query searches once per refuted edge, and on a working roadmap of thousands of vertices the
+                searches can be most of a query's time. Default 1: weight 2 lowered the median replanning latency
+                but tripled the failed queries (a full working roadmap with no path for the query;
+                docs/dual-roadmap.md, 2026-11-27). */
+            void setSearchWeight(double w)
+            {
+                if (!(w >= 1.))
+                    throw ompl::Exception("DualRoadmap: search_weight must be at least 1");
+                searchWeight_ = w;
+                ++goalSet_;  // the cached heuristic values hold the old weight
+            }
+            double getSearchWeight() const
+            {
+                return searchWeight_;
+            }
+
+            /** \brief States inside an unproved edge checked before its motion check (at 1/2, 1/4, 3/4, ... of the
+                motion): one found invalid refutes the edge for the price of a state check. Most edges of a lazy
+                candidate path that fail, fail there, and a failing motion check walks far before it finds the
+                collision; an edge that passes gets its full motion check as before. 0: none. */
+            void setEdgeProbes(unsigned int n)
+            {
+                edgeProbes_ = n;
+            }
+            unsigned int getEdgeProbes() const
+            {
+                return edgeProbes_;
+            }
+
         private:
             // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
             // at once, without touching the roadmap.
@@ -286,6 +319,11 @@ namespace michi
             /** \brief Motion \e a -> \e b valid in this scene, from the roadmap's records or checked (and recorded
                 as an edge: a proved shortcut is a local path like any other). */
             bool motionValid(Vertex a, Vertex b);
+            /** \brief One of the setEdgeProbes() states inside the motion \e a -> \e b is invalid (so is the motion).
+             */
+            bool refutedByProbes(Vertex a, Vertex b);
+            /** \brief Record the motion of edge \e e as invalid in this scene. */
+            void refuteEdge(Edge e);
             /** \brief Redundant vertices removed (paper 002: found paths are smoothed): from each kept vertex, the
                 farthest later one reachable by a valid straight motion among a halving sequence of candidates. */
             std::vector<Vertex> shortcut(const std::vector<Vertex> &path,
@@ -346,6 +384,9 @@ namespace michi
             unsigned int maxWorkingVertices_{2000};
             double unknownPenalty_{1.5};
             double refutedPenalty_{10.};
+            double searchWeight_{1.};
+            unsigned int edgeProbes_{3};
+            ompl::base::State *probe_{nullptr};  ///< refutedByProbes()' state (made in setup())
         };
     }  // namespace planners
 }  // namespace michi

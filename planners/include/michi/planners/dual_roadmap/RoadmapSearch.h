@@ -130,6 +130,7 @@ namespace michi
                     pred_.resize(n, 0);
                 }
                 ++search_;
+                expanded_ = 0;
                 open_.clear();
                 const auto later = std::greater<Item>();  // a min-heap on (f, vertex)
                 stamp_[start] = search_;
@@ -144,6 +145,7 @@ namespace michi
                     if (closed_[u] == search_)
                         continue;
                     closed_[u] = search_;
+                    ++expanded_;
                     if (isGoal(u))
                     {
                         for (std::size_t v = u; v != start; v = pred_[v])
@@ -172,6 +174,11 @@ namespace michi
                 }
                 return false;
             }
+            /** \brief Vertices the last search expanded (closed), the goal included: its work. */
+            std::size_t expanded() const
+            {
+                return expanded_;
+            }
             /** \brief Forget the buffers (memory only: results do not depend on them). */
             void clear()
             {
@@ -190,6 +197,7 @@ namespace michi
             std::vector<std::size_t> pred_;
             std::vector<Item> open_;
             std::uint64_t search_{0};
+            std::size_t expanded_{0};
         };
     }  // namespace planners
 }  // namespace michi
