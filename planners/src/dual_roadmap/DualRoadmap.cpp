@@ -512,12 +512,7 @@ namespace michi
                     continue;
                 ++work_.motionChecks;
                 if (si_->checkMotion(graph_[path[i]].state, graph_[path[i + 1]].state))
-                {
-                    graph_.edge(e.first).validIn = epoch_;
-                    graph_.edge(e.first).invalidIn = 0;
-                    // Paper 002: every edge newly proved valid in the working roadmap is added to the learning roadmap.
-                    learnEdge(path[i], path[i + 1]);
-                }
+                    acceptEdge(e.first, path[i], path[i + 1]);
                 else
                 {
                     // Invalid in this scene only: the edge stays (a moving obstacle may leave it free again), the
@@ -546,14 +541,20 @@ namespace michi
                 ++work_.motionChecks;
                 if (si_->checkMotion(graph_[a].state, graph_[b].state))
                 {
-                    graph_.edge(e.first).validIn = epoch_;
-                    graph_.edge(e.first).invalidIn = 0;
-                    learnEdge(a, b);
+                    acceptEdge(e.first, a, b);
                     return true;
                 }
             }
             refuteEdge(e.first);
             return false;
+        }
+
+        void DualRoadmap::acceptEdge(Edge e, Vertex a, Vertex b)
+        {
+            graph_.edge(e).validIn = epoch_;
+            graph_.edge(e).invalidIn = 0;
+            // Paper 002: every edge newly proved valid in the working roadmap is added to the learning roadmap.
+            learnEdge(a, b);
         }
 
         void DualRoadmap::refuteEdge(Edge e)

@@ -322,6 +322,8 @@ namespace michi
             /** \brief One of the setEdgeProbes() states inside the motion \e a -> \e b is invalid (so is the motion).
              */
             bool refutedByProbes(Vertex a, Vertex b);
+            /** \brief Record the motion of edge \e e (from \e a to \e b) as valid in this scene, and learn it. */
+            void acceptEdge(Edge e, Vertex a, Vertex b);
             /** \brief Record the motion of edge \e e as invalid in this scene. */
             void refuteEdge(Edge e);
             /** \brief Redundant vertices removed (paper 002: found paths are smoothed): from each kept vertex, the
