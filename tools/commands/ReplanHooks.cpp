@@ -85,10 +85,12 @@ namespace michi
                 {
                     return [circles = std::move(circles), radius, space](const ob::State *a, const ob::State *b)
                     {
-                        std::vector<double> qa, qb;
-                        space->copyToReals(qa, a);
-                        space->copyToReals(qb, b);
-                        const Eigen::Vector2d pa(qa[0], qa[1]), d = Eigen::Vector2d(qb[0], qb[1]) - pa;
+                        // x and y read in place: this runs for every stale record a search meets, so no copy
+                        const Eigen::Vector2d pa(*space->getValueAddressAtIndex(a, 0),
+                                                 *space->getValueAddressAtIndex(a, 1));
+                        const Eigen::Vector2d d = Eigen::Vector2d(*space->getValueAddressAtIndex(b, 0),
+                                                                  *space->getValueAddressAtIndex(b, 1)) -
+                                                  pa;
                         const double dd = d.squaredNorm();
                         for (const auto &c : circles)
                         {
