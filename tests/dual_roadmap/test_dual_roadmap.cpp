@@ -12,6 +12,7 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -371,4 +372,107 @@ TEST(DualRoadmap, SearchWeightExpandsFewerVertices)
     Fixture f;
     EXPECT_THROW(f.planner->setSearchWeight(0.5), ompl::Exception);  // below 1 the heuristic would only mislead
     EXPECT_EQ(f.planner->params().getParam("search_weight")->getValue(), "1");
+}
+
+namespace
+{
+    /** The fixture's motion validator, summing the length of the motions it is asked about. */
+    class LengthCountingValidator : public ob::MotionValidator
+    {
+    public:
+        LengthCountingValidator(const ob::SpaceInformationPtr &si, ob::MotionValidatorPtr inner)
+          : ob::MotionValidator(si), inner_(std::move(inner))
+        {
+        }
+        bool checkMotion(const ob::State *a, const ob::State *b) const override
+        {
+            checked += si_->distance(a, b);
+            return inner_->checkMotion(a, b);
+        }
+        bool checkMotion(const ob::State *a, const ob::State *b, std::pair<ob::State *, double> &last) const override
+        {
+            checked += si_->distance(a, b);
+            return inner_->checkMotion(a, b, last);
+        }
+        mutable double checked{0.};
+
+    private:
+        ob::MotionValidatorPtr inner_;
+    };
+
+    /** The fixture's query solved (smoothed: long shortcut edges), a local change announced over the band
+        x in [4.8, 5.2] (the wall, its gaps) with \e boxInBand a box put on the path there, and the query solved again
+        with recheck depth \e depth. Returns the length of motion checked by the second solve; \e pathValid: its
+        path holds in the new scene. */
+    double recheckAfterABandChange(unsigned int depth, bool boxInBand, bool &pathValid)
+    {
+        ompl::RNG::setSeed(41);
+        Fixture f;
+        auto counter = std::make_shared<LengthCountingValidator>(f.setup.si, f.setup.si->getMotionValidator());
+        f.setup.si->setMotionValidator(counter);
+        f.planner->setRecheckDepth(depth);
+        f.planner->setEdgeProbes(0);  // motions decided by their checks only
+        EXPECT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+        if (boxInBand)
+        {
+            // on the path where it crosses x = 5 (through a gap)
+            const auto *path = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+            for (std::size_t i = 0; i + 1 < path->getStateCount(); ++i)
+            {
+                const auto *a = path->getState(i)->as<ob::SE2StateSpace::StateType>();
+                const auto *b = path->getState(i + 1)->as<ob::SE2StateSpace::StateType>();
+                if ((a->getX() - 5.) * (b->getX() - 5.) > 0.)
+                    continue;
+                const double t = (5. - a->getX()) / (b->getX() - a->getX());
+                validity::Obstacle box;
+                box.name = "box";
+                box.shape = validity::Shape::box({0.3, 0.3, 1.});
+                box.pose.translation() = Eigen::Vector3d(5., a->getY() + t * (b->getY() - a->getY()), 0.);
+                f.setup.scene->add(box);
+                break;
+            }
+        }
+        const auto space = f.setup.si->getStateSpace();
+        f.planner->notifySceneChanged(
+            [space](const ob::State *a, const ob::State *b)
+            {
+                const double xa = a->as<ob::SE2StateSpace::StateType>()->getX();
+                const double xb = b->as<ob::SE2StateSpace::StateType>()->getX();
+                return std::max(xa, xb) >= 4.6 && std::min(xa, xb) <= 5.4;  // the band and the robot's half-size
+            });
+        if (!boxInBand)
+        {
+            // inside the wall, in the band: nothing really changes, but the scene's change counter moves
+            validity::Obstacle inWall;
+            inWall.name = "in_wall";
+            inWall.shape = validity::Shape::box({0.2, 0.2, 1.});
+            inWall.pose.translation() = Eigen::Vector3d(5., 5., 0.);
+            f.setup.scene->add(inWall);
+        }
+        counter->checked = 0.;
+        EXPECT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+        const double checked = counter->checked;
+        pathValid = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->check();
+        return checked;
+    }
+}  // namespace
+
+TEST(DualRoadmap, LocalChangeRechecksOnlyTheAffectedPartsOfALongEdge)
+{
+    bool valid = false;
+    const double whole = recheckAfterABandChange(0, false, valid);
+    EXPECT_TRUE(valid);
+    const double parts = recheckAfterABandChange(4, false, valid);
+    EXPECT_TRUE(valid);
+    EXPECT_GT(whole, 0.) << "the path's edges across the band are stale and re-checked";
+    // the path's edge across the band spans 2.7 m in x, the band with the robot 0.8 m: about 40 % in 1/16 parts
+    EXPECT_GT(parts, 0.);
+    EXPECT_LT(parts, 0.6 * whole) << "only the parts of them in the band";
+}
+
+TEST(DualRoadmap, PartialRecheckStillFindsAnObstacleInTheAffectedPart)
+{
+    bool valid = false;
+    recheckAfterABandChange(4, true, valid);
+    EXPECT_TRUE(valid) << "the box on the old path, inside the changed band, is seen";
 }

@@ -55,6 +55,8 @@ namespace michi
                                  "1.:0.5:10.");
             declareParam<unsigned int>("edge_probes", this, &DualRoadmap::setEdgeProbes, &DualRoadmap::getEdgeProbes,
                                        "0:1:15");
+            declareParam<unsigned int>("recheck_depth", this, &DualRoadmap::setRecheckDepth,
+                                       &DualRoadmap::getRecheckDepth, "0:1:10");
 
             // Benchmark reads progress properties from its own thread while solve() runs: hence the atomic copy of the
             // count.
@@ -71,6 +73,9 @@ namespace michi
             clearLearningRoadmap();
             if (probe_ != nullptr)
                 si_->freeState(probe_);
+            for (auto *st : part_)
+                if (st != nullptr)
+                    si_->freeState(st);
         }
 
         void DualRoadmap::setup()
@@ -89,6 +94,9 @@ namespace michi
                 sampler_ = si_->allocStateSampler();
             if (probe_ == nullptr)
                 probe_ = si_->allocState();
+            for (auto &st : part_)
+                if (st == nullptr)
+                    st = si_->allocState();
         }
 
         void DualRoadmap::freeWorking()
@@ -381,7 +389,7 @@ namespace michi
                 {
                     graph_.edge(e.first).learned = true;
                     if (!lazySeeding_)
-                        graph_.edge(e.first).validIn = epoch_;
+                        graph_.edge(e.first).validIn = graph_.edge(e.first).provedIn = epoch_;
                     ++learnedWorkingEdges_;
                     ++seeded_;
                 }
@@ -510,8 +518,7 @@ namespace michi
                     return false;
                 if (knownValidEdge(e.first))
                     continue;
-                ++work_.motionChecks;
-                if (si_->checkMotion(graph_[path[i]].state, graph_[path[i + 1]].state))
+                if (checkEdgeMotion(e.first, path[i], path[i + 1]))
                     acceptEdge(e.first, path[i], path[i + 1]);
                 else
                 {
@@ -538,8 +545,7 @@ namespace michi
             }
             if (!refutedByProbes(a, b))
             {
-                ++work_.motionChecks;
-                if (si_->checkMotion(graph_[a].state, graph_[b].state))
+                if (checkEdgeMotion(e.first, a, b))
                 {
                     acceptEdge(e.first, a, b);
                     return true;
@@ -549,9 +555,80 @@ namespace michi
             return false;
         }
 
+        bool DualRoadmap::checkEdgeMotion(Edge e, Vertex a, Vertex b)
+        {
+            const ob::State *sa = graph_[a].state, *sb = graph_[b].state;
+            const std::uint64_t since = graph_.edge(e).provedIn;
+            // Parts only when every change since the proof is on record with its region (an empty region, or one
+            // older than the history, may have changed anything).
+            bool local = recheckDepth_ > 0 && since != 0 && since < epoch_ && epoch_ - since <= history_.size();
+            for (std::size_t i = history_.size() - (local ? epoch_ - since : 0); local && i < history_.size(); ++i)
+                local = static_cast<bool>(history_[i]);
+            if (!local)
+            {
+                ++work_.motionChecks;
+                return si_->checkMotion(sa, sb);
+            }
+            thread_local std::vector<std::pair<double, double>> parts;
+            parts.clear();
+            affectedParts(since, a, b, 0., 1., recheckDepth_, parts);
+            const auto &space = si_->getStateSpace();
+            ob::State *from = part_[0], *to = part_[1], *mid = part_[2], *ref = part_[3];
+            const double tolerance = 1e-9 * std::max(1., si_->distance(sa, sb));
+            for (const auto &part : parts)
+            {
+                if (part.first <= 0. && part.second >= 1.)
+                {
+                    ++work_.motionChecks;
+                    return si_->checkMotion(sa, sb);
+                }
+                space->interpolate(sa, sb, part.first, from);
+                space->interpolate(sa, sb, part.second, to);
+                // The part checked must be the stretch of this motion: true of geodesic interpolation (real vectors,
+                // SO(2), SE(2), SE(3)), not of every space; where the middles differ, the whole motion is checked.
+                space->interpolate(from, to, 0.5, mid);
+                space->interpolate(sa, sb, 0.5 * (part.first + part.second), ref);
+                ++work_.motionChecks;
+                if (si_->distance(mid, ref) > tolerance)
+                    return si_->checkMotion(sa, sb);
+                // checkMotion() does not check its first state (OMPL's convention): the part's own start is new
+                if (part.first > 0.)
+                {
+                    ++work_.stateChecks;
+                    if (!si_->isValid(from))
+                        return false;
+                }
+                if (!si_->checkMotion(from, to))
+                    return false;
+            }
+            return true;
+        }
+
+        void DualRoadmap::affectedParts(std::uint64_t since, Vertex a, Vertex b, double t0, double t1,
+                                        unsigned int depth, std::vector<std::pair<double, double>> &parts)
+        {
+            const auto &space = si_->getStateSpace();
+            ob::State *from = part_[0], *to = part_[1];
+            space->interpolate(graph_[a].state, graph_[b].state, t0, from);
+            space->interpolate(graph_[a].state, graph_[b].state, t1, to);
+            if (unaffectedSince(since, from, to))
+                return;
+            if (depth == 0)
+            {
+                if (!parts.empty() && parts.back().second == t0)
+                    parts.back().second = t1;  // one check over adjacent affected parts
+                else
+                    parts.emplace_back(t0, t1);
+                return;
+            }
+            const double tm = 0.5 * (t0 + t1);
+            affectedParts(since, a, b, t0, tm, depth - 1, parts);
+            affectedParts(since, a, b, tm, t1, depth - 1, parts);
+        }
+
         void DualRoadmap::acceptEdge(Edge e, Vertex a, Vertex b)
         {
-            graph_.edge(e).validIn = epoch_;
+            graph_.edge(e).validIn = graph_.edge(e).provedIn = epoch_;
             graph_.edge(e).invalidIn = 0;
             // Paper 002: every edge newly proved valid in the working roadmap is added to the learning roadmap.
             learnEdge(a, b);
@@ -562,6 +639,7 @@ namespace michi
             graph_.edge(e).invalidIn = epoch_;
             graph_.edge(e).refutedIn = epoch_;
             graph_.edge(e).validIn = 0;
+            graph_.edge(e).provedIn = 0;
         }
 
         bool DualRoadmap::refutedByProbes(Vertex a, Vertex b)

@@ -3,6 +3,8 @@
 
 #include <ompl/base/Planner.h>
 #include <ompl/datastructures/NearestNeighbors.h>
+
+#include <array>
 #include <ompl/util/Exception.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -271,6 +273,22 @@ namespace michi
                 return edgeProbes_;
             }
 
+            /** \brief A motion proved valid before a local scene change (notifySceneChanged(ChangeRegion)) that the
+                change may affect is re-checked only over its affected parts: it is halved \e depth times at most,
+                the change region asked about each part, and only runs of affected parts of 1/2^depth of the motion
+                are checked again (the rest stands proved, as whole motions the change does not touch do). Long
+                edges (smoothing shortcuts) then cost what the change touches, not their whole length. Used where
+                the space interpolates a part as the motion passes through it (checked at each part's middle),
+                else the whole motion is checked. 0: always the whole motion. */
+            void setRecheckDepth(unsigned int depth)
+            {
+                recheckDepth_ = depth;
+            }
+            unsigned int getRecheckDepth() const
+            {
+                return recheckDepth_;
+            }
+
         private:
             // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
             // at once, without touching the roadmap.
@@ -287,6 +305,7 @@ namespace michi
                 std::uint64_t validIn{0};    ///< epoch in which the motion was proved valid
                 std::uint64_t invalidIn{0};  ///< epoch in which it was found invalid
                 std::uint64_t refutedIn{0};  ///< epoch in which it was last found invalid (kept when that is stale)
+                std::uint64_t provedIn{0};   ///< epoch of its last proof (kept when stale; 0 once refuted)
                 bool learned{false};         ///< in the learning roadmap (proved valid in some scene)
             };
             using Graph = FlatRoadmap<VertexProperties, EdgeProperties>;
@@ -322,6 +341,13 @@ namespace michi
             /** \brief One of the setEdgeProbes() states inside the motion \e a -> \e b is invalid (so is the motion).
              */
             bool refutedByProbes(Vertex a, Vertex b);
+            /** \brief The motion of edge \e e from \e a to \e b, not known in this scene, checked: over the parts a
+                local change since its last proof may affect (setRecheckDepth()), else whole. */
+            bool checkEdgeMotion(Edge e, Vertex a, Vertex b);
+            /** \brief Into \e parts, the pieces [t0, t1] of the motion a -> b that a change since epoch \e since
+                may affect, halving [t0, t1] down to \e depth more levels (adjacent pieces merged). */
+            void affectedParts(std::uint64_t since, Vertex a, Vertex b, double t0, double t1, unsigned int depth,
+                               std::vector<std::pair<double, double>> &parts);
             /** \brief Record the motion of edge \e e (from \e a to \e b) as valid in this scene, and learn it. */
             void acceptEdge(Edge e, Vertex a, Vertex b);
             /** \brief Record the motion of edge \e e as invalid in this scene. */
@@ -388,7 +414,9 @@ namespace michi
             double refutedPenalty_{10.};
             double searchWeight_{1.};
             unsigned int edgeProbes_{3};
+            unsigned int recheckDepth_{4};
             ompl::base::State *probe_{nullptr};  ///< refutedByProbes()' state (made in setup())
+            std::array<ompl::base::State *, 4> part_{};  ///< checkEdgeMotion()'s states (made in setup())
         };
     }  // namespace planners
 }  // namespace michi
