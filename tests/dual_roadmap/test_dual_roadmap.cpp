@@ -476,3 +476,51 @@ TEST(DualRoadmap, PartialRecheckStillFindsAnObstacleInTheAffectedPart)
     recheckAfterABandChange(4, true, valid);
     EXPECT_TRUE(valid) << "the box on the old path, inside the changed band, is seen";
 }
+
+TEST(DualRoadmap, PartialRecheckKeepsEveryPathValidUnderRandomLocalChanges)
+{
+    // Boxes appear one after another on the path just found, each announced with its region (the motions whose robot,
+    // within its circumradius of the segment, can reach the box); every path returned after a change must hold in
+    // the scene as it now is, though long edges are re-checked only in parts.
+    ompl::RNG::setSeed(43);
+    Fixture f;
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    ompl::RNG rng;
+    const double robotRadius = 0.2 * std::sqrt(2.);
+    int solved = 0;
+    for (int i = 0; i < 25; ++i)
+    {
+        // on the last path found, at a random place along one of its motions (away from start and goal)
+        const auto *last = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+        ob::ScopedState<ob::SE2StateSpace> at(f.setup.si);
+        const std::size_t k = rng.uniformInt(0, static_cast<int>(last->getStateCount()) - 2);
+        f.setup.si->getStateSpace()->interpolate(last->getState(k), last->getState(k + 1), rng.uniform01(), at.get());
+        const Eigen::Vector2d c(at->getX(), at->getY());
+        // not at start or goal, and not in the wall's gaps (which a few boxes would close)
+        if ((c - Eigen::Vector2d(1., 5.)).norm() < 1. || (c - Eigen::Vector2d(9., 5.)).norm() < 1. ||
+            std::abs(c.x() - 5.) < 0.8)
+            continue;
+        const double h = rng.uniformReal(0.05, 0.2);
+        validity::Obstacle box;
+        box.name = "box" + std::to_string(i);
+        box.shape = validity::Shape::box({2. * h, 2. * h, 1.});
+        box.pose.translation() = Eigen::Vector3d(c.x(), c.y(), 0.);
+        f.setup.scene->add(box);
+        const double reach = h * std::sqrt(2.) + robotRadius + 1e-3;
+        f.planner->notifySceneChanged(
+            [c, reach](const ob::State *a, const ob::State *b)
+            {
+                const auto *sa = a->as<ob::SE2StateSpace::StateType>();
+                const auto *sb = b->as<ob::SE2StateSpace::StateType>();
+                const Eigen::Vector2d pa(sa->getX(), sa->getY()), d = Eigen::Vector2d(sb->getX(), sb->getY()) - pa;
+                const double t = d.squaredNorm() > 0. ? std::clamp((c - pa).dot(d) / d.squaredNorm(), 0., 1.) : 0.;
+                return (pa + t * d - c).norm() <= reach;
+            });
+        f.query({1., 5., 0.}, {9., 5., 0.});
+        if (f.solve() != ob::PlannerStatus::EXACT_SOLUTION)
+            break;  // no last path to put the next box on
+        ++solved;
+        EXPECT_TRUE(f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->check()) << "after box " << i;
+    }
+    EXPECT_GE(solved, 10);
+}
