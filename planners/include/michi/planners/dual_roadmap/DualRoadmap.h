@@ -3,13 +3,12 @@
 
 #include <ompl/base/Planner.h>
 #include <ompl/datastructures/NearestNeighbors.h>
-
-#include <array>
 #include <ompl/util/Exception.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <michi/planners/dual_roadmap/RoadmapSearch.h>
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
