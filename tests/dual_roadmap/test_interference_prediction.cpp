@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 using namespace michi;
 
@@ -29,6 +30,32 @@ TEST(InterferencePrediction, CopiesSpreadAlongTheVelocityOverTheHorizon)
     EXPECT_DOUBLE_EQ(x["cart~1"], 1.5);  // half the horizon
     EXPECT_DOUBLE_EQ(x["cart~2"], 2.);   // after 2 s at 0.5 m/s
     EXPECT_THROW(planners::PredictedObstacles(scene, 0, 1.), std::invalid_argument);
+}
+
+TEST(InterferencePrediction, ObstaclesObservedTogetherChangeTheSceneOnce)
+{
+    auto scene = std::make_shared<validity::Scene>();
+    planners::PredictedObstacles predicted(scene, 3, 2.);
+    predicted.add("cart", validity::Shape::sphere(0.1), Eigen::Isometry3d::Identity());
+    predicted.add("dog", validity::Shape::sphere(0.1), Eigen::Isometry3d::Identity());
+    const auto count = scene->changeCount();
+    predicted.observe({"cart", "dog"},
+                      {Eigen::Isometry3d(Eigen::Translation3d(1., 0., 0.)),
+                       Eigen::Isometry3d(Eigen::Translation3d(0., 1., 0.))},
+                      {Eigen::Vector3d(0.5, 0., 0.), Eigen::Vector3d(0., -1., 0.)});
+    EXPECT_EQ(scene->changeCount(), count + 1);
+    std::map<std::string, Eigen::Vector3d> at;
+    for (const auto &o : scene->obstacles())
+        at[o.name] = o.pose.translation();
+    // each copy where observe() of that obstacle alone puts it
+    EXPECT_DOUBLE_EQ(at["cart~2"].x(), 2.);
+    EXPECT_DOUBLE_EQ(at["dog~0"].y(), 1.);
+    EXPECT_DOUBLE_EQ(at["dog~1"].y(), 0.);
+    EXPECT_DOUBLE_EQ(at["dog~2"].y(), -1.);
+    // the same observation again moves nothing
+    predicted.observe("dog", Eigen::Isometry3d(Eigen::Translation3d(0., 1., 0.)), Eigen::Vector3d(0., -1., 0.));
+    EXPECT_EQ(scene->changeCount(), count + 1);
+    EXPECT_THROW(predicted.observe(std::vector<std::string>{"cart"}, {}, {}), std::invalid_argument);
 }
 
 TEST(InterferencePrediction, FirstInterferenceIsTheArcToTheFirstBlockedMotion)

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <boost/geometry.hpp>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/shape/sphere.h>
 
 #include <set>
 
@@ -49,6 +51,16 @@ namespace
                 return o;
         ADD_FAILURE() << "no obstacle " << name;
         return {};
+    }
+
+    /** Whether a 0.1 m sphere at \e p touches an obstacle, asked through the scene's broad phase. */
+    bool broadPhaseHits(const Scene &scene, const Eigen::Vector3d &p)
+    {
+        fcl::CollisionObjectd probe(std::make_shared<fcl::Sphered>(0.1), Eigen::Isometry3d(Eigen::Translation3d(p)));
+        fcl::DefaultCollisionData<double> data;
+        auto lock = scene.lockShared();
+        scene.manager().collide(&probe, &data, fcl::DefaultCollisionFunction<double>);
+        return data.result.isCollision();
     }
 }  // namespace
 
@@ -113,6 +125,32 @@ TEST(Scene, ChangesBumpTheChangeCounter)
     count = scene.changeCount();
     scene.setTime(30.);  // held after the last key frame
     EXPECT_EQ(scene.changeCount(), count);
+}
+
+TEST(Scene, SetPosesMovesEveryObstacleInOneChange)
+{
+    Scene scene;
+    scene.add(box("a", {1, 1, 1}, at(0, 0, 0)));
+    scene.add(box("b", {1, 1, 1}, at(3, 0, 0)));
+    auto count = scene.changeCount();
+    scene.setPoses({{"a", at(0, 5, 0)}, {"b", at(0, -5, 0)}});
+    EXPECT_EQ(scene.changeCount(), count + 1);  // one change for the lot
+    expectPoseNear(at(0, 5, 0), findObstacle(scene, "a").pose);
+    expectPoseNear(at(0, -5, 0), findObstacle(scene, "b").pose);
+    // the broad phase follows: the new places are occupied, the old ones free
+    EXPECT_TRUE(broadPhaseHits(scene, {0, 5, 0}));
+    EXPECT_TRUE(broadPhaseHits(scene, {0, -5, 0}));
+    EXPECT_FALSE(broadPhaseHits(scene, {0, 0, 0}));
+    EXPECT_FALSE(broadPhaseHits(scene, {3, 0, 0}));
+
+    // obstacles already where they are asked to be: no change
+    count = scene.changeCount();
+    scene.setPoses({{"a", at(0, 5, 0)}, {"b", at(0, -5, 0)}});
+    EXPECT_EQ(scene.changeCount(), count);
+    // one unknown name: nothing moves, not even the known ones before it
+    EXPECT_THROW(scene.setPoses({{"a", at(9, 9, 9)}, {"nobody", at(0, 0, 0)}}), std::out_of_range);
+    EXPECT_EQ(scene.changeCount(), count);
+    expectPoseNear(at(0, 5, 0), findObstacle(scene, "a").pose);
 }
 
 TEST(Scene, DuplicateNameThrowsNamingIt)

@@ -68,12 +68,17 @@ namespace michi
                 std::vector<Eigen::Vector3d> copyCircles(const validity::Scene &scene)
                 {
                     std::vector<Eigen::Vector3d> out;
-                    for (const auto &o : scene.obstacles())
-                        // Only the predicted copies ("<mover>~<i>") move between queries; the static scene never
-                        // changes the region.
-                        if (o.name.find('~') != std::string::npos)
-                            out.emplace_back(o.pose.translation().x(), o.pose.translation().y(),
-                                             planarRadius(*o.shape, o.pose));
+                    // visited in place: a copy of the scene's obstacles (names, shapes, trajectories) twice per query
+                    // was a measurable part of a replan's latency
+                    scene.forEachObstacle(
+                        [&](const validity::Obstacle &o)
+                        {
+                            // Only the predicted copies ("<mover>~<i>") move between queries; the static scene never
+                            // changes the region.
+                            if (o.name.find('~') != std::string::npos)
+                                out.emplace_back(o.pose.translation().x(), o.pose.translation().y(),
+                                                 planarRadius(*o.shape, o.pose));
+                        });
                     return out;
                 }
 
@@ -274,15 +279,20 @@ namespace michi
                         // for the bin's 0.05 m, whose parts move at 0.26 m/s at most with the speed jitter).
                         ob::ScopedState<> previous(tsi), state(tsi), next(tsi);
                         const double shifts[] = {0., -slack, slack};
+                        std::vector<std::string> names;
+                        for (const auto &mover : movers_)
+                            names.push_back(mover.name);
+                        std::vector<Eigen::Isometry3d> poses(movers_.size());
                         for (std::size_t k = 0; k < configurations.size(); ++k)
                             for (int i = 0; i < (slack > 0. ? 3 : 1); ++i)
                             {
                                 for (std::size_t m = 0; m < movers_.size(); ++m)
                                 {
-                                    Eigen::Isometry3d pose = lastPoses_[m];
-                                    pose.translation() += lastVelocities_[m] * std::max(0., times[k] + shifts[i]);
-                                    timed_.predicted->observe(movers_[m].name, pose, lastVelocities_[m]);
+                                    poses[m] = lastPoses_[m];
+                                    poses[m].translation() += lastVelocities_[m] * std::max(0., times[k] + shifts[i]);
                                 }
+                                // all movers at once: one broad-phase refit per time, not one per copy
+                                timed_.predicted->observe(names, poses, lastVelocities_);
                                 toState(tsi, configurations[k], state.get());
                                 if (!tsi->isValid(state.get()))
                                     return false;
@@ -322,7 +332,6 @@ namespace michi
                     if (region)
                         before = copyCircles(*planSensed_.scene);
                     planSensed_.update(movers_, snap.poses, snap.velocities);
-                    planNow_.update(movers_, snap.poses, snap.velocities);
                     if (region)
                     {
                         const auto after = copyCircles(*planSensed_.scene);
@@ -346,7 +355,9 @@ namespace michi
                     if (!psi->isValid(s.get()))
                     {
                         // escape: the start is within the margin of a (predicted) obstacle; move first, along
-                        // a straight motion free of the obstacles as they are, to a nearby state outside it
+                        // a straight motion free of the obstacles as they are, to a nearby state outside it. The
+                        // world as it is now is brought up to this snapshot only here, where escape() reads it.
+                        planNow_.update(movers_, snap.poses, snap.velocities);
                         if (!escape(s.get(), cancel))
                             return false;
                         prefix.push_back(from);

@@ -120,8 +120,11 @@ namespace michi
                 void update(const std::vector<Mover> &movers, const std::vector<Eigen::Isometry3d> &poses,
                             const std::vector<Eigen::Vector3d> &velocities)
                 {
-                    for (std::size_t k = 0; k < movers.size(); ++k)
-                        predicted->observe(movers[k].name, poses[k], velocities[k]);
+                    std::vector<std::string> names;
+                    names.reserve(movers.size());
+                    for (const auto &m : movers)
+                        names.push_back(m.name);
+                    predicted->observe(names, poses, velocities);
                 }
             };
 

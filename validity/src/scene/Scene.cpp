@@ -134,6 +134,39 @@ namespace michi
             throw std::out_of_range("scene has no obstacle named '" + name + "'");
         }
 
+        void Scene::setPoses(const std::vector<std::pair<std::string, Eigen::Isometry3d>> &poses)
+        {
+            std::unique_lock<std::shared_mutex> lock(mutex_);
+            // names first: an unknown one leaves the scene as it was
+            std::vector<Entry *> targets;
+            targets.reserve(poses.size());
+            for (const auto &p : poses)
+            {
+                const auto it = std::find_if(entries_.begin(), entries_.end(),
+                                             [&](const auto &e)
+                                             {
+                                                 return e->obstacle.name == p.first;
+                                             });
+                if (it == entries_.end())
+                    throw std::out_of_range("scene has no obstacle named '" + p.first + "'");
+                targets.push_back(it->get());
+            }
+            bool moved = false;
+            for (std::size_t i = 0; i < poses.size(); ++i)
+                // exact comparison: a pose that differs in any bit is a move (the caches that watch changeCount()
+                // must not keep a proof made for the old one)
+                if (!targets[i]->obstacle.pose.matrix().cwiseEqual(poses[i].second.matrix()).all())
+                {
+                    place(*targets[i], poses[i].second);
+                    moved = true;
+                }
+            if (!moved)
+                return;
+            // one refit for the lot: setPose() per copy refitted the whole tree every time
+            manager_.update();
+            ++changeCount_;
+        }
+
         void Scene::setTime(double t)
         {
             std::unique_lock<std::shared_mutex> lock(mutex_);
@@ -169,6 +202,13 @@ namespace michi
         {
             std::shared_lock<std::shared_mutex> lock(mutex_);
             return entries_.size();
+        }
+
+        void Scene::forEachObstacle(const std::function<void(const Obstacle &)> &visit) const
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            for (const auto &e : entries_)
+                visit(e->obstacle);
         }
 
         std::vector<Obstacle> Scene::obstacles() const

@@ -31,6 +31,10 @@ namespace michi
 
             /** A new observation: copy i goes to pose + velocity * horizon * i / (copies - 1). */
             void observe(const std::string &name, const Eigen::Isometry3d &pose, const Eigen::Vector3d &velocity);
+            /** Observations of several obstacles at once (names[k] at poses[k], moving at velocities[k]): the scene
+                changes once for all of them. Copies whose pose is unchanged are not moved. */
+            void observe(const std::vector<std::string> &names, const std::vector<Eigen::Isometry3d> &poses,
+                         const std::vector<Eigen::Vector3d> &velocities);
 
             const validity::ScenePtr &scene() const
             {

@@ -11,6 +11,7 @@
 #include <memory>
 #include <shared_mutex>
 #include <string>
+#include <functional>
 #include <vector>
 
 namespace michi
@@ -53,6 +54,11 @@ namespace michi
             bool remove(const std::string &name);
             /** \brief Move a (static) obstacle; throws std::out_of_range for an unknown name. */
             void setPose(const std::string &name, const Eigen::Isometry3d &pose);
+            /** \brief Move several obstacles at once: one refit of the broad phase and one change for all of them
+                (the copies of a prediction move together). Obstacles already at their pose are left alone, and when
+                none moves the scene does not count a change. Throws std::out_of_range for an unknown name, before
+                anything moves. */
+            void setPoses(const std::vector<std::pair<std::string, Eigen::Isometry3d>> &poses);
             /** \brief Put every moving obstacle where its trajectory says it is at time \e t. */
             void setTime(double t);
             double time() const;
@@ -60,6 +66,9 @@ namespace michi
             std::size_t size() const;
             /** \brief A copy of the obstacles (a snapshot; safe while others change the scene). */
             std::vector<Obstacle> obstacles() const;
+            /** \brief Call \e visit for every obstacle, in order, under the scene's shared lock: a look without the
+                copy obstacles() makes (\e visit must not change the scene). */
+            void forEachObstacle(const std::function<void(const Obstacle &)> &visit) const;
             /** \brief Incremented by every change (add, remove, setPose, setTime that moves something). */
             std::uint64_t changeCount() const
             {
