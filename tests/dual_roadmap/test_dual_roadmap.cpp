@@ -4,7 +4,7 @@
 // and bad files are rejected with their name; the ablation (use_learning = 0) learns nothing; the learning roadmap
 // reduces the planning work (counted, not timed) on a repeated scene change and after clear(); a change confined to a
 // region keeps what was proved elsewhere; edge probes refute a blocked motion without its motion check; a search weight
-// above 1 expands fewer vertices.
+// above 1 expands fewer vertices; a full working roadmap kept from earlier queries starts afresh once per query.
 #include "support/TestScenes.h"
 
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
@@ -154,6 +154,49 @@ TEST(DualRoadmap, WorkingRoadmapKeptWhileTheSceneDoesNotChange)
     f.query({1., 5., 0.}, {9., 5., 0.});
     ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
     EXPECT_GT(f.planner->seededEdgeCount(), 0u);
+}
+
+TEST(DualRoadmap, FullKeptRoadmapStartsAfreshOnceInsteadOfFailing)
+{
+    ompl::RNG::setSeed(11);
+    Fixture f;
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    // the gap the path went through
+    auto first = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+    first->interpolate(200);
+    double gapY = -1.;
+    for (std::size_t i = 0; i < first->getStateCount(); ++i)
+    {
+        const auto *st = first->getState(i)->as<ob::SE2StateSpace::StateType>();
+        if (std::abs(st->getX() - 5.) < 0.1)
+            gapY = st->getY();
+    }
+    ASSERT_GT(gapY, 0.);
+    // the kept roadmap is full: no room for a sample
+    f.planner->setMaxWorkingVertices(static_cast<unsigned int>(f.planner->workingVertexCount()));
+    validity::Obstacle door;
+    door.name = "door";
+    door.shape = validity::Shape::box({0.4, 1.2, 1.});
+    door.pose.translation() = Eigen::Vector3d(5., gapY < 5. ? 2.5 : 7.5, 0.);
+    f.setup.scene->add(door);
+    f.query({1., 5., 0.}, {9., 5., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION) << "the other gap needs samples the full roadmap has no room for";
+    EXPECT_EQ(f.planner->workingRestarts(), 1u);
+    auto second = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+    EXPECT_TRUE(second->check());
+
+    // both gaps closed: no path; the query starts afresh at most once and then fails, it does not loop
+    validity::Obstacle other = door;
+    other.name = "other door";
+    other.pose.translation() = Eigen::Vector3d(5., gapY < 5. ? 7.5 : 2.5, 0.);
+    f.setup.scene->add(other);
+    f.query({1., 5., 0.}, {9., 5., 0.});
+    EXPECT_NE(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_LE(f.planner->workingRestarts(), 2u);
+    // the next query again at most once
+    f.query({1., 5., 0.}, {9., 5., 0.});
+    EXPECT_NE(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_LE(f.planner->workingRestarts(), 3u);
 }
 
 TEST(DualRoadmap, AblationLearnsNothing)

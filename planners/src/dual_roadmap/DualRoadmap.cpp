@@ -776,20 +776,30 @@ namespace michi
                 OMPL_ERROR("%s: Insufficient states in sampleable goal region", getName().c_str());
                 return ob::PlannerStatus::INVALID_GOAL;
             }
-            if (graph_.vertexCount() == 0)
+            // a working roadmap kept from earlier queries may be started afresh once in this query when it is full
+            bool mayRestart = graph_.vertexCount() > 0;
+            const auto seedIfEmpty = [&](const std::vector<const ob::State *> &goalStates)
             {
+                if (graph_.vertexCount() != 0)
+                    return;
                 // an empty working roadmap: seeded from the learning roadmap near the query (a goal sample, valid
                 // or not, only orders the seeds)
                 std::vector<const ob::State *> near(starts.begin(), starts.end());
-                ob::State *g = si_->allocState();
-                goal->sampleGoal(g);
-                near.push_back(g);
+                ob::State *g = nullptr;
+                if (goalStates.empty())
+                {
+                    g = si_->allocState();
+                    goal->sampleGoal(g);
+                    near.push_back(g);
+                }
+                near.insert(near.end(), goalStates.begin(), goalStates.end());
                 seedWorking(near, ptc);
-                si_->freeState(g);
-            }
+                if (g != nullptr)
+                    si_->freeState(g);
+            };
+            seedIfEmpty({});
             for (auto *st : starts)
                 startVertices_.push_back(rememberQueryVertex(addQueryVertex(st)));
-            freeStarts();
             for (Vertex v : startVertices_)
                 connectLazily(v);
 
@@ -835,7 +845,35 @@ namespace michi
                 if (solved || ptc)
                     break;
                 if (graph_.vertexCount() >= maxWorkingVertices_)
-                    break;  // full: no path in this scene now (setMaxWorkingVertices)
+                {
+                    // Full. A roadmap kept over many queries and scene changes (the walkers' corridor: half of the
+                    // queries failed here, each after 30-90 ms) is crowded with vertices of places and scenes the
+                    // robot has left, and a larger bound only made every search slower. So once per query a kept
+                    // roadmap starts afresh, as the paper builds a working roadmap: seeded from the learning
+                    // roadmap near this query, with room to sample. A roadmap this query filled itself means no
+                    // path in this scene now (setMaxWorkingVertices).
+                    if (!mayRestart)
+                        break;
+                    mayRestart = false;
+                    ++restarts_;
+                    std::vector<const ob::State *> goalStates;
+                    for (Vertex v : goalVertices_)
+                        goalStates.push_back(si_->cloneState(graph_[v].state));
+                    freeWorking();
+                    seedIfEmpty(goalStates);
+                    for (auto *st : starts)
+                        startVertices_.push_back(rememberQueryVertex(addQueryVertex(st)));
+                    for (Vertex v : startVertices_)
+                        connectLazily(v);
+                    for (const auto *gs : goalStates)
+                    {
+                        const Vertex v = rememberQueryVertex(addQueryVertex(gs));
+                        goalVertices_.push_back(v);
+                        connectLazily(v);
+                        si_->freeState(const_cast<ob::State *>(gs));
+                    }
+                    continue;
+                }
                 // expand: a batch of uniform valid samples, connected lazily
                 // A batch rather than one sample per round: each round repeats the A* search over the whole roadmap,
                 // which would otherwise dominate once the roadmap is large.
@@ -852,6 +890,7 @@ namespace michi
                 }
             }
             si_->freeState(sample);
+            freeStarts();
             if (!solved)
                 return ob::PlannerStatus::TIMEOUT;
 

@@ -204,9 +204,11 @@ namespace michi
                 return maxLearningEdges_;
             }
 
-            /** \brief The working roadmap takes no more uniform samples beyond this many vertices: a query that
-                finds no path in it then fails (the executor asks again later, when the moving obstacles have moved)
-                instead of filling the roadmap, and every later search, with samples. */
+            /** \brief The working roadmap takes no more uniform samples beyond this many vertices. A roadmap kept
+                from earlier queries is then started afresh once (seeded from the learning roadmap near the query);
+                a query that fills a roadmap of its own and finds no path fails (the executor asks again later, when
+                the moving obstacles have moved) instead of filling the roadmap, and every later search, with
+                samples. */
             void setMaxWorkingVertices(unsigned int n)
             {
                 maxWorkingVertices_ = n;
@@ -214,6 +216,12 @@ namespace michi
             unsigned int getMaxWorkingVertices() const
             {
                 return maxWorkingVertices_;
+            }
+            /** \brief Times a full working roadmap kept from earlier queries was started afresh
+                (setMaxWorkingVertices), since construction. */
+            std::size_t workingRestarts() const
+            {
+                return restarts_;
             }
 
             /** \brief Weight factor, in the search, of an edge not (yet) proved valid in the current scene: > 1
@@ -409,6 +417,7 @@ namespace michi
             bool lazySeeding_{true};
             unsigned int maxLearningEdges_{50000};
             unsigned int maxWorkingVertices_{2000};
+            std::size_t restarts_{0};
             double unknownPenalty_{1.5};
             double refutedPenalty_{10.};
             double searchWeight_{1.};
