@@ -51,6 +51,8 @@ namespace michi
                                  &DualRoadmap::getRefutedEdgePenalty, "1.:0.5:20.");
             declareParam<unsigned int>("max_working_vertices", this, &DualRoadmap::setMaxWorkingVertices,
                                        &DualRoadmap::getMaxWorkingVertices, "10:10:1000000");
+            declareParam<bool>("restart_when_full", this, &DualRoadmap::setRestartWhenFull,
+                               &DualRoadmap::getRestartWhenFull, "0,1");
             declareParam<double>("search_weight", this, &DualRoadmap::setSearchWeight, &DualRoadmap::getSearchWeight,
                                  "1.:0.5:10.");
             declareParam<unsigned int>("edge_probes", this, &DualRoadmap::setEdgeProbes, &DualRoadmap::getEdgeProbes,
@@ -777,7 +779,7 @@ namespace michi
                 return ob::PlannerStatus::INVALID_GOAL;
             }
             // a working roadmap kept from earlier queries may be started afresh once in this query when it is full
-            bool mayRestart = graph_.vertexCount() > 0;
+            bool mayRestart = restartWhenFull_ && graph_.vertexCount() > 0;
             const auto seedIfEmpty = [&](const std::vector<const ob::State *> &goalStates)
             {
                 if (graph_.vertexCount() != 0)

@@ -217,6 +217,16 @@ namespace michi
             {
                 return maxWorkingVertices_;
             }
+            /** \brief Start a full working roadmap kept from earlier queries afresh, once per query (default);
+                false: the query fails as on a roadmap it filled itself (the ablation of this rule). */
+            void setRestartWhenFull(bool restart)
+            {
+                restartWhenFull_ = restart;
+            }
+            bool getRestartWhenFull() const
+            {
+                return restartWhenFull_;
+            }
             /** \brief Times a full working roadmap kept from earlier queries was started afresh
                 (setMaxWorkingVertices), since construction. */
             std::size_t workingRestarts() const
@@ -418,6 +428,7 @@ namespace michi
             unsigned int maxLearningEdges_{50000};
             unsigned int maxWorkingVertices_{2000};
             std::size_t restarts_{0};
+            bool restartWhenFull_{true};
             double unknownPenalty_{1.5};
             double refutedPenalty_{10.};
             double searchWeight_{1.};
