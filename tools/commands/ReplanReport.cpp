@@ -64,6 +64,11 @@ namespace michi
                         << indent << "\"episode_end_s\": [";
                     for (std::size_t i = 0; i < r.episodeEnd.size(); ++i)
                         out << (i > 0 ? ", " : "") << num(r.episodeEnd[i]);
+                    // every replan's charged latency in the order they happened: a median over a handful of replans
+                    // moves with each of them, so the list lets a reader see which ones set it
+                    out << "],\n" << indent << "\"replan_latencies_ms\": [";
+                    for (std::size_t i = 0; i < r.replanLatency.size(); ++i)
+                        out << (i > 0 ? ", " : "") << num(r.replanLatency[i]);
                     out << "],\n" << indent << "\"wall_seconds\": " << num(r.wallSeconds);
                 }
             }  // namespace
