@@ -460,7 +460,7 @@ namespace michi
                     };
                     struct CpuAnchor
                     {
-                        std::mutex mutex;  // PRM evaluates the condition in two threads
+                        std::mutex mutex;          // PRM evaluates the condition in two threads
                         double wall{0.}, cpu{0.};  // wall read first, then cpu: the pair bounds the CPU time after
                     } anchor;
                     anchor.wall = wallNow();
