@@ -2,6 +2,7 @@
 
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
 #include <michi/planners/dual_roadmap/InterferencePrediction.h>
+#include <michi/tools/commands/CpuBudget.h>
 
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ScopedState.h>
@@ -15,7 +16,6 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
-#include <mutex>
 
 #include <pthread.h>
 #include <time.h>
@@ -89,47 +89,21 @@ namespace michi
                 planners::DualRoadmap::ChangeRegion se2Region(std::vector<Eigen::Vector3d> circles, double radius,
                                                               const ob::StateSpacePtr &space)
                 {
-                    // This runs for every stale record a search meets (once per change since the record was made),
-                    // so it is made cheap: x and y read through their value locations (the compound space's
-                    // getValueAddressAtIndex() walks its components on every call), a box around all circles that
-                    // most motions miss, and squared distances.
-                    struct Reach
+                    return [circles = std::move(circles), radius, space](const ob::State *a, const ob::State *b)
                     {
-                        double x, y, r2;
-                    };
-                    std::vector<Reach> reach;
-                    reach.reserve(circles.size());
-                    double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-                    double hi[2] = {-lo[0], -lo[1]};
-                    for (const auto &c : circles)
-                    {
-                        // 1 mm of slack for rounding: conservative
-                        const double r = radius + c.z() + 1e-3;
-                        reach.push_back(Reach{c.x(), c.y(), r * r});
-                        lo[0] = std::min(lo[0], c.x() - r);
-                        hi[0] = std::max(hi[0], c.x() + r);
-                        lo[1] = std::min(lo[1], c.y() - r);
-                        hi[1] = std::max(hi[1], c.y() + r);
-                    }
-                    const auto &locations = space->getValueLocations();
-                    return [reach = std::move(reach), lox = lo[0], hix = hi[0], loy = lo[1], hiy = hi[1], space,
-                            lx = locations.at(0), ly = locations.at(1)](const ob::State *a, const ob::State *b)
-                    {
-                        const double ax = *space->getValueAddressAtLocation(a, lx);
-                        const double ay = *space->getValueAddressAtLocation(a, ly);
-                        const double bx = *space->getValueAddressAtLocation(b, lx);
-                        const double by = *space->getValueAddressAtLocation(b, ly);
-                        if (std::max(ax, bx) < lox || std::min(ax, bx) > hix || std::max(ay, by) < loy ||
-                            std::min(ay, by) > hiy)
-                            return false;
-                        const double dx = bx - ax, dy = by - ay;
-                        const double dd = dx * dx + dy * dy;
-                        for (const auto &c : reach)
+                        // x and y read in place: this runs for every stale record a search meets, so no copy
+                        const Eigen::Vector2d pa(*space->getValueAddressAtIndex(a, 0),
+                                                 *space->getValueAddressAtIndex(a, 1));
+                        const Eigen::Vector2d d = Eigen::Vector2d(*space->getValueAddressAtIndex(b, 0),
+                                                                  *space->getValueAddressAtIndex(b, 1)) -
+                                                  pa;
+                        const double dd = d.squaredNorm();
+                        for (const auto &c : circles)
                         {
-                            const double px = c.x - ax, py = c.y - ay;
-                            const double t = dd > 0. ? std::clamp((px * dx + py * dy) / dd, 0., 1.) : 0.;
-                            const double ex = px - t * dx, ey = py - t * dy;
-                            if (ex * ex + ey * ey <= c.r2)
+                            const Eigen::Vector2d p(c.x(), c.y());
+                            const double t = dd > 0. ? std::clamp((p - pa).dot(d) / dd, 0., 1.) : 0.;
+                            // 1 mm of slack for rounding: conservative
+                            if ((pa + t * d - p).norm() <= radius + c.z() + 1e-3)
                                 return true;
                         }
                         return false;
@@ -448,41 +422,20 @@ namespace michi
                         clock_gettime(cpuClock, &ts);
                         return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
                     };
-                    // Reading a thread's CPU clock is a system call (about 1.4 us on this machine), and planners
-                    // evaluate the condition at every step (DualRoadmap once per vertex and motion of a candidate
-                    // path): read on every evaluation, it was a quarter of a cheap replan's latency. A thread's CPU
-                    // time grows no faster than the wall clock (vDSO, about 30 ns), so the CPU clock is read again
-                    // only once the wall time since the last read could have used up the budget.
-                    const auto wallNow = []
-                    {
-                        return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-                            .count();
-                    };
-                    struct CpuAnchor
-                    {
-                        std::mutex mutex;          // PRM evaluates the condition in two threads
-                        double wall{0.}, cpu{0.};  // wall read first, then cpu: the pair bounds the CPU time after
-                    } anchor;
-                    anchor.wall = wallNow();
-                    anchor.cpu = cpuNow();
-                    const double cpuEnd =
-                        cpuLimit ? anchor.cpu + settings_.planningTime : std::numeric_limits<double>::infinity();
-                    const auto cpuSpent = [&anchor, cpuNow, wallNow, cpuEnd]
-                    {
-                        std::lock_guard<std::mutex> lock(anchor.mutex);
-                        const double wall = wallNow();
-                        if (anchor.cpu + (wall - anchor.wall) <= cpuEnd)
-                            return false;
-                        anchor.wall = wall;
-                        anchor.cpu = cpuNow();
-                        return anchor.cpu > cpuEnd;
-                    };
+                    // the budget reads the CPU clock (a system call) only when it could have run out (CpuBudget.h)
+                    CpuBudget budget(
+                        cpuLimit ? settings_.planningTime : std::numeric_limits<double>::infinity(), cpuNow,
+                        []
+                        {
+                            return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+                                .count();
+                        });
                     const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
                         ob::timedPlannerTerminationCondition(settings_.planningTime * (counted || cpuLimit ? 10. : 1.)),
                         ob::PlannerTerminationCondition(
-                            [&cancel, &evaluations, work, cpuLimit, &cpuSpent]
+                            [&cancel, &evaluations, work, cpuLimit, &budget]
                             {
-                                return cancel.load() || ++evaluations > work || (cpuLimit && cpuSpent());
+                                return cancel.load() || ++evaluations > work || (cpuLimit && budget.spent());
                             }));
                     const auto solveBegin = std::chrono::steady_clock::now();
                     const bool solved = planner_->solve(ptc) == ob::PlannerStatus::EXACT_SOLUTION;
