@@ -59,6 +59,23 @@ namespace
     }
 
     const std::vector<Eigen::Vector2d> SQUARE{{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-0.1, 0.1}};
+
+    /** freeOnGrid() and freePose() agree at 20,000 uniform poses of [x0, x1] x [y0, y1], of which more than 1,000
+        are refused and more than 1,000 free (so both answers were exercised). */
+    void expectFreeOnGridAgrees(const validity::HeadingTable &table, ompl::RNG &rng, double x0, double x1, double y0,
+                                double y1, const char *when)
+    {
+        int refused = 0;
+        for (int n = 0; n < 20000; ++n)
+        {
+            const double x = rng.uniformReal(x0, x1), y = rng.uniformReal(y0, y1), yaw = rng.uniformReal(-M_PI, M_PI);
+            const bool free = table.freePose(x, y, yaw);
+            ASSERT_EQ(table.freeOnGrid(x, y, yaw), free) << when << ": " << x << " " << y << " " << yaw;
+            refused += free ? 0 : 1;
+        }
+        EXPECT_GT(refused, 1000) << when;
+        EXPECT_LT(refused, 19000) << when;
+    }
 }  // namespace
 
 TEST(GridChecker, NeverValidWhereFclIsInvalidOnEveryBundledMapProblem)
@@ -254,6 +271,33 @@ TEST(GridTable, LocalUpdateEqualsRebuild)
                 ASSERT_EQ(table.valid(i, j, k), original.valid(i, j, k));
 }
 
+TEST(GridTable, ExactTestFirstOnlyForAFootprintOverTwoRowsAndStillExact)
+{
+    // A map of 0.1 m cells split into 8 x 8 table cells (as arena is): the exact test reads the map's own bits,
+    // which the small robot spans at most two rows of, so freeOnGrid() tests a pose the summaries leave open
+    // exactly rather than through the table word and the band.
+    auto g = emptyGrid(160, 160, 0.0125);
+    for (int j = 0; j < 160; ++j)
+        for (int i = 0; i < 160; ++i)
+            if (((i / 8) % 3 == 1 && (j / 8) % 4 != 0) || (j / 8) == 10)
+                g.cells[static_cast<std::size_t>(j) * 160 + i] = 1;
+    const std::vector<Eigen::Vector2d> robot{{-0.04, -0.025}, {0.04, -0.025}, {0.04, 0.025}, {-0.04, 0.025}};
+    validity::HeadingTable table(g, robot, 16);
+    ASSERT_EQ(table.coarseFactor(), 8);
+    EXPECT_TRUE(table.exactFirst());
+    // the same map with a robot over five map rows keeps the table word and the band
+    const std::vector<Eigen::Vector2d> big{{-0.2, -0.1}, {0.2, -0.1}, {0.2, 0.1}, {-0.2, 0.1}};
+    EXPECT_FALSE(validity::HeadingTable(g, big, 16).exactFirst());
+    ompl::RNG rng(5);
+    expectFreeOnGridAgrees(table, rng, 0.1, 1.9, 0.1, 1.9, "built");
+    // one table cell occupied splits a map cell: the exact test falls back to the table's own rows, which the
+    // robot spans more than two of, and the table word decides again
+    table.setOccupied({{5 * 8 + 3, 6 * 8 + 3}}, true);
+    EXPECT_EQ(table.coarseFactor(), 1);
+    EXPECT_FALSE(table.exactFirst());
+    expectFreeOnGridAgrees(table, rng, 0.1, 1.9, 0.1, 1.9, "split cell");
+}
+
 TEST(GridTable, FreeOnGridAnswersAsFreePoseThroughItsBlockSummaries)
 {
     // Thick walls (whole 8 x 8 summary blocks occupied, where freeOnGrid() answers from the block alone) and thin
@@ -268,20 +312,11 @@ TEST(GridTable, FreeOnGridAnswersAsFreePoseThroughItsBlockSummaries)
     const std::vector<Eigen::Vector2d> robot{{-0.04, -0.025}, {0.04, -0.025}, {0.04, 0.025}, {-0.04, 0.025}};
     validity::HeadingTable table(g, robot, 16);
     ompl::RNG rng(11);
+    // a footprint radius and two cells inside the grid, as GridValidityChecker pads it (beyond, the table and
+    // freePose() differ on purpose: cells past the edge are free to one, blocked to the other)
     const auto agree = [&](const char *when)
     {
-        int refused = 0;
-        for (int n = 0; n < 20000; ++n)
-        {
-            // a footprint radius and two cells inside the grid, as GridValidityChecker pads it (beyond, the table
-            // and freePose() differ on purpose: cells past the edge are free to one, blocked to the other)
-            const double x = rng.uniformReal(0.1, 2.3), y = rng.uniformReal(0.1, 1.9),
-                         yaw = rng.uniformReal(-M_PI, M_PI);
-            const bool free = table.freePose(x, y, yaw);
-            ASSERT_EQ(table.freeOnGrid(x, y, yaw), free) << when << ": " << x << " " << y << " " << yaw;
-            refused += free ? 0 : 1;
-        }
-        EXPECT_GT(refused, 1000) << when;  // the walls were hit: the blocked answers were exercised
+        expectFreeOnGridAgrees(table, rng, 0.1, 2.3, 0.1, 1.9, when);
     };
     agree("built");
     std::vector<std::pair<int, int>> room;

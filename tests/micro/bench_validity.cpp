@@ -86,6 +86,27 @@ namespace
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
     }
 
+    /** The same states as isValid, checked by the checker `--checker NAME` installs (grid, jmap, ...): the
+        baseline is isValid on the same problem (FCL). */
+    void isValidChecker(benchmark::State &bm, const std::string &name, const std::string &checkerName)
+    {
+        auto &f = fixture(name);
+        static std::map<std::string, michi::tools::PlanningContext> contexts;
+        auto it = contexts.find(name + "/" + checkerName);
+        if (it == contexts.end())
+        {
+            michi::tools::ContextOptions options;
+            options.checker = checkerName;
+            it =
+                contexts.emplace(name + "/" + checkerName, michi::tools::makePlanningContext(f.problem, options)).first;
+        }
+        const auto checker = it->second.setup->getSpaceInformation()->getStateValidityChecker();
+        std::size_t i = 0, valid = 0;
+        for (auto _ : bm)
+            valid += checker->isValid(f.states[i++ % f.states.size()]);
+        bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
+    }
+
     void clearance(benchmark::State &bm, const std::string &name)
     {
         auto &f = fixture(name);
@@ -186,6 +207,9 @@ BENCHMARK_CAPTURE(isValid, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(clearance, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(motion, discrete_panda_table_pick, std::string("panda_table_pick"), 0);
 BENCHMARK_CAPTURE(motion, workspace_panda_table_pick, std::string("panda_table_pick"), 2);
+// the grid checker against FCL on a MovingAI map (same states)
+BENCHMARK_CAPTURE(isValid, movingai_arena, std::string("movingai_arena"));
+BENCHMARK_CAPTURE(isValidChecker, grid_movingai_arena, std::string("movingai_arena"), std::string("grid"));
 // the sphere checker against the FCL ones above (same states, same motions)
 BENCHMARK_CAPTURE(isValidSpheres, xarm6_ring, std::string("xarm6_ring"), false);
 BENCHMARK_CAPTURE(isValidSpheres, panda_table_pick, std::string("panda_table_pick"), false);

@@ -162,8 +162,9 @@ namespace michi
             table_ = std::make_unique<HeadingTable>(std::move(grid), footprint_, settings.headings, tolerance_);
             // the band table where the exact test is costly: a footprint over more than a few table cells (on
             // 64room, 1.4 cells of circumradius, the exact test took about 40 ns and a band table of 6 million
-            // entries, 20 MiB, made the queries slower, not faster: measured, docs/checking.md)
-            if (exact_ && radius >= 2. * res)
+            // entries, 20 MiB, made the queries slower, not faster: measured, docs/checking.md); nor where the
+            // exact test is cheaper than a miss on the band (HeadingTable::exactFirst())
+            if (exact_ && radius >= 2. * res && !table_->exactFirst())
                 table_->buildBand();
             // points of the outline at most one cell apart, for clearance()
             for (std::size_t e = 0; e < footprint_.size(); ++e)

@@ -123,6 +123,7 @@ namespace michi
                         cells_[2 * (static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6)) + 1] |= std::uint64_t{1}
                                                                                                    << (i & 63);
             makeCoarse();
+            chooseExactFirst();
             words_.assign(2 * wordsPerRow_ * grid_.height * headings_, 0);
             makeCoreStamps();
             blockShift_ = coarse_ == 4 ? 2 : MAX_BLOCK_SHIFT;
@@ -215,13 +216,16 @@ namespace michi
             const double inv = inverseResolution_;
             const double m = (margin + tolerance_) * inv + 1e-9;
             const double ox = (x - grid_.origin.x()) * inv, oy = (y - grid_.origin.y()) * inv;
-            for (const auto &piece : pieces_)
-                for (const auto &p : piece)
-                {
-                    const double u = ox + (c * p.x() - s * p.y()) * inv, v = oy + (s * p.x() + c * p.y()) * inv;
-                    if (u - m < 0. || v - m < 0. || u + m >= grid_.width || v + m >= grid_.height)
-                        return false;
-                }
+            // most poses are further than the footprint's circle from the grid's edge: no corner to test
+            const double r = circumradius_ * inv + m;
+            if (!(ox - r >= 0. && oy - r >= 0. && ox + r < grid_.width && oy + r < grid_.height))
+                for (const auto &piece : pieces_)
+                    for (const auto &p : piece)
+                    {
+                        const double u = ox + (c * p.x() - s * p.y()) * inv, v = oy + (s * p.x() + c * p.y()) * inv;
+                        if (u - m < 0. || v - m < 0. || u + m >= grid_.width || v + m >= grid_.height)
+                            return false;
+                    }
             // On a map whose cells are whole blocks of table cells the coarse rows hold the same obstacles in a
             // fraction of the memory, so the test reads a few lines that stay in the cache (checking.md).
             if (coarse_ > 1)
@@ -346,6 +350,13 @@ namespace michi
             }
         }
 
+        void HeadingTable::chooseExactFirst()
+        {
+            // rows of the exact test's bits (coarse_ table cells each) that the footprint's circle spans
+            const double rows = 2. * circumradius_ * inverseResolution_ / coarse_;
+            exactFirst_ = rows <= 2.;
+        }
+
         void HeadingTable::updateCoarse(const CellBox &changed)
         {
             // a change that splits a block ends the coarse rows (the table's own rows answer from then on)
@@ -362,6 +373,7 @@ namespace michi
                             {
                                 coarse_ = 1;
                                 coarseCells_.clear();
+                                chooseExactFirst();
                                 return;
                             }
                     std::uint64_t &word = coarseCells_[static_cast<std::size_t>(bj) * coarseWordsPerRow_ + (bi >> 6)];

@@ -160,6 +160,8 @@ namespace michi
                 const std::uint64_t cellBlocked = cells_[2 * c + 1] & originMask_;
                 if (((cellValid | cellBlocked) >> (i & 63)) & 1u)
                     return (cellValid >> (i & 63)) & 1u;
+                if (exactFirst_)
+                    return footprintFree(x, y, yaw, 0.);
                 const std::uint64_t valid = words_[2 * word];
                 const std::uint64_t blocked = words_[2 * word + 1];  // the same cache line
                 if (((valid | blocked) >> (i & 63)) & 1u)
@@ -213,6 +215,12 @@ namespace michi
                 const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
                 const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ + (i >> 6);
                 return (((words_[2 * word + 1] | (cells_[2 * c + 1] & originMask_)) >> (i & 63)) & 1u) != 0;
+            }
+            /** \brief Does freeOnGrid() test a pose the summaries leave open exactly, without the table word
+                and the band (a footprint over at most two rows of the exact test's bits)? */
+            bool exactFirst() const
+            {
+                return exactFirst_;
             }
             /** \brief Cells per side of the summary blocks: a grid whose origin is a multiple of it from the map's
                 origin has whole map cells in its blocks (when the map cell is a whole number of table cells). */
@@ -336,6 +344,13 @@ namespace michi
                 of the grid is wholly occupied or wholly free (a map cell split by the table), so the rows hold the same
                 obstacles; on arena 51 x 51 bits instead of 406 x 406 */
             int coarse_{1};
+            /** freeOnGrid() goes to the exact test right after the cell summary, without the table word and the
+                band: the footprint spans at most two rows of the exact test's bits, so the test is a sincos and a
+                row or two of a few kilobytes that stay cached, while the table word and the band (megabytes) are a
+                miss to L3 once other work (a planner's, FCL's in verify-checker) has run (measured, checking.md) */
+            bool exactFirst_{false};
+            /** \brief Set exactFirst_ from the footprint and the exact test's rows (after coarse_ changes). */
+            void chooseExactFirst();
             int coarseWidth_{0}, coarseHeight_{0};
             std::size_t coarseWordsPerRow_{0};
             std::vector<std::uint64_t> coarseCells_;
