@@ -11,10 +11,13 @@
 #include <michi/validity/spheres/SphereMotionValidator.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <benchmark/benchmark.h>
+
+#include <array>
 
 namespace
 {
@@ -104,6 +107,33 @@ namespace
         std::size_t i = 0, valid = 0;
         for (auto _ : bm)
             valid += checker->isValid(f.states[i++ % f.states.size()]);
+        bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
+    }
+
+    /** The grid table's exact footprint test (HeadingTable::freePose) at the same states' poses: the cost of a
+        query that no summary, table word or band entry decides. */
+    void gridExactTest(benchmark::State &bm, const std::string &name)
+    {
+        auto &f = fixture(name);
+        michi::tools::ContextOptions options;
+        options.checker = "grid";
+        static std::map<std::string, michi::tools::PlanningContext> contexts;
+        auto it = contexts.find(name);
+        if (it == contexts.end())
+            it = contexts.emplace(name, michi::tools::makePlanningContext(f.problem, options)).first;
+        const michi::validity::HeadingTable &table = it->second.grid->table();
+        std::vector<std::array<double, 3>> poses;
+        for (const auto *s : f.states)
+        {
+            const auto *se2 = s->as<ompl::base::SE2StateSpace::StateType>();
+            poses.push_back({se2->getX(), se2->getY(), se2->getYaw()});
+        }
+        std::size_t i = 0, valid = 0;
+        for (auto _ : bm)
+        {
+            const auto &p = poses[i++ % poses.size()];
+            valid += table.freePose(p[0], p[1], p[2]);
+        }
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
     }
 
@@ -210,6 +240,9 @@ BENCHMARK_CAPTURE(motion, workspace_panda_table_pick, std::string("panda_table_p
 // the grid checker against FCL on a MovingAI map (same states)
 BENCHMARK_CAPTURE(isValid, movingai_arena, std::string("movingai_arena"));
 BENCHMARK_CAPTURE(isValidChecker, grid_movingai_arena, std::string("movingai_arena"), std::string("grid"));
+BENCHMARK_CAPTURE(gridExactTest, movingai_arena, std::string("movingai_arena"));
+BENCHMARK_CAPTURE(gridExactTest, movingai_64room, std::string("movingai_64room"));
+BENCHMARK_CAPTURE(gridExactTest, ros_office, std::string("ros_office"));
 // the sphere checker against the FCL ones above (same states, same motions)
 BENCHMARK_CAPTURE(isValidSpheres, xarm6_ring, std::string("xarm6_ring"), false);
 BENCHMARK_CAPTURE(isValidSpheres, panda_table_pick, std::string("panda_table_pick"), false);

@@ -23,6 +23,19 @@ namespace michi
                 return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
             }
 
+            /** floor and ceil of a value well within int's range, without a call (x86-64's baseline has no
+                rounding instruction, so std::floor is a libm call) */
+            int floorToInt(double x)
+            {
+                const int t = static_cast<int>(x);
+                return t - static_cast<int>(x < t);
+            }
+            int ceilToInt(double x)
+            {
+                const int t = static_cast<int>(x);
+                return t + static_cast<int>(x > t);
+            }
+
             /** Convex hull (Andrew's monotone chain), counter-clockwise, no repeated last point. */
             std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p)
             {
@@ -255,45 +268,37 @@ namespace michi
                     vmax = std::max(vmax, v[p]);
                 }
                 // Row j's grown band [j - m, j + 1 + m] meets [vmin, vmax] exactly for these j.
-                const int j0 = static_cast<int>(std::ceil(vmin - m - 1.)), j1 = static_cast<int>(std::floor(vmax + m));
-                // each edge's x per unit of y, once (not a division per row)
-                double slope[16];
+                const int j0 = ceilToInt(vmin - m - 1.), j1 = floorToInt(vmax + m);
+                // each edge's x per unit of y and its y range, once (not a division per row)
+                double slope[16], elo[16], ehi[16];
                 for (std::size_t p = 0; p < n; ++p)
                 {
                     const std::size_t q = p + 1 == n ? 0 : p + 1;
                     slope[p] = v[q] != v[p] ? (u[q] - u[p]) / (v[q] - v[p]) : 0.;
+                    elo[p] = std::min(v[p], v[q]);
+                    ehi[p] = std::max(v[p], v[q]);
                 }
                 for (int j = std::max(0, j0); j <= std::min(height - 1, j1); ++j)
                 {
                     const double lo = j - m, hi = j + 1. + m;
-                    double xa = std::numeric_limits<double>::infinity(), xb = -xa;
+                    // The piece's x range within the band: each edge clipped to the band (a vertex in the band is
+                    // the end of an edge, a crossing of the band's line the end of a clipped one), without a branch
+                    // per edge: which edges meet the band changes from pose to pose.
+                    const double inf = std::numeric_limits<double>::infinity();
+                    double xa = inf, xb = -inf;
                     for (std::size_t p = 0; p < n; ++p)
                     {
-                        if (v[p] >= lo && v[p] <= hi)
-                        {
-                            xa = std::min(xa, u[p]);
-                            xb = std::max(xb, u[p]);
-                        }
-                        const std::size_t q = p + 1 == n ? 0 : p + 1;
-                        // the edge crosses the band's lower or upper line
-                        if ((v[p] - lo) * (v[q] - lo) < 0.)
-                        {
-                            const double xc = u[p] + slope[p] * (lo - v[p]);
-                            xa = std::min(xa, xc);
-                            xb = std::max(xb, xc);
-                        }
-                        if ((v[p] - hi) * (v[q] - hi) < 0.)
-                        {
-                            const double xc = u[p] + slope[p] * (hi - v[p]);
-                            xa = std::min(xa, xc);
-                            xb = std::max(xb, xc);
-                        }
+                        const double ya = std::max(elo[p], lo), yb = std::min(ehi[p], hi);
+                        const double x0 = u[p] + slope[p] * (ya - v[p]), x1 = u[p] + slope[p] * (yb - v[p]);
+                        const bool meets = ya <= yb;
+                        xa = std::min(xa, meets ? std::min(x0, x1) : inf);
+                        xb = std::max(xb, meets ? std::max(x0, x1) : -inf);
                     }
                     if (!(xa <= xb))
                         continue;
                     // The same for columns: cell i's grown span [i - m, i + 1 + m] meets the piece's x range [xa, xb].
-                    const int i0 = std::max(0, static_cast<int>(std::ceil(xa - m - 1.)));
-                    const int i1 = std::min(width - 1, static_cast<int>(std::floor(xb + m)));
+                    const int i0 = std::max(0, ceilToInt(xa - m - 1.));
+                    const int i1 = std::min(width - 1, floorToInt(xb + m));
                     const std::uint64_t *row = occupied + stride * static_cast<std::size_t>(j) * wordsPerRow;
                     for (int w = i0 >> 6; w <= i1 >> 6; ++w)
                     {
