@@ -128,7 +128,9 @@ namespace michi
                 freePose(x, y, yaw), for the grid checker on grid maps, mostly from bits: a valid entry (free), the
                 pose's own cell occupied or a blocked entry (collides), then, for a band entry (invalid, not
                 blocked), its sub-entry in the BandTable (when buildBand() made one: free or colliding at every pose
-                of the sub-entry); only a pose none of them decides is tested exactly. False outside the grid. */
+                of the sub-entry); only a pose none of them decides is tested exactly. With exactFirst() the table
+                word and the band are skipped: a pose the block and cell summaries leave open is tested exactly.
+                False outside the grid. */
             bool freeOnGrid(double x, double y, double yaw) const
             {
                 const double fx = (x - grid_.origin.x()) * inverseResolution_;
