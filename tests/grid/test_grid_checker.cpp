@@ -285,7 +285,7 @@ TEST(GridTable, ExactTestFirstOnlyForAFootprintOverTwoRowsAndStillExact)
     validity::HeadingTable table(g, robot, 16);
     ASSERT_EQ(table.coarseFactor(), 8);
     EXPECT_TRUE(table.exactFirst());
-    // the same map with a robot over five map rows keeps the table word and the band
+    // the same map with a robot whose circle spans 4.5 map rows keeps the table word and the band
     const std::vector<Eigen::Vector2d> big{{-0.2, -0.1}, {0.2, -0.1}, {0.2, 0.1}, {-0.2, 0.1}};
     EXPECT_FALSE(validity::HeadingTable(g, big, 16).exactFirst());
     ompl::RNG rng(5);

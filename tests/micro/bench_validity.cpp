@@ -89,39 +89,42 @@ namespace
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
     }
 
-    /** The same states as isValid, checked by the checker `--checker NAME` installs (grid, jmap, ...): the
-        baseline is isValid on the same problem (FCL). */
-    void isValidChecker(benchmark::State &bm, const std::string &name, const std::string &checkerName)
+    /** The context `--checker NAME` makes for a fixture's problem (grid, jmap, ...), made once per problem and
+        checker. */
+    michi::tools::PlanningContext &checkerContext(Fixture &f, const std::string &name, const std::string &checkerName)
     {
-        auto &f = fixture(name);
         static std::map<std::string, michi::tools::PlanningContext> contexts;
-        auto it = contexts.find(name + "/" + checkerName);
+        const std::string key = name + "/" + checkerName;
+        auto it = contexts.find(key);
         if (it == contexts.end())
         {
             michi::tools::ContextOptions options;
             options.checker = checkerName;
-            it =
-                contexts.emplace(name + "/" + checkerName, michi::tools::makePlanningContext(f.problem, options)).first;
+            it = contexts.emplace(key, michi::tools::makePlanningContext(f.problem, options)).first;
         }
-        const auto checker = it->second.setup->getSpaceInformation()->getStateValidityChecker();
+        return it->second;
+    }
+
+    /** The same states as isValid, checked by the checker `--checker NAME` installs: the baseline is isValid on the
+        same problem (FCL). */
+    void isValidChecker(benchmark::State &bm, const std::string &name, const std::string &checkerName)
+    {
+        auto &f = fixture(name);
+        const auto checker =
+            checkerContext(f, name, checkerName).setup->getSpaceInformation()->getStateValidityChecker();
         std::size_t i = 0, valid = 0;
         for (auto _ : bm)
             valid += checker->isValid(f.states[i++ % f.states.size()]);
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
     }
 
-    /** The grid table's exact footprint test (HeadingTable::freePose) at the same states' poses: the cost of a
-        query that no summary, table word or band entry decides. */
+    /** HeadingTable::freePose at the same states' poses: its two shortcuts (the pose's own cell occupied, an entry
+        blocked at every pose) and otherwise the exact footprint test, which is what a free pose (most of them) and
+        any pose the grid checker's summaries, table word and band leave open cost. */
     void gridExactTest(benchmark::State &bm, const std::string &name)
     {
         auto &f = fixture(name);
-        michi::tools::ContextOptions options;
-        options.checker = "grid";
-        static std::map<std::string, michi::tools::PlanningContext> contexts;
-        auto it = contexts.find(name);
-        if (it == contexts.end())
-            it = contexts.emplace(name, michi::tools::makePlanningContext(f.problem, options)).first;
-        const michi::validity::HeadingTable &table = it->second.grid->table();
+        const michi::validity::HeadingTable &table = checkerContext(f, name, "grid").grid->table();
         std::vector<std::array<double, 3>> poses;
         for (const auto *s : f.states)
         {

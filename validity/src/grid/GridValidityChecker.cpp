@@ -163,7 +163,8 @@ namespace michi
             // the band table where the exact test is costly: a footprint over more than a few table cells (on
             // 64room, 1.4 cells of circumradius, the exact test took about 40 ns and a band table of 6 million
             // entries, 20 MiB, made the queries slower, not faster: measured, docs/checking.md); nor where the
-            // exact test is cheaper than a miss on the band (HeadingTable::exactFirst())
+            // exact test is cheaper than a miss on the band (HeadingTable::exactFirst()); should an update end
+            // exactFirst() there (a map cell split), freeOnGrid() reads the table word and then tests exactly
             if (exact_ && radius >= 2. * res && !table_->exactFirst())
                 table_->buildBand();
             // points of the outline at most one cell apart, for clearance()
