@@ -338,6 +338,49 @@ TEST(GridTable, FreeOnGridAnswersAsFreePoseThroughItsBlockSummaries)
     EXPECT_FALSE(table.freeOnGrid(2.1, 1.8, 0.));       // across it
 }
 
+TEST(GridTable, SuperBlocksOnALargeMapAnswerAsFreePoseBeforeAndAfterUpdates)
+{
+    // 64room's layout at a quarter of its size: map cells of 4 x 4 table cells (so summary blocks of one map cell),
+    // one-cell walls every 16 map cells with one-cell doors, and 1040 x 1040 table cells, enough blocks for the
+    // second summary level of 16 x 16 table cells. It must say only what each of its blocks says, also after a room
+    // is filled (its super-blocks must stop saying "free") and emptied again.
+    const int n = 1040;
+    auto g = emptyGrid(n, n, 0.025);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+            const int mi = i / 4, mj = j / 4;
+            if ((mi % 16 == 0 && mj % 16 != 8) || (mj % 16 == 0 && mi % 16 != 8))
+                g.cells[static_cast<std::size_t>(j) * n + i] = 1;
+        }
+    const std::vector<Eigen::Vector2d> robot{{-0.04, -0.025}, {0.04, -0.025}, {0.04, 0.025}, {-0.04, 0.025}};
+    validity::HeadingTable table(g, robot, 16);
+    ASSERT_EQ(table.coarseFactor(), 4);
+    ASSERT_EQ(table.superBlockCells(), 16);
+    // a 96 x 96-cell map has no second level
+    EXPECT_EQ(validity::HeadingTable(emptyGrid(96, 96, 0.025), robot, 16).superBlockCells(), 0);
+    ompl::RNG rng(13);
+    const double lo = 0.1, hi = n * 0.025 - 0.1;
+    expectFreeOnGridAgrees(table, rng, lo, hi, lo, hi, "built");
+    // most of the room of map cells 17-31 (table cells 72-119 in both directions), filled, then emptied but for one
+    // column
+    std::vector<std::pair<int, int>> room, open;
+    for (int j = 72; j < 120; ++j)
+        for (int i = 72; i < 120; ++i)
+        {
+            room.emplace_back(i, j);
+            if (i != 96)
+                open.emplace_back(i, j);
+        }
+    EXPECT_TRUE(table.freeOnGrid(2.4, 2.4, 0.3));  // the room's middle, before
+    table.setOccupied(room, true);
+    EXPECT_FALSE(table.freeOnGrid(2.4, 2.4, 0.3));
+    expectFreeOnGridAgrees(table, rng, 1.0, 4.0, 1.0, 4.0, "room filled");
+    table.setOccupied(open, false);
+    expectFreeOnGridAgrees(table, rng, 1.0, 4.0, 1.0, 4.0, "room emptied but a column");
+    expectFreeOnGridAgrees(table, rng, lo, hi, lo, hi, "after both updates");
+}
+
 TEST(GridTable, A512MapWith16HeadingsStaysUnder64MiB)
 {
     const auto g = emptyGrid(512, 512, 0.1);

@@ -142,9 +142,15 @@ namespace michi
             blockShift_ = coarse_ == 4 ? 2 : MAX_BLOCK_SHIFT;
             blocksPerRow_ = (static_cast<std::size_t>(grid_.width) >> blockShift_) + 1;
             const std::size_t blocks = blocksPerRow_ * ((static_cast<std::size_t>(grid_.height) >> blockShift_) + 1);
-            blockAllValid_.assign(blocks / 64 + 1, 0);
+            blocks_.assign(2 * (blocks / 64 + 1), 0);
             blockAllInvalid_.assign(blocks / 64 + 1, 0);
-            blockAllBlocked_.assign(blocks / 64 + 1, 0);
+            superShift_ = blocks_.size() * sizeof(std::uint64_t) > SUPER_MIN_BYTES ? blockShift_ + SUPER_SHIFT : 0;
+            if (superShift_ != 0)
+            {
+                supersPerRow_ = (static_cast<std::size_t>(grid_.width) >> superShift_) + 1;
+                supers_.assign(
+                    2 * (supersPerRow_ * ((static_cast<std::size_t>(grid_.height) >> superShift_) + 1) / 64 + 1), 0);
+            }
             cellAllInvalid_.assign(wordsPerRow_ * grid_.height, 0);
             computeRegion(CellBox{0, grid_.width - 1, 0, grid_.height - 1});
         }
@@ -190,12 +196,40 @@ namespace michi
                             }
                     const std::size_t b = static_cast<std::size_t>(bj) * blocksPerRow_ + static_cast<std::size_t>(bi);
                     const std::uint64_t bit = std::uint64_t{1} << (b & 63);
-                    blockAllValid_[b >> 6] =
-                        allValid ? (blockAllValid_[b >> 6] | bit) : (blockAllValid_[b >> 6] & ~bit);
+                    std::uint64_t &valid = blocks_[2 * (b >> 6)], &blocked = blocks_[2 * (b >> 6) + 1];
+                    valid = allValid ? (valid | bit) : (valid & ~bit);
+                    blocked = allBlocked ? (blocked | bit) : (blocked & ~bit);
                     blockAllInvalid_[b >> 6] =
                         allInvalid ? (blockAllInvalid_[b >> 6] | bit) : (blockAllInvalid_[b >> 6] & ~bit);
-                    blockAllBlocked_[b >> 6] =
-                        allBlocked ? (blockAllBlocked_[b >> 6] | bit) : (blockAllBlocked_[b >> 6] & ~bit);
+                }
+            if (superShift_ == 0)
+                return;
+            const std::size_t blockRows = (static_cast<std::size_t>(grid_.height) >> blockShift_) + 1;
+            const int t = superShift_ - blockShift_;
+            for (int sj = box.j0 >> superShift_; sj <= box.j1 >> superShift_; ++sj)
+                for (int si = box.i0 >> superShift_; si <= box.i1 >> superShift_; ++si)
+                {
+                    // a super-block says only what each of its blocks says; one reaching past the blocks says nothing
+                    bool allValid = true, allBlocked = true;
+                    for (int bj = sj << t; bj < (sj + 1) << t; ++bj)
+                        for (int bi = si << t; bi < (si + 1) << t; ++bi)
+                        {
+                            if (static_cast<std::size_t>(bi) >= blocksPerRow_ ||
+                                static_cast<std::size_t>(bj) >= blockRows)
+                            {
+                                allValid = allBlocked = false;
+                                continue;
+                            }
+                            const std::size_t b =
+                                static_cast<std::size_t>(bj) * blocksPerRow_ + static_cast<std::size_t>(bi);
+                            allValid = allValid && ((blocks_[2 * (b >> 6)] >> (b & 63)) & 1u);
+                            allBlocked = allBlocked && ((blocks_[2 * (b >> 6) + 1] >> (b & 63)) & 1u);
+                        }
+                    const std::size_t u = static_cast<std::size_t>(sj) * supersPerRow_ + static_cast<std::size_t>(si);
+                    const std::uint64_t bit = std::uint64_t{1} << (u & 63);
+                    std::uint64_t &valid = supers_[2 * (u >> 6)], &blocked = supers_[2 * (u >> 6) + 1];
+                    valid = allValid ? (valid | bit) : (valid & ~bit);
+                    blocked = allBlocked ? (blocked | bit) : (blocked & ~bit);
                 }
         }
 
@@ -783,8 +817,8 @@ namespace michi
 
         std::size_t HeadingTable::bytes() const
         {
-            return (words_.size() + blockAllValid_.size() + blockAllInvalid_.size() + blockAllBlocked_.size() +
-                    cells_.size() + cellAllInvalid_.size() + coarseCells_.size()) *
+            return (words_.size() + blocks_.size() + blockAllInvalid_.size() + supers_.size() + cells_.size() +
+                    cellAllInvalid_.size() + coarseCells_.size()) *
                        sizeof(std::uint64_t) +
                    grid_.cells.size() + band_.bytes();
         }

@@ -110,7 +110,7 @@ namespace michi
                 // most queries end here: blocks valid (or invalid) at every heading, a few kB
                 const std::size_t b = static_cast<std::size_t>(j >> blockShift_) * blocksPerRow_ +
                                       static_cast<std::size_t>(i >> blockShift_);
-                if ((blockAllValid_[b >> 6] >> (b & 63)) & 1u)
+                if ((blocks_[2 * (b >> 6)] >> (b & 63)) & 1u)
                     return true;
                 if ((blockAllInvalid_[b >> 6] >> (b & 63)) & 1u)
                     return false;
@@ -138,25 +138,41 @@ namespace michi
                 if (!(fx >= 0. && fy >= 0. && fx < grid_.width && fy < grid_.height && std::abs(yaw) < 1e6))
                     return false;
                 const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+                if (superShift_ != 0)
+                {
+                    // where the block summary outgrows the first-level cache (64room: 64 KiB), blocks of 4 x 4
+                    // blocks first (4 KiB), which FCL's work between a planner's queries does not evict
+                    const std::size_t s = static_cast<std::size_t>(j >> superShift_) * supersPerRow_ +
+                                          static_cast<std::size_t>(i >> superShift_);
+                    const std::uint64_t superValid = supers_[2 * (s >> 6)];
+                    const std::uint64_t superBlocked = supers_[2 * (s >> 6) + 1];
+                    if (((superValid | superBlocked) >> (s & 63)) & 1u)
+                        return (superValid >> (s & 63)) & 1u;
+                }
                 const std::size_t b = static_cast<std::size_t>(j >> blockShift_) * blocksPerRow_ +
                                       static_cast<std::size_t>(i >> blockShift_);
                 // Most queries end at their block: free at every pose, or colliding at every pose (inside a wall:
                 // with the table aligned to the map, an occupied map cell of 8 x 8 or 4 x 4 table cells is a whole
                 // block). One branch for "the block decides" and the answer as data: a branch on the answer itself
                 // mispredicts as often as free and colliding poses alternate.
-                const std::uint64_t blockValid = blockAllValid_[b >> 6], blockBlocked = blockAllBlocked_[b >> 6];
+                const std::uint64_t blockValid = blocks_[2 * (b >> 6)];
+                const std::uint64_t blockBlocked = blocks_[2 * (b >> 6) + 1];  // the same cache line
                 if (((blockValid | blockBlocked) >> (b & 63)) & 1u)
                     return (blockValid >> (b & 63)) & 1u;
-                double fb;
-                const int k = fastHeadingBin(yaw, fb);
-                const std::size_t word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
-                // the three cache lines a query may need next are fetched at once, not one after the other (on a
-                // large map, after other work, each is a miss)
-                __builtin_prefetch(&words_[2 * word]);
-                if (!band_.empty())
-                    __builtin_prefetch(band_.record(word));
                 // the cell's "valid at every heading" and "occupied" bits share a cache line
                 const std::size_t c = static_cast<std::size_t>(j) * wordsPerRow_ + static_cast<std::size_t>(i >> 6);
+                double fb = 0.;
+                std::size_t word = 0;
+                if (!exactFirst_)  // with exactFirst() no table word is read: nothing to fetch
+                {
+                    const int k = fastHeadingBin(yaw, fb);
+                    word = (static_cast<std::size_t>(k) * grid_.height + j) * wordsPerRow_ + (i >> 6);
+                    // the three cache lines a query may need next are fetched at once, not one after the other (on
+                    // a large map, after other work, each is a miss)
+                    __builtin_prefetch(&words_[2 * word]);
+                    if (!band_.empty())
+                        __builtin_prefetch(band_.record(word));
+                }
                 // valid at every heading, or occupied while the footprint holds the origin: the cell decides
                 const std::uint64_t cellValid = cells_[2 * c];
                 const std::uint64_t cellBlocked = cells_[2 * c + 1] & originMask_;
@@ -241,6 +257,12 @@ namespace michi
             const std::vector<GridSpan> &stamp(int k) const
             {
                 return stamps_[static_cast<std::size_t>(k)];
+            }
+            /** \brief Table cells per side of the second summary level freeOnGrid() reads before the blocks (0:
+                none; made where the block summary outgrows the first-level cache). */
+            int superBlockCells() const
+            {
+                return superShift_ == 0 ? 0 : 1 << superShift_;
             }
             /** \brief Table cells per side of the coarse occupancy the exact test reads (1: it reads the table's own
                 rows). */
@@ -328,9 +350,18 @@ namespace michi
             std::vector<std::uint64_t> words_;
             std::vector<std::vector<GridSpan>> coreStamps_;
             std::size_t blocksPerRow_{0};
-            std::vector<std::uint64_t> blockAllValid_;    ///< per block: every entry valid
+            /** per block, two words per 64 blocks: every entry valid, then every entry blocked (all poses collide),
+                so that freeOnGrid() finds both in one cache line (64room's blocks are single map cells: 32 KiB a
+                summary, past the first-level cache, so a second array cost a second line) */
+            std::vector<std::uint64_t> blocks_;
             std::vector<std::uint64_t> blockAllInvalid_;  ///< per block: every entry invalid
-            std::vector<std::uint64_t> blockAllBlocked_;  ///< per block: every entry blocked (all poses collide)
+            /** blocks of SUPER_BLOCKS x SUPER_BLOCKS blocks, laid out as blocks_ (valid, blocked): set only where
+                every block in it is; used when blocks_ exceeds SUPER_MIN_BYTES (superShift_ 0: none) */
+            static constexpr int SUPER_SHIFT = 2;
+            static constexpr std::size_t SUPER_MIN_BYTES = 16 * 1024;
+            int superShift_{0};
+            std::size_t supersPerRow_{0};
+            std::vector<std::uint64_t> supers_;
             std::uint64_t originMask_{0};  ///< all ones when originInside_: an occupied cell then blocks its poses
             /** per cell, two words per 64 cells (j, i / 64): valid at every heading, then occupied */
             std::vector<std::uint64_t> cells_;
