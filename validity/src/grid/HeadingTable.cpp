@@ -1,6 +1,8 @@
 #include <michi/validity/grid/HeadingTable.h>
 #include <michi/validity/scene/Shape.h>
 
+#include "../FastSinCos.h"
+
 #include <boost/math/constants/constants.hpp>
 
 #include <algorithm>
@@ -257,7 +259,8 @@ namespace michi
 
         bool HeadingTable::footprintFree(double x, double y, double yaw, double margin) const
         {
-            const double c = std::cos(yaw), s = std::sin(yaw);
+            double s, c;
+            fastSinCos(yaw, s, c);
             // cells beyond the grid may hold obstacles the grid does not know: a footprint reaching there is not free
             // (in table cells, whichever rows answer below; the 1e-9 turns a touch at round-off into a collision)
             const double inv = inverseResolution_;
