@@ -259,8 +259,16 @@ namespace michi
 
         bool HeadingTable::footprintFree(double x, double y, double yaw, double margin) const
         {
+            // the polynomial's reduction by pi/2 is exact below 1e6 rad (k pi/2 subtracted without rounding);
+            // a larger yaw, from a caller that keeps no bounds, goes to the C library, which reduces any angle exactly
             double s, c;
-            fastSinCos(yaw, s, c);
+            if (std::abs(yaw) < 1e6)
+                fastSinCos(yaw, s, c);
+            else
+            {
+                s = std::sin(yaw);
+                c = std::cos(yaw);
+            }
             // cells beyond the grid may hold obstacles the grid does not know: a footprint reaching there is not free
             // (in table cells, whichever rows answer below; the 1e-9 turns a touch at round-off into a collision)
             const double inv = inverseResolution_;
