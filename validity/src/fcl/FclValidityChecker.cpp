@@ -5,6 +5,7 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <cmath>
 #include <mutex>
 #include <sstream>
 
@@ -14,6 +15,17 @@ namespace michi
     {
         namespace
         {
+            /** OMPL's satisfiesBounds() lets a NaN through (every comparison with it is false), and a NaN pose is no
+                pose at all (test NonFiniteStates.AreInvalidForEveryChecker): such a state is refused before the
+               geometry. */
+            bool allFinite(const std::vector<double> &values)
+            {
+                for (const double v : values)
+                    if (!std::isfinite(v))
+                        return false;
+                return true;
+            }
+
             /** Do \e a and \e b touch? FCL's default request (it stops at the first contact) with its default
                 solver, libccd; but libccd calls two convex polytopes (SE(2) footprints, extruded polygons) in contact
                 when they are up to 4.4 cm apart (31 of 200,000 poses near dynamic_mobile_passage's block), so its
@@ -214,14 +226,14 @@ namespace michi
                 return false;
             std::vector<double> values;
             toReals(state, values);
-            return isValidConfiguration(values.data());
+            return allFinite(values) && isValidConfiguration(values.data());
         }
 
         bool FclValidityChecker::isValid(const ompl::base::State *state, double &dist) const
         {
             std::vector<double> values;
             toReals(state, values);
-            if (!si_->satisfiesBounds(state) || !isValidConfiguration(values.data()))
+            if (!si_->satisfiesBounds(state) || !allFinite(values) || !isValidConfiguration(values.data()))
             {
                 dist = 0.;
                 return false;

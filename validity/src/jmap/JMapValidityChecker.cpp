@@ -196,6 +196,9 @@ namespace michi
         bool JMapValidityChecker::isValidConfiguration(const double *values) const
         {
             const double t1 = values[value1_], t2 = values[value2_];
+            // OMPL's satisfiesBounds() lets a NaN through; a map lookup would take it for a free point
+            if (!std::isfinite(t1) || !std::isfinite(t2))
+                return false;
             const JMap &map = tile(t1);
             if (map.collides(t1, t2))
             {

@@ -687,12 +687,13 @@ namespace michi
             if (realVector_ != nullptr)
             {
                 // The common case (an arm's joint vector): the values are read in place; the bounds test is
-                // RealVectorStateSpace::satisfiesBounds' own (a value may pass a bound by one epsilon).
+                // RealVectorStateSpace::satisfiesBounds' own (a value may pass a bound by one epsilon), written so
+                // that a value that is not a number fails it (every comparison with NaN is false).
                 const double *v = state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
                 const auto &bounds = realVector_->getBounds();
                 for (std::size_t i = 0; i < bounds.low.size(); ++i)
-                    if (v[i] - std::numeric_limits<double>::epsilon() > bounds.high[i] ||
-                        v[i] + std::numeric_limits<double>::epsilon() < bounds.low[i])
+                    if (!(v[i] - std::numeric_limits<double>::epsilon() <= bounds.high[i] &&
+                          v[i] + std::numeric_limits<double>::epsilon() >= bounds.low[i]))
                         return false;
                 return isValidConfiguration(v);
             }
