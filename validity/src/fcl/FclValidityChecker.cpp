@@ -18,10 +18,10 @@ namespace michi
             /** OMPL's satisfiesBounds() lets a NaN through (every comparison with it is false), and a NaN pose is no
                 pose at all (test NonFiniteStates.AreInvalidForEveryChecker): such a state is refused before the
                geometry. */
-            bool allFinite(const std::vector<double> &values)
+            bool allFinite(const double *values, std::size_t n)
             {
-                for (const double v : values)
-                    if (!std::isfinite(v))
+                for (std::size_t i = 0; i < n; ++i)
+                    if (!std::isfinite(values[i]))
                         return false;
                 return true;
             }
@@ -226,14 +226,14 @@ namespace michi
                 return false;
             std::vector<double> values;
             toReals(state, values);
-            return allFinite(values) && isValidConfiguration(values.data());
+            return isValidConfiguration(values.data());
         }
 
         bool FclValidityChecker::isValid(const ompl::base::State *state, double &dist) const
         {
             std::vector<double> values;
             toReals(state, values);
-            if (!si_->satisfiesBounds(state) || !allFinite(values) || !isValidConfiguration(values.data()))
+            if (!si_->satisfiesBounds(state) || !isValidConfiguration(values.data()))
             {
                 dist = 0.;
                 return false;
@@ -251,7 +251,8 @@ namespace michi
 
         bool FclValidityChecker::isValidConfiguration(const double *values) const
         {
-            return describeCollision(values).empty();
+            // here rather than in isValid(state): the J-map checker's fallback and other callers pass raw values
+            return allFinite(values, bodies_->dimension()) && describeCollision(values).empty();
         }
 
         std::string FclValidityChecker::describeCollision(const double *values) const

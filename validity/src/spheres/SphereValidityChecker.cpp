@@ -701,6 +701,10 @@ namespace michi
                 return false;
             thread_local std::vector<double> values;
             toReals(state, values);
+            // a NaN passes satisfiesBounds(): refused here, as the joint vector's bounds test above refuses it
+            for (const double v : values)
+                if (!std::isfinite(v))
+                    return false;
             return isValidConfiguration(values.data());
         }
 
