@@ -4,9 +4,6 @@
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/Problem.h>
 
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/base/spaces/SE2StateSpace.h>
-
 #include <gtest/gtest.h>
 
 #include <limits>

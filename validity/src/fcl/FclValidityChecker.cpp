@@ -15,9 +15,9 @@ namespace michi
     {
         namespace
         {
-            /** OMPL's satisfiesBounds() lets a NaN through (every comparison with it is false), and a NaN pose is no
-                pose at all (test NonFiniteStates.AreInvalidForEveryChecker): such a state is refused before the
-               geometry. */
+            /** OMPL's satisfiesBounds() lets a NaN through (every comparison with it is false), and FCL took a NaN
+                pose for free (test NonFiniteStates.AreInvalidForEveryChecker): such a state is refused before the
+                geometry. */
             bool allFinite(const double *values, std::size_t n)
             {
                 for (std::size_t i = 0; i < n; ++i)

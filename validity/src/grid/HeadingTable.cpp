@@ -259,8 +259,8 @@ namespace michi
 
         bool HeadingTable::footprintFree(double x, double y, double yaw, double margin) const
         {
-            // the polynomial's reduction by pi/2 is exact below 1e6 rad (k pi/2 subtracted without rounding);
-            // a larger yaw, from a caller that keeps no bounds, goes to the C library, which reduces any angle exactly
+            // the polynomial subtracts k pi/2 without rounding while k stays below 2^20 (about 1.6e6 rad); a yaw of
+            // 1e6 rad or more, from a caller that keeps no bounds, goes to the C library, which reduces any angle
             double s, c;
             if (std::abs(yaw) < 1e6)
                 fastSinCos(yaw, s, c);

@@ -355,8 +355,9 @@ namespace michi
                 summary, past the first-level cache, so a second array cost a second line) */
             std::vector<std::uint64_t> blocks_;
             std::vector<std::uint64_t> blockAllInvalid_;  ///< per block: every entry invalid
-            /** blocks of SUPER_BLOCKS x SUPER_BLOCKS blocks, laid out as blocks_ (valid, blocked): set only where
-                every block in it is; used when blocks_ exceeds SUPER_MIN_BYTES (superShift_ 0: none) */
+            /** super-blocks of 2^SUPER_SHIFT x 2^SUPER_SHIFT blocks, laid out as blocks_ (valid, blocked): a bit is
+                set only where it is set for every block inside; made when blocks_ exceeds SUPER_MIN_BYTES
+                (superShift_ 0: none) */
             static constexpr int SUPER_SHIFT = 2;
             static constexpr std::size_t SUPER_MIN_BYTES = 16 * 1024;
             int superShift_{0};
