@@ -18,6 +18,10 @@ namespace michi
             constexpr float REACH = 0.3f;
             /** Float rounding of the kernels and of the cell centres stays far below this (metres). */
             constexpr float MARGIN = 1e-4f;
+            /** Cells of a mesh's own field at most (2 bytes each), and how far around the mesh's box it reaches
+                (metres): beyond it a sphere smaller than that is clear without a lookup. */
+            constexpr std::size_t MAX_MESH_CELLS = 1u << 17;
+            constexpr float MESH_REACH = 0.1f;
         }  // namespace
 
         void SphereObstacles::countQuery() const
@@ -124,7 +128,82 @@ namespace michi
                         cells[i] = static_cast<std::uint8_t>(
                             std::min(std::floor(std::max(row[i] - MARGIN, 0.f) / DistanceGrid::STEP), 255.f));
                 }
+            grid->meshFields.reserve(meshes_.size());
+            for (const Mesh &mesh : meshes_)
+                grid->meshFields.push_back(buildMeshField(mesh));
             return grid;
+        }
+
+        SphereObstacles::MeshField SphereObstacles::buildMeshField(const Mesh &mesh) const
+        {
+            MeshField field;
+            Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+            Eigen::Vector3f hi = -lo;
+            for (const Eigen::Vector3f &c : mesh.corners)
+            {
+                lo = lo.cwiseMin(c);
+                hi = hi.cwiseMax(c);
+            }
+            if (mesh.corners.empty())
+                return field;  // no cell: every query walks (and finds nothing)
+            field.reach = MESH_REACH;
+            field.lo = lo - Eigen::Vector3f::Constant(MESH_REACH);
+            const Eigen::Vector3f extent = hi - lo + Eigen::Vector3f::Constant(2.f * MESH_REACH);
+            float cell = std::cbrt(extent.prod() / static_cast<float>(MAX_MESH_CELLS));
+            cell = std::max(cell, extent.maxCoeff() / static_cast<float>(MAX_PER_AXIS));
+            cell = std::max(cell, 0.002f);
+            for (;; cell *= 1.01f)
+            {
+                field.nx = static_cast<int>(std::ceil(extent.x() / cell));
+                field.ny = static_cast<int>(std::ceil(extent.y() / cell));
+                field.nz = static_cast<int>(std::ceil(extent.z() / cell));
+                if (field.nx <= MAX_PER_AXIS && field.ny <= MAX_PER_AXIS && field.nz <= MAX_PER_AXIS &&
+                    static_cast<std::size_t>(field.nx) * field.ny * field.nz <= MAX_MESH_CELLS)
+                    break;
+            }
+            field.cell = cell;
+            field.inverse = 1.f / cell;
+            // Exact distances only up to a cell beyond the reach: a walk with that limit prunes the far cells early,
+            // and a sphere that far out is decided by the lower bound alone.
+            const float limit = MESH_REACH + cell;
+            field.farBound = limit - MARGIN;
+            field.steps.assign(static_cast<std::size_t>(field.nx) * field.ny * field.nz, MeshField::FAR);
+            std::size_t at = 0;
+            for (int k = 0; k < field.nz; ++k)
+                for (int j = 0; j < field.ny; ++j)
+                    for (int i = 0; i < field.nx; ++i, ++at)
+                    {
+                        const Eigen::Vector3f c = field.lo + cell * Eigen::Vector3f(i + 0.5f, j + 0.5f, k + 0.5f);
+                        const float d = meshDistance(mesh, c, limit);
+                        if (d < limit)
+                            // rounded down after the margin: the stored distance never exceeds the true one
+                            field.steps[at] = static_cast<std::uint16_t>(std::min(
+                                std::floor(std::max(d - MARGIN, 0.f) / MeshField::STEP), MeshField::FAR - 1.f));
+                    }
+            return field;
+        }
+
+        int SphereObstacles::MeshField::decide(const Eigen::Vector3f &p, float r) const
+        {
+            const Eigen::Vector3f u = (p - lo) * inverse;
+            if (!((u.array() >= 0.f).all() && u.x() < nx && u.y() < ny && u.z() < nz))
+                // outside the field: more than reach from the mesh's box on some axis, so from every triangle
+                return r < reach - MARGIN ? -1 : 0;
+            const int i = static_cast<int>(u.x()), j = static_cast<int>(u.y()), k = static_cast<int>(u.z());
+            const Eigen::Vector3f centre = lo + cell * Eigen::Vector3f(i + 0.5f, j + 0.5f, k + 0.5f);
+            // 1-Lipschitz both ways: the distance at p is within |p - centre| of the centre's
+            const float off = (p - centre).norm();
+            const std::uint16_t q = steps[(static_cast<std::size_t>(k) * ny + j) * nx + i];
+            if (q == FAR)
+                return farBound - off >= r ? -1 : 0;
+            // stored: floor((d - MARGIN) / STEP), so the centre's distance d lies in [q STEP + MARGIN, (q + 1) STEP +
+            // MARGIN), up to the walk's float round-off, which the second MARGIN covers: clear by at least MARGIN,
+            // or nearer than r by at least that
+            if (STEP * q - off >= r)
+                return -1;
+            if (STEP * (q + 1) + 2.f * MARGIN + off < r)
+                return 1;
+            return 0;
         }
     }  // namespace validity
 }  // namespace michi

@@ -390,10 +390,23 @@ namespace michi
             if (kind_[o] == MESH)
             {
                 const Mesh &mesh = meshes_[index_[o]];
+                const DistanceGrid *grid = grid_.load(std::memory_order_acquire);
+                const MeshField *field =
+                    grid != nullptr ? &grid->meshFields[static_cast<std::size_t>(index_[o])] : nullptr;
                 for (int i = 0; i < b.n; ++i)
+                {
+                    const Eigen::Vector3f p(b.x[i], b.y[i], b.z[i]);
+                    const int known = field != nullptr ? field->decide(p, b.r[i]) : 0;
+                    if (known != 0)
+                    {
+                        if (known > 0)
+                            return true;
+                        continue;
+                    }
                     // The radius as the limit: the walk only has to find something nearer than the sphere's surface.
-                    if (meshDistance(mesh, Eigen::Vector3f(b.x[i], b.y[i], b.z[i]), b.r[i]) < b.r[i])
+                    if (meshDistance(mesh, p, b.r[i]) < b.r[i])
                         return true;
+                }
                 return false;
             }
             // Batches of 256: the kernels' arrays live on the stack with at most 256 entries (Arr above).

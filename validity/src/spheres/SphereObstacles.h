@@ -88,6 +88,26 @@ namespace michi
             std::size_t gridCells() const;
 
         private:
+            /** Distances from cell centres to one mesh's triangles over a box around the mesh, in both directions
+                bounded: a sphere clear of the mesh or in it by more than the cell's reach is decided by one lookup,
+                and only spheres whose surface lies within about a cell of the mesh walk its tree (on xarm6_ring the
+                walks were a quarter of a state check's time: docs/checking.md). */
+            struct MeshField
+            {
+                Eigen::Vector3f lo;  ///< the field's lowest corner
+                float cell{1.f}, inverse{1.f};
+                int nx{0}, ny{0}, nz{0};
+                float reach{0.f};  ///< how far beyond the mesh's box the field reaches
+                /** per cell, x fastest: the distance from its centre to the mesh in STEPs, rounded down (lowered by
+                    the float margin first), or FAR */
+                std::vector<std::uint16_t> steps;
+                static constexpr float STEP = 5e-5f;          ///< metres; 65534 steps reach 3.2 m
+                static constexpr std::uint16_t FAR = 0xffff;  ///< no triangle within farBound of the cell's centre
+                float farBound{0.f};                          ///< the distance a FAR cell's centre has at least
+                /** -1: the sphere (p, r) is clear of the mesh; 1: it meets the mesh (distance below r); 0: the field
+                    cannot tell (the caller walks the tree). */
+                int decide(const Eigen::Vector3f &p, float r) const;
+            };
             /** Distances from cell centres to the nearest obstacle over a box around the obstacles; outside it, the
                 distance to the obstacles' bounding box. */
             struct DistanceGrid
@@ -99,6 +119,7 @@ namespace michi
                 /** per cell, x fastest: the distance in STEPs, rounded down (already lowered by the float margin); a
                     byte keeps the grid in a quarter of the memory, so its lookups stay in a core's cache */
                 std::vector<std::uint8_t> distance;
+                std::vector<MeshField> meshFields;     ///< per mesh (index_ of a MESH obstacle)
                 static constexpr float STEP = 0.002f;  ///< metres; 255 steps: distances from 0.51 m on read as 0.51 m
                 float bound(const Eigen::Vector3f &p) const
                 {
@@ -156,6 +177,7 @@ namespace michi
             template <typename A, typename In, typename Out>
             void squaredDistancesOf(int o, const In &x, const In &y, const In &z, Out &d2) const;
             float meshDistance(const Mesh &mesh, const Eigen::Vector3f &p, float limit) const;
+            MeshField buildMeshField(const Mesh &mesh) const;
             void addMesh(const Obstacle &obstacle);
 
             std::uint64_t version_{0};
