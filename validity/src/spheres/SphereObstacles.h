@@ -94,7 +94,7 @@ namespace michi
                 walks were a quarter of a state check's time: docs/checking.md). */
             struct MeshField
             {
-                Eigen::Vector3f lo;  ///< the field's lowest corner
+                Eigen::Vector3f lo{Eigen::Vector3f::Zero()};  ///< the field's lowest corner
                 float cell{1.f}, inverse{1.f};
                 int nx{0}, ny{0}, nz{0};
                 float reach{0.f};  ///< how far beyond the mesh's box the field reaches
