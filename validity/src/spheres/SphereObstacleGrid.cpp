@@ -22,6 +22,24 @@ namespace michi
                 (metres): beyond it a sphere smaller than that is clear without a lookup. */
             constexpr std::size_t MAX_MESH_CELLS = 1u << 17;
             constexpr float MESH_REACH = 0.1f;
+
+            /** The finest cell, at least \e smallest metres, that covers \e extent with at most \e maxCells cells
+                and MAX_PER_AXIS per axis; the cell counts per axis go to \e nx, \e ny, \e nz. */
+            float fitCells(const Eigen::Vector3f &extent, std::size_t maxCells, float smallest, int &nx, int &ny,
+                           int &nz)
+            {
+                float cell = std::cbrt(extent.prod() / static_cast<float>(maxCells));
+                cell = std::max({cell, extent.maxCoeff() / static_cast<float>(MAX_PER_AXIS), smallest});
+                for (;; cell *= 1.01f)
+                {
+                    nx = static_cast<int>(std::ceil(extent.x() / cell));
+                    ny = static_cast<int>(std::ceil(extent.y() / cell));
+                    nz = static_cast<int>(std::ceil(extent.z() / cell));
+                    if (nx <= MAX_PER_AXIS && ny <= MAX_PER_AXIS && nz <= MAX_PER_AXIS &&
+                        static_cast<std::size_t>(nx) * ny * nz <= maxCells)
+                        return cell;
+                }
+            }
         }  // namespace
 
         void SphereObstacles::countQuery() const
@@ -73,19 +91,7 @@ namespace michi
             grid->boundHi = hi;
             grid->lo = lo - Eigen::Vector3f::Constant(REACH);
             const Eigen::Vector3f extent = hi + Eigen::Vector3f::Constant(REACH) - grid->lo;
-            // the finest cell that keeps the grid within MAX_CELLS and MAX_PER_AXIS
-            float cell = std::cbrt(extent.prod() / static_cast<float>(MAX_CELLS));
-            cell = std::max(cell, extent.maxCoeff() / static_cast<float>(MAX_PER_AXIS));
-            cell = std::max(cell, 0.01f);
-            for (;; cell *= 1.01f)
-            {
-                grid->nx = static_cast<int>(std::ceil(extent.x() / cell));
-                grid->ny = static_cast<int>(std::ceil(extent.y() / cell));
-                grid->nz = static_cast<int>(std::ceil(extent.z() / cell));
-                if (grid->nx <= MAX_PER_AXIS && grid->ny <= MAX_PER_AXIS && grid->nz <= MAX_PER_AXIS &&
-                    static_cast<std::size_t>(grid->nx) * grid->ny * grid->nz <= MAX_CELLS)
-                    break;
-            }
+            const float cell = fitCells(extent, MAX_CELLS, 0.01f, grid->nx, grid->ny, grid->nz);
             grid->cell = cell;
             grid->inverse = 1.f / cell;
             const int nx = grid->nx;
@@ -149,18 +155,7 @@ namespace michi
             field.reach = MESH_REACH;
             field.lo = lo - Eigen::Vector3f::Constant(MESH_REACH);
             const Eigen::Vector3f extent = hi - lo + Eigen::Vector3f::Constant(2.f * MESH_REACH);
-            float cell = std::cbrt(extent.prod() / static_cast<float>(MAX_MESH_CELLS));
-            cell = std::max(cell, extent.maxCoeff() / static_cast<float>(MAX_PER_AXIS));
-            cell = std::max(cell, 0.002f);
-            for (;; cell *= 1.01f)
-            {
-                field.nx = static_cast<int>(std::ceil(extent.x() / cell));
-                field.ny = static_cast<int>(std::ceil(extent.y() / cell));
-                field.nz = static_cast<int>(std::ceil(extent.z() / cell));
-                if (field.nx <= MAX_PER_AXIS && field.ny <= MAX_PER_AXIS && field.nz <= MAX_PER_AXIS &&
-                    static_cast<std::size_t>(field.nx) * field.ny * field.nz <= MAX_MESH_CELLS)
-                    break;
-            }
+            const float cell = fitCells(extent, MAX_MESH_CELLS, 0.002f, field.nx, field.ny, field.nz);
             field.cell = cell;
             field.inverse = 1.f / cell;
             // Exact distances only up to a cell beyond the reach: a walk with that limit prunes the far cells early,
