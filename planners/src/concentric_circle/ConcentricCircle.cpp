@@ -199,7 +199,7 @@ namespace michi
                    dynamic_cast<const ob::MaximizeMinClearanceObjective *>(objective.get()) != nullptr;
         }
 
-        double ConcentricCircle::pathCost(const std::vector<ob::State *> &states) const
+        double ConcentricCircle::pathCost(const std::vector<ob::State *> &states, double bound) const
         {
             if (!selectsClearance())
             {
@@ -215,7 +215,7 @@ namespace michi
             if (usedMode_ == "jmap")
                 if (const auto *jmap =
                         dynamic_cast<const validity::JMapValidityChecker *>(si_->getStateValidityChecker().get()))
-                    return -jmapPathClearance(*si_, *jmap, states, 1.);
+                    return -jmapPathClearance(*si_, *jmap, states, 1., -bound);
             // else the smallest clearance along the path (interpolated at the validity resolution)
             og::PathGeometric path(si_);
             for (auto *s : states)
@@ -224,7 +224,11 @@ namespace michi
             double worst = std::numeric_limits<double>::infinity();
             const auto &checker = si_->getStateValidityChecker();
             for (auto *s : path.getStates())
+            {
                 worst = std::min(worst, checker->clearance(s));
+                if (-worst >= bound)
+                    break;  // it cannot beat the path that set the bound
+            }
             return -worst;
         }
 
@@ -596,8 +600,25 @@ namespace michi
             }
             // the best path whose every motion the space's motion validator accepts (checked again here, with
             // the exact start and goal states)
-            std::vector<std::pair<double, int>> ranked;
+            // First the best alone: each path is measured only until it cannot beat the best so far (measuring all
+            // sixteen in full was a tenth of a J-map solve with the clearance objective). Equal costs keep the
+            // search's order, as the full ranking below does.
+            double bestCost = std::numeric_limits<double>::infinity();
             for (std::size_t i = 0; i < fullPaths_.size(); ++i)
+            {
+                const double cost = pathCost(fullPaths_[i], bestCost);
+                if (cost < bestCost)
+                {
+                    bestCost = cost;
+                    bestPath_ = static_cast<int>(i);
+                }
+            }
+            for (std::size_t j = 1; bestPath_ >= 0 && j < fullPaths_[bestPath_].size(); ++j)
+                if (!si_->checkMotion(fullPaths_[bestPath_][j - 1], fullPaths_[bestPath_][j]))
+                    bestPath_ = -1;
+            // the best failed the motion validator: every path measured in full and ranked
+            std::vector<std::pair<double, int>> ranked;
+            for (std::size_t i = 0; bestPath_ < 0 && i < fullPaths_.size(); ++i)
                 ranked.emplace_back(pathCost(fullPaths_[i]), static_cast<int>(i));
             // stable: equal costs keep the search's order, so the same problem always gives the same path.
             std::stable_sort(ranked.begin(), ranked.end(),

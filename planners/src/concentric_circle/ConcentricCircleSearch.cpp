@@ -70,14 +70,14 @@ namespace michi
             return static_cast<int>(nodes_.size()) - 1;
         }
 
-        void ConcentricCircleSearch::addLink(int a, int b)
+        void ConcentricCircleSearch::addLink(int a, int b, bool unchecked)
         {
             for (const auto &e : adjacency_[a])
-                if (e.first == b)
+                if (e.to == b)
                     return;
             const double len = (image(nodes_[a].p, nodes_[b].p) - nodes_[a].p).norm();
-            adjacency_[a].emplace_back(b, len);
-            adjacency_[b].emplace_back(a, len);
+            adjacency_[a].push_back({b, len, unchecked});
+            adjacency_[b].push_back({a, len, unchecked});
             ++version_;
         }
 
@@ -96,22 +96,33 @@ namespace michi
         {
             if (a == b)
                 return;
-            for (const auto &e : adjacency_[a])
-                if (e.first == b)
-                    return;
-            addLink(a, b);
             // Links are proposed unchecked and tested only when a shortest path uses them (lazy, like LazyPRM): which
             // paths exist is unchanged, and most links are never tested (docs/concentric-circle.md: 185 instead of 1502
             // on planar_2link).
-            unchecked_.insert({std::min(a, b), std::max(a, b)});
+            addLink(a, b, true);
         }
 
         bool ConcentricCircleSearch::validateLink(int a, int b)
         {
-            const auto it = unchecked_.find({std::min(a, b), std::max(a, b)});
-            if (it == unchecked_.end())
+            const auto &adjacent = adjacency_[a];
+            for (std::size_t i = 0; i < adjacent.size(); ++i)
+                if (adjacent[i].to == b)
+                    return validateArc(a, i);
+            return true;  // no such link: nothing to check (as for a checked one)
+        }
+
+        bool ConcentricCircleSearch::validateArc(int a, std::size_t i)
+        {
+            // The flag lives on both directions of the link (a set of unchecked pairs, looked up at every relaxation
+            // of the searches, cost more than the visibility checks it guarded: perf on planar_2link).
+            Arc &arc = adjacency_[a][i];
+            if (!arc.unchecked)
                 return true;
-            unchecked_.erase(it);
+            const int b = arc.to;
+            arc.unchecked = false;
+            for (auto &back : adjacency_[b])
+                if (back.to == a)
+                    back.unchecked = false;
             const Eigen::Vector2d pa = nodes_[a].p, pb = image(pa, nodes_[b].p);
             if (map_.isVisible(pa, pb))
                 return true;
@@ -141,15 +152,14 @@ namespace michi
             {
                 auto &adj = adjacency_[from];
                 adj.erase(std::remove_if(adj.begin(), adj.end(),
-                                         [to](const std::pair<int, double> &e)
+                                         [to](const Arc &e)
                                          {
-                                             return e.first == to;
+                                             return e.to == to;
                                          }),
                           adj.end());
             };
             drop(a, b);
             drop(b, a);
-            unchecked_.erase({std::min(a, b), std::max(a, b)});
             ++version_;
         }
 
@@ -160,8 +170,8 @@ namespace michi
             // PlannerData would show it as a way through.
             for (std::size_t a = 0; a < adjacency_.size(); ++a)
                 for (const auto &e : adjacency_[a])
-                    if (static_cast<int>(a) < e.first && !unchecked_.count({static_cast<int>(a), e.first}))
-                        out.emplace_back(static_cast<int>(a), e.first);
+                    if (static_cast<int>(a) < e.to && !e.unchecked)
+                        out.emplace_back(static_cast<int>(a), e.to);
             return out;
         }
 
@@ -278,7 +288,9 @@ namespace michi
                                                  int k) const
         {
             double phi = -settings_.kGoal / std::max((p - goal).norm(), 1e-9);
-            std::vector<Edge2> edges;
+            // kept per thread: one evaluation per circle point the search looks at
+            thread_local std::vector<Edge2> edges;
+            edges.clear();
             if (!map_.obstacleEdges(p, settings_.potentialRange, edges))
             {
                 // no polygons: the blocked runs of this circle and its neighbours stand for the obstacle edges
@@ -498,10 +510,10 @@ namespace michi
                 const int v = open.front();
                 open.pop_front();
                 for (const auto &e : adjacency_[v])
-                    if (!seen[e.first])
+                    if (!seen[e.to])
                     {
-                        seen[e.first] = 1;
-                        open.push_back(e.first);
+                        seen[e.to] = 1;
+                        open.push_back(e.to);
                     }
             }
             return seen;
@@ -546,12 +558,12 @@ namespace michi
                 auto &adjacent = adjacency_[v];
                 for (std::size_t i = 0; i < adjacent.size();)
                 {
-                    const int u = adjacent[i].first;
-                    const double d = dist[v] + adjacent[i].second;
+                    const int u = adjacent[i].to;
+                    const double d = dist[v] + adjacent[i].length;
                     if (d < dist[u])
                     {
                         // A failed link leaves adjacency_[v] (order kept): the next link is now at i.
-                        if (!validateLink(v, u))
+                        if (!validateArc(v, i))
                             continue;
                         dist[u] = d;
                         parent[u] = v;
@@ -629,18 +641,18 @@ namespace michi
             // (left and right of an obstacle, ...); a path whose link fails its check is looked for again
             std::vector<int> goalLinks, startLinks;
             for (const auto &e : adjacency_[1])
-                goalLinks.push_back(e.first);
+                goalLinks.push_back(e.to);
             for (const auto &e : adjacency_[0])
-                startLinks.push_back(e.first);
+                startLinks.push_back(e.to);
             // Each attempt re-runs Dijkstra after a failed check removed a link; 8 bounds the work per goal link.
             for (const int v : goalLinks)
                 for (int attempt = 0; attempt < 8 && static_cast<int>(found.size()) < settings_.maxPaths; ++attempt)
                 {
                     treeS();
                     if (distS[v] == INF || std::none_of(adjacency_[v].begin(), adjacency_[v].end(),
-                                                        [](const std::pair<int, double> &e)
+                                                        [](const Arc &e)
                                                         {
-                                                            return e.first == 1;
+                                                            return e.to == 1;
                                                         }))
                         break;
                     auto p = fromStart(v);
@@ -653,9 +665,9 @@ namespace michi
                 {
                     treeG();
                     if (distG[u] == INF || std::none_of(adjacency_[u].begin(), adjacency_[u].end(),
-                                                        [](const std::pair<int, double> &e)
+                                                        [](const Arc &e)
                                                         {
-                                                            return e.first == 0;
+                                                            return e.to == 0;
                                                         }))
                         break;
                     auto p = toGoal(u);
@@ -689,7 +701,6 @@ namespace michi
             rings_.clear();
             sets_.clear();
             adjacency_.clear();
-            unchecked_.clear();
             paths_.clear();
             tried_.clear();
             recursions_ = 0;

@@ -145,15 +145,15 @@ namespace michi
         }
 
         double jmapPathClearance(const ob::SpaceInformation &si, const validity::JMapValidityChecker &checker,
-                                 const std::vector<ob::State *> &states, double cap)
+                                 const std::vector<ob::State *> &states, double cap, double floor)
         {
             // Clearance is capped: the slab walk looks only within cap of the point, which bounds its cost.
             double worst = cap;
             ob::State *between = si.allocState();
-            for (std::size_t i = 0; i < states.size(); ++i)
+            for (std::size_t i = 0; i < states.size() && worst > floor; ++i)
             {
                 worst = std::min(worst, jmapClearance(si, checker, states[i], cap));
-                if (i + 1 == states.size())
+                if (i + 1 == states.size() || worst <= floor)
                     break;
                 // the segment's interior at the resolution the motion validator samples a discrete check at
                 const unsigned int n = si.getStateSpace()->validSegmentCount(states[i], states[i + 1]);
@@ -161,6 +161,8 @@ namespace michi
                 {
                     si.getStateSpace()->interpolate(states[i], states[i + 1], static_cast<double>(k) / n, between);
                     worst = std::min(worst, jmapClearance(si, checker, between, cap));
+                    if (worst <= floor)
+                        break;
                 }
             }
             si.freeState(between);

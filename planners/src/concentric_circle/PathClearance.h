@@ -11,6 +11,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -25,9 +26,11 @@ namespace michi
                              const ompl::base::State *state, double cap);
 
         /** \brief The smallest jmapClearance() along a path, its segments sampled at the space's validity
-            resolution (the "clearance" selection of the J-map mode). */
+            resolution (the "clearance" selection of the J-map mode). The walk stops once the smallest is at or
+            below \e floor (the path cannot beat one of that clearance); the value returned is then <= floor. */
         double jmapPathClearance(const ompl::base::SpaceInformation &si, const validity::JMapValidityChecker &checker,
-                                 const std::vector<ompl::base::State *> &states, double cap);
+                                 const std::vector<ompl::base::State *> &states, double cap,
+                                 double floor = -std::numeric_limits<double>::infinity());
 
         /** \brief The space's FCL checker: the checker itself, or the FCL checker a J-map checker keeps (same robot and
             scene); null when the checker is neither. */

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -290,7 +291,10 @@ namespace michi
                 a segment fails */
             std::vector<ompl::base::State *> liftPath(const Stage &stage, std::size_t i, bool check);
             void freePaths();
-            double pathCost(const std::vector<ompl::base::State *> &states) const;
+            /** the path's cost (length, or negated clearance): exact when below \e bound; otherwise some value at
+                or above it (the clearance walk stops once the path cannot beat \e bound) */
+            double pathCost(const std::vector<ompl::base::State *> &states,
+                            double bound = std::numeric_limits<double>::infinity()) const;
             /** the setting "clearance", or a MaximizeMinClearanceObjective on the problem definition */
             bool selectsClearance() const;
 

@@ -157,7 +157,7 @@ namespace michi
             bool runCircles(const Eigen::Vector2d &start, const Eigen::Vector2d &goal,
                             const ompl::base::PlannerTerminationCondition &ptc);
             int addNode(const Eigen::Vector2d &p, int set, int ring);
-            void addLink(int a, int b);
+            void addLink(int a, int b, bool unchecked = false);
             bool tryLink(int a, int b);
             /** a link whose visibility is checked only when a path uses it (lazily, as LazyPRM) */
             void proposeLink(int a, int b);
@@ -181,10 +181,19 @@ namespace michi
             std::vector<CcNode> nodes_;
             std::vector<CcRing> rings_;
             std::vector<CcSet> sets_;
-            std::vector<std::vector<std::pair<int, double>>> adjacency_;
+            /** one direction of a link; both directions carry the same \e unchecked flag */
+            struct Arc
+            {
+                int to;
+                double length;
+                bool unchecked;  ///< proposed, visibility not yet checked
+            };
+            /** validateLink() for the link of adjacency_[a][i] (no search for it, as the shortest-path searches'
+                inner loop has it at hand) */
+            bool validateArc(int a, std::size_t i);
+            std::vector<std::vector<Arc>> adjacency_;
             std::vector<std::vector<int>> paths_;
             std::set<std::pair<int, int>> tried_;
-            std::set<std::pair<int, int>> unchecked_;  ///< proposed links not yet checked (a < b)
             int recursions_{0};
             unsigned long version_{0};  ///< changes whenever a link is added or removed
             const ompl::base::PlannerTerminationCondition *ptc_{nullptr};  ///< of the running search
