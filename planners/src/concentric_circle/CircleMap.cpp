@@ -1,11 +1,14 @@
 #include <michi/planners/concentric_circle/CircleMap.h>
 
+#include <boost/geometry/index/rtree.hpp>
+
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <iterator>
 #include <utility>
 
 namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
 
 namespace michi
 {
@@ -50,6 +53,8 @@ namespace michi
                 const double t = len2 > 0. ? std::clamp((p - a).dot(ab) / len2, 0., 1.) : 0.;
                 return (a + t * ab - p).norm();
             }
+
+            using Value = std::pair<validity::Box2, int>;
         }  // namespace
 
         std::vector<Eigen::Vector2d> CircleMap::breakpoints(const Eigen::Vector2d &, const Eigen::Vector2d &) const
@@ -99,98 +104,9 @@ namespace michi
 
         struct PolygonCircleMap::Index
         {
-            // A uniform grid of the edges' bounding boxes: visibility and potential queries touch only the few edges
-            // near a segment or point, not every edge of the map. It replaced a Boost.Geometry R-tree whose
-            // traversal was a quarter of a J-map solve (perf on planar_2link: ten edges found per query, a hundred
-            // node boxes visited for them); a grid cell is found by arithmetic.
-            struct Bounds
-            {
-                double loX, loY, hiX, hiY;
-            };
-            std::vector<Bounds> bounds;  ///< per edge: its bounding box
-            double originX{0.}, originY{0.}, cell{1.};
-            int nx{1}, ny{1};
-            std::vector<int> start;  ///< per cell: first entry in \e edges (CSR, nx * ny + 1 entries)
-            std::vector<int> edges;  ///< edge ids by cell
-
-            int column(double x) const
-            {
-                return std::clamp(static_cast<int>(std::floor((x - originX) / cell)), 0, nx - 1);
-            }
-            int row(double y) const
-            {
-                return std::clamp(static_cast<int>(std::floor((y - originY) / cell)), 0, ny - 1);
-            }
-
-            void build(const std::vector<Edge2> &all)
-            {
-                bounds.clear();
-                Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-                for (const Edge2 &e : all)
-                {
-                    bounds.push_back({std::min(e.a.x(), e.b.x()), std::min(e.a.y(), e.b.y()),
-                                      std::max(e.a.x(), e.b.x()), std::max(e.a.y(), e.b.y())});
-                    lo = lo.cwiseMin(e.a).cwiseMin(e.b);
-                    hi = hi.cwiseMax(e.a).cwiseMax(e.b);
-                }
-                if (all.empty())
-                {
-                    start.assign(2, 0);
-                    return;
-                }
-                // About one cell per edge: a query box of the potential's range or a link meets a few cells.
-                const Eigen::Vector2d span = (hi - lo).cwiseMax(1e-9);
-                const int perAxis = std::clamp(static_cast<int>(std::ceil(std::sqrt(double(all.size())))), 1, 256);
-                cell = std::max(span.x(), span.y()) / perAxis;
-                originX = lo.x();
-                originY = lo.y();
-                nx = std::clamp(static_cast<int>(std::ceil(span.x() / cell)), 1, 256);
-                ny = std::clamp(static_cast<int>(std::ceil(span.y() / cell)), 1, 256);
-                start.assign(static_cast<std::size_t>(nx * ny) + 1, 0);
-                // two passes (count, then fill): each edge is in every cell its box meets
-                for (int pass = 0; pass < 2; ++pass)
-                {
-                    std::vector<int> fill(start.begin(), start.end() - 1);
-                    for (std::size_t e = 0; e < bounds.size(); ++e)
-                        for (int r = row(bounds[e].loY); r <= row(bounds[e].hiY); ++r)
-                            for (int c = column(bounds[e].loX); c <= column(bounds[e].hiX); ++c)
-                            {
-                                if (pass == 0)
-                                    ++start[static_cast<std::size_t>(r * nx + c) + 1];
-                                else
-                                    edges[static_cast<std::size_t>(fill[r * nx + c]++)] = static_cast<int>(e);
-                            }
-                    if (pass == 0)
-                    {
-                        for (std::size_t k = 1; k < start.size(); ++k)
-                            start[k] += start[k - 1];
-                        edges.assign(static_cast<std::size_t>(start.back()), 0);
-                    }
-                }
-            }
-
-            /** appends the edges whose bounding box meets the closed box [lo, hi] (each once, as an R-tree's
-                "intersects" query would give them) */
-            void query(double loX, double loY, double hiX, double hiY, std::vector<int> &out) const
-            {
-                if (edges.empty())
-                    return;
-                const int c0 = column(loX), c1 = column(hiX), r0 = row(loY), r1 = row(hiY);
-                for (int r = r0; r <= r1; ++r)
-                    for (int c = c0; c <= c1; ++c)
-                        for (int k = start[static_cast<std::size_t>(r * nx + c)];
-                             k < start[static_cast<std::size_t>(r * nx + c) + 1]; ++k)
-                        {
-                            const int e = edges[static_cast<std::size_t>(k)];
-                            const Bounds &b = bounds[static_cast<std::size_t>(e)];
-                            if (b.hiX < loX || b.loX > hiX || b.hiY < loY || b.loY > hiY)
-                                continue;
-                            // An edge in several cells is reported from the first cell the query and it share.
-                            if (c != std::max(c0, column(b.loX)) || r != std::max(r0, row(b.loY)))
-                                continue;
-                            out.push_back(e);
-                        }
-            }
+            // An R-tree of the edges' bounding boxes: visibility and potential queries touch only the few edges near a
+            // segment or point, not every edge of the map.
+            bgi::rtree<Value, bgi::quadratic<16>> tree;
         };
 
         PolygonCircleMap::PolygonCircleMap(validity::MultiPolygon2 obstacles, const Eigen::Vector2d &lo,
@@ -223,7 +139,16 @@ namespace michi
             next_.assign(edges_.size(), -1);
             for (std::size_t e = 0; e < edges_.size(); ++e)
                 next_[prev_[e]] = static_cast<int>(e);
-            index_->build(edges_);
+            std::vector<Value> values;
+            values.reserve(edges_.size());
+            for (std::size_t e = 0; e < edges_.size(); ++e)
+            {
+                const auto &ed = edges_[e];
+                validity::Box2 box(validity::Point2(std::min(ed.a.x(), ed.b.x()), std::min(ed.a.y(), ed.b.y())),
+                                   validity::Point2(std::max(ed.a.x(), ed.b.x()), std::max(ed.a.y(), ed.b.y())));
+                values.emplace_back(box, static_cast<int>(e));
+            }
+            index_->tree = bgi::rtree<Value, bgi::quadratic<16>>(values.begin(), values.end());
         }
 
         PolygonCircleMap::~PolygonCircleMap() = default;
@@ -237,12 +162,14 @@ namespace michi
 
         bool PolygonCircleMap::blocked(const Eigen::Vector2d &a, const Eigen::Vector2d &b, int skip1, int skip2) const
         {
-            thread_local std::vector<int> found;
+            validity::Box2 box(validity::Point2(std::min(a.x(), b.x()), std::min(a.y(), b.y())),
+                               validity::Point2(std::max(a.x(), b.x()), std::max(a.y(), b.y())));
+            thread_local std::vector<Value> found;
             found.clear();
-            index_->query(std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
-                          std::max(a.y(), b.y()), found);
-            for (const int e : found)
+            index_->tree.query(bgi::intersects(box), std::back_inserter(found));
+            for (const Value &v : found)
             {
+                const int e = v.second;
                 if (e == skip1 || e == skip2)
                     continue;
                 if (segmentsTouch(a, b, edges_[e].a, edges_[e].b))
@@ -261,6 +188,8 @@ namespace michi
 
         bool PolygonCircleMap::obstacleEdges(const Eigen::Vector2d &p, double range, std::vector<Edge2> &edges) const
         {
+            validity::Box2 box(validity::Point2(p.x() - range, p.y() - range),
+                               validity::Point2(p.x() + range, p.y() + range));
             // Buffers kept per thread: this runs for every circle point the search evaluates, and their allocations
             // were a tenth of its time (perf on planar_2link's J-map).
             thread_local std::vector<int> near;
@@ -268,11 +197,12 @@ namespace michi
             Eigen::Vector2d lo = p, hi = p;
             // query() into a vector rather than the qbegin() iterator: the iterator is type-erased and cost more
             // than the edge tests here (perf on planar_2link's J-map).
-            thread_local std::vector<int> found;
+            thread_local std::vector<Value> found;
             found.clear();
-            index_->query(p.x() - range, p.y() - range, p.x() + range, p.y() + range, found);
-            for (const int e : found)
+            index_->tree.query(bgi::intersects(box), std::back_inserter(found));
+            for (const Value &v : found)
             {
+                const int e = v.second;
                 const Edge2 &ed = edges_[e];
                 // potential_range: a far edge's term Kp / Dp^2 is small (docs/concentric-circle.md), and leaving it out
                 // keeps the cost per point bounded on large maps.
@@ -286,8 +216,8 @@ namespace michi
                 return true;
             std::sort(near.begin(), near.end());  // deterministic order of the sum
             // Every sight line from P to an end point of a near edge lies in the box of P and those end points, so
-            // the edges that can block one are those meeting that box: one grid query for all of them, then plain
-            // segment tests (an index query per sight line cost more than the tests it saved). The blockers are
+            // the edges that can block one are those meeting that box: one R-tree query for all of them, then plain
+            // segment tests (an R-tree query per sight line cost more than the tests it saved). The blockers are
             // copied next to their boxes, so the scan per sight line reads one contiguous array.
             struct Blocker
             {
@@ -296,13 +226,12 @@ namespace michi
             };
             thread_local std::vector<Blocker> blockers;
             blockers.clear();
+            const validity::Box2 sight(validity::Point2(lo.x(), lo.y()), validity::Point2(hi.x(), hi.y()));
             found.clear();
-            index_->query(lo.x(), lo.y(), hi.x(), hi.y(), found);
-            for (const int e : found)
-            {
-                const auto &b = index_->bounds[static_cast<std::size_t>(e)];
-                blockers.push_back({b.loX, b.loY, b.hiX, b.hiY, e});
-            }
+            index_->tree.query(bgi::intersects(sight), std::back_inserter(found));
+            for (const Value &v : found)
+                blockers.push_back({v.first.min_corner().x(), v.first.min_corner().y(), v.first.max_corner().x(),
+                                    v.first.max_corner().y(), v.second});
             auto blockedAmong = [&](const Eigen::Vector2d &a, const Eigen::Vector2d &b, int skip1, int skip2)
             {
                 const double sLoX = std::min(a.x(), b.x()), sLoY = std::min(a.y(), b.y());
@@ -354,13 +283,15 @@ namespace michi
             const double twoPi = 2. * M_PI;
             // Angles (from phase, in [0, 2 pi)) where the circle crosses an edge: |a + t (b - a) - c| = r for t in
             // [0, 1]. Only edges meeting the circle's bounding box can.
-            thread_local std::vector<int> found;
+            const validity::Box2 box(validity::Point2(centre.x() - radius, centre.y() - radius),
+                                     validity::Point2(centre.x() + radius, centre.y() + radius));
+            thread_local std::vector<Value> found;
             found.clear();
-            index_->query(centre.x() - radius, centre.y() - radius, centre.x() + radius, centre.y() + radius, found);
+            index_->tree.query(bgi::intersects(box), std::back_inserter(found));
             std::vector<double> crossings;
-            for (const int k : found)
+            for (const Value &v : found)
             {
-                const Edge2 &e = edges_[k];
+                const Edge2 &e = edges_[v.second];
                 const Eigen::Vector2d d = e.b - e.a, f = e.a - centre;
                 const double a = d.squaredNorm(), b = 2. * f.dot(d), c = f.squaredNorm() - radius * radius;
                 const double disc = b * b - 4. * a * c;

@@ -83,7 +83,7 @@ namespace michi
         };
 
         /** \brief A map whose obstacles are polygons (a J-map): points and segments are tested against the
-            polygons (Boost.Geometry point-in-polygon and a uniform grid of the edges), obstacle edges seen from a
+            polygons (Boost.Geometry point-in-polygon and an R-tree of the edges), obstacle edges seen from a
             point are those whose both end points are visible from it. Touching a polygon counts as blocked.
             Axes do not wrap. */
         class PolygonCircleMap : public CircleMap
