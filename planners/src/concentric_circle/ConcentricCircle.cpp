@@ -263,27 +263,51 @@ namespace michi
             // polygons over-approximate). Each round drops every link a path uses that the validator rejects, then
             // collects the paths again (one collection per round, not per link: collecting re-runs the searches);
             // 200 rounds bound the work when the two disagree a lot.
+            // A round that rejects nothing has checked every motion of every path: its lifted paths are the full
+            // paths as they are (lifting and checking them once more cost the same again).
+            std::vector<std::vector<ob::State *>> accepted;
+            const auto freeAll = [this](std::vector<std::vector<ob::State *>> &paths)
+            {
+                for (auto &states : paths)
+                    for (auto *s : states)
+                        si_->freeState(s);
+                paths.clear();
+            };
             for (int round = 0; found && round < 200 && !ptc; ++round)
             {
                 std::vector<std::pair<int, int>> rejected;
+                std::vector<std::vector<ob::State *>> lifted;
                 for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
                 {
                     const auto &nodes = stage.search->paths()[i];
-                    auto states = liftPath(stage, i, false);
+                    lifted.push_back(liftPath(stage, i, false));
+                    const auto &states = lifted.back();
                     for (std::size_t j = 1; j < states.size(); ++j)
                         if (!si_->checkMotion(states[j - 1], states[j]))
                             rejected.emplace_back(nodes[j - 1], nodes[j]);
-                    for (auto *s : states)
-                        si_->freeState(s);
                 }
                 if (rejected.empty())
+                {
+                    accepted = std::move(lifted);
                     break;
+                }
+                freeAll(lifted);
                 for (const auto &link : rejected)
                     stage.search->removeLink(link.first, link.second);
                 found = stage.search->collectPaths();
             }
             if (!found || ptc)
+            {
+                freeAll(accepted);
                 return false;
+            }
+            if (!accepted.empty())
+            {
+                for (auto &states : accepted)
+                    fullPaths_.push_back(std::move(states));
+                return true;
+            }
+            // the rounds ran out with paths still rejected: only the paths whose every motion passes
             for (std::size_t i = 0; i < stage.search->paths().size(); ++i)
             {
                 auto states = liftPath(stage, i, true);
