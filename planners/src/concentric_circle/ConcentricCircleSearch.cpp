@@ -113,8 +113,8 @@ namespace michi
 
         bool ConcentricCircleSearch::validateArc(int a, std::size_t i)
         {
-            // The flag lives on both directions of the link (a set of unchecked pairs, looked up at every relaxation
-            // of the searches, cost more than the visibility checks it guarded: perf on planar_2link).
+            // The flag lives on both directions of the link: a set of unchecked pairs, looked up at every relaxation
+            // of the searches, was about 3.5 % of a planar_2link J-map solve in perf, besides validateLink's own 4-5 %.
             Arc &arc = adjacency_[a][i];
             if (!arc.unchecked)
                 return true;
