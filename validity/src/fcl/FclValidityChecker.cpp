@@ -1,4 +1,5 @@
 #include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/fcl/FclContact.h>
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -26,25 +27,6 @@ namespace michi
                 return true;
             }
 
-            /** Do \e a and \e b touch? FCL's default request (it stops at the first contact) with its default
-                solver, libccd; but libccd calls two convex polytopes (SE(2) footprints, extruded polygons) in contact
-                when they are up to 4.4 cm apart (31 of 200,000 poses near dynamic_mobile_passage's block), so its
-                contacts between two of them are confirmed by FCL's own GJK, which agreed with an exact polygon test at
-                every pose (docs/checking.md, test ConvexPrismsCollideExactlyAsPolygons). Only a contact is asked
-                twice: the answer is never "free" where libccd says free. */
-            bool touches(const fcl::CollisionObjectd *a, const fcl::CollisionObjectd *b)
-            {
-                fcl::CollisionRequestd request;
-                fcl::CollisionResultd result;
-                if (fcl::collide(a, b, request, result) == 0)
-                    return false;
-                if (a->getNodeType() != fcl::GEOM_CONVEX || b->getNodeType() != fcl::GEOM_CONVEX)
-                    return true;
-                request.gjk_solver_type = fcl::GST_INDEP;
-                fcl::CollisionResultd again;
-                return fcl::collide(a, b, request, again) > 0;
-            }
-
             struct CollisionData
             {
                 const fcl::CollisionObjectd *query{nullptr};
@@ -58,7 +40,7 @@ namespace michi
                 // The broad phase calls back until a call returns true; one contact answers a validity query.
                 if (data->done)
                     return true;
-                if (touches(o1, o2))
+                if (objectsTouch(o1, o2))
                 {
                     data->done = true;
                     // The manager may pass the query object as either argument: the obstacle is the other one.
@@ -280,7 +262,7 @@ namespace michi
                 for (const auto &a : objects[pair.first])
                     for (const auto &b : objects[pair.second])
                     {
-                        if (touches(a.get(), b.get()))
+                        if (objectsTouch(a.get(), b.get()))
                             return bodies[pair.first].name + " touches " + bodies[pair.second].name;
                     }
             return "";
@@ -295,7 +277,7 @@ namespace michi
             for (const auto &a : objects[p.first])
                 for (const auto &b : objects[p.second])
                 {
-                    if (touches(a.get(), b.get()))
+                    if (objectsTouch(a.get(), b.get()))
                         return true;
                 }
             return false;

@@ -306,6 +306,11 @@ namespace michi
             bvh->addSubModel(s->vertices_, tris);
             bvh->endModel();
             s->geometries_.push_back(bvh);
+            auto obb = std::make_shared<fcl::BVHModel<fcl::OBBd>>();
+            obb->beginModel();
+            obb->addSubModel(s->vertices_, tris);
+            obb->endModel();
+            s->collisionMesh_ = obb;
             s->finish();
             return s;
         }
@@ -377,7 +382,21 @@ namespace michi
             }
             boundingRadius_ = r;
             for (auto &g : geometries_)
+            {
                 g->computeLocalAABB();
+                // the way back from a geometry to its shape (owner()); a Shape never moves once made
+                g->setUserData(this);
+            }
+            if (collisionMesh_)
+            {
+                collisionMesh_->computeLocalAABB();
+                collisionMesh_->setUserData(this);
+            }
+        }
+
+        const Shape *Shape::owner(const fcl::CollisionGeometryd *geometry)
+        {
+            return geometry == nullptr ? nullptr : static_cast<const Shape *>(geometry->getUserData());
         }
 
         MultiPolygon2 Shape::footprint(const Eigen::Isometry3d &pose) const

@@ -73,6 +73,18 @@ namespace michi
             {
                 return geometries_;
             }
+            /** \brief For a mesh, the same triangles with oriented boxes (OBB) as bounding volumes, for collision
+                queries only (null for other shapes). Against a primitive, FCL bounds the primitive with the tree's
+                bounding-volume type on every query: an OBB is a direct fit, an OBBRSS an eigen-decomposition of its
+                corners, which took about half of a Panda state check (docs/checking.md). geometries() keep the
+                OBBRSS tree, which distance queries need. */
+            const fcl::CollisionGeometryd *collisionMesh() const
+            {
+                return collisionMesh_.get();
+            }
+            /** \brief The shape a geometry of geometries() belongs to (its FCL user data); null for a geometry no
+                Shape made. */
+            static const Shape *owner(const fcl::CollisionGeometryd *geometry);
             /** \brief Radius of a sphere about the shape's origin that contains the shape. */
             double boundingRadius() const
             {
@@ -95,6 +107,7 @@ namespace michi
             std::vector<std::vector<Eigen::Vector2d>> convexPieces_;
             std::string source_;
             std::vector<std::shared_ptr<fcl::CollisionGeometryd>> geometries_;
+            std::shared_ptr<fcl::CollisionGeometryd> collisionMesh_;  ///< see collisionMesh()
             double boundingRadius_{0.};
         };
 

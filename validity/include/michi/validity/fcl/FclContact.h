@@ -1,0 +1,23 @@
+#ifndef MICHI_VALIDITY_FCL_FCL_CONTACT_
+#define MICHI_VALIDITY_FCL_FCL_CONTACT_
+
+#include <fcl/narrowphase/collision_object.h>
+
+namespace michi
+{
+    namespace validity
+    {
+        /** \brief Do two placed FCL objects touch? FCL's boolean collision query, with two choices of michi's:
+            - a mesh made by Shape is tested through its collision-only OBB tree (Shape::collisionMesh()) rather
+              than the OBBRSS tree it was placed with, when the other object is a box, sphere, cylinder or capsule or
+              a mesh with such a tree too: the same triangles, so the same answer, without FCL fitting an OBBRSS
+              around the primitive (an eigen-decomposition) on every query (convex pieces keep the OBBRSS tree:
+              FCL's OBB of a convex is wrong);
+            - two convex pieces that libccd calls in contact are asked again with FCL's own GJK, which does not
+              call apart prisms in contact (docs/checking.md).
+            The objects' own geometries are used whenever the first does not apply (a mesh made elsewhere). */
+        bool objectsTouch(const fcl::CollisionObjectd *a, const fcl::CollisionObjectd *b);
+    }  // namespace validity
+}  // namespace michi
+
+#endif
