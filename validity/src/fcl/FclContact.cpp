@@ -37,6 +37,11 @@ namespace michi
 
         bool objectsTouch(const fcl::CollisionObjectd *a, const fcl::CollisionObjectd *b)
         {
+            // Disjoint world boxes first: FCL's narrow phase sets up a traversal (relative pose, solver, request)
+            // before its first bounding-volume test, and most self pairs of an arm are far apart (a quarter of a
+            // Panda state check went to those setups). The scene's broad phase has already tested its pairs' boxes.
+            if (!a->getAABB().overlap(b->getAABB()))
+                return false;
             fcl::CollisionRequestd request;
             fcl::CollisionResultd result;
             if (a->getObjectType() == fcl::OT_BVH || b->getObjectType() == fcl::OT_BVH)
