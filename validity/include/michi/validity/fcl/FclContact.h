@@ -15,7 +15,9 @@ namespace michi
               FCL's OBB of a convex is wrong);
             - two convex pieces that libccd calls in contact are asked again with FCL's own GJK, which does not
               call apart prisms in contact (docs/checking.md).
-            The objects' own geometries are used whenever the first does not apply (a mesh made elsewhere). Both
+            The objects' own geometries are used whenever the first does not apply (a mesh whose FCL user data is
+            null). A mesh's geometry must carry either no user data or the Shape that made it (Shape::owner(); the
+            geometries of michi's scenes and robots all come from Shape). Both
             objects' world bounding boxes must be current (computeAABB() after setTransform(), as FCL's broad phase
             needs them too): objects whose boxes are apart are answered without the narrow phase. */
         bool objectsTouch(const fcl::CollisionObjectd *a, const fcl::CollisionObjectd *b);
