@@ -26,6 +26,18 @@ namespace michi
     {
         namespace
         {
+            /** An FCL triangle tree with bounding volumes \e BV. */
+            template <typename BV>
+            std::shared_ptr<fcl::BVHModel<BV>> bvhModel(const std::vector<Eigen::Vector3d> &vertices,
+                                                        const std::vector<fcl::Triangle> &triangles)
+            {
+                auto model = std::make_shared<fcl::BVHModel<BV>>();
+                model->beginModel();
+                model->addSubModel(vertices, triangles);
+                model->endModel();
+                return model;
+            }
+
             double signedArea(const std::vector<Eigen::Vector2d> &p)
             {
                 double a = 0.;
@@ -295,22 +307,14 @@ namespace michi
             s->vertices_ = std::move(vertices);
             s->triangles_ = std::move(triangles);
             s->source_ = std::move(source);
-            // OBBRSS bounding volumes serve both queries the checkers ask of a mesh: oriented boxes for collision,
-            // swept spheres for distance.
-            auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
             std::vector<fcl::Triangle> tris;
             tris.reserve(s->triangles_.size());
             for (const auto &t : s->triangles_)
                 tris.emplace_back(t[0], t[1], t[2]);
-            bvh->beginModel();
-            bvh->addSubModel(s->vertices_, tris);
-            bvh->endModel();
-            s->geometries_.push_back(bvh);
-            auto obb = std::make_shared<fcl::BVHModel<fcl::OBBd>>();
-            obb->beginModel();
-            obb->addSubModel(s->vertices_, tris);
-            obb->endModel();
-            s->collisionMesh_ = obb;
+            // OBBRSS bounding volumes serve every query of a mesh (swept spheres for distance); the OBB tree of the
+            // same triangles serves collision queries against primitives and other meshes (collisionMesh()).
+            s->geometries_.push_back(bvhModel<fcl::OBBRSSd>(s->vertices_, tris));
+            s->collisionMesh_ = bvhModel<fcl::OBBd>(s->vertices_, tris);
             s->finish();
             return s;
         }
