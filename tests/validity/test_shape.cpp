@@ -400,6 +400,31 @@ TEST(Shape, MeshFileIsScaled)
     }
 }
 
+TEST(Shape, AMeshFileLoadedTwiceIsReadOnceWhileHeldAndAgainWhenChanged)
+{
+    // meshFromFile() keeps what it read while a caller holds it: a dataset's hundred problems share one robot's
+    // meshes instead of reading and tree-building them a hundred times.
+    test::TempDir dir("michi_shape_cache");
+    const std::string path = dir.write("box.stl", test::asciiStlBox({0.2, 0.4, 0.6}, {0., 0., 0.}, "box"));
+    auto first = Shape::meshFromFile(path);
+    EXPECT_EQ(Shape::meshFromFile(path), first);
+    EXPECT_EQ(Shape::meshFromFile(dir.path() + "/./box.stl"), first);  // the same file by another name
+    // another scale is another shape
+    const auto scaled = Shape::meshFromFile(path, Eigen::Vector3d(2., 2., 2.));
+    EXPECT_NE(scaled, first);
+    EXPECT_NEAR(std::abs(scaled->vertices().front().x()), 0.2, 1e-7);
+    // a file written again with other contents is read again, even while the old shape is held
+    dir.write("box.stl", test::asciiStlBox({0.5, 0.5, 0.5}, {0., 0., 0.}, "bigger box"));
+    const auto changed = Shape::meshFromFile(path);
+    EXPECT_NE(changed, first);
+    EXPECT_NEAR(std::abs(changed->vertices().front().x()), 0.25, 1e-7);
+    EXPECT_NEAR(std::abs(first->vertices().front().x()), 0.1, 1e-7);  // the old one is untouched
+    // released by every holder: read from the file again
+    const Shape *address = changed.get();
+    first.reset();
+    EXPECT_EQ(Shape::meshFromFile(path).get(), address);  // still held by `changed`
+}
+
 TEST(Shape, UnreadableMeshFilesThrowNamingTheFile)
 {
     test::TempDir dir("michi_shape");

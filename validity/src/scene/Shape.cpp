@@ -15,8 +15,14 @@
 #include <fcl/math/bv/OBBRSS.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace bg = boost::geometry;
 
@@ -319,40 +325,92 @@ namespace michi
             return s;
         }
 
+        namespace
+        {
+            /** Meshes already loaded, by file (canonical path and contents, so an edited file is read again) and
+                scale. A dataset's problems share one robot: loading the 100 MotionBenchMaker table_pick problems read
+                the Panda's meshes 100 times and built their trees each time. A Shape is immutable once made, so one
+                copy serves every model; the cache holds it only while some model does. */
+            struct MeshCache
+            {
+                using Key = std::tuple<std::string, std::size_t, std::size_t, double, double, double>;
+                std::mutex mutex;
+                std::map<Key, std::weak_ptr<const Shape>> shapes;
+            };
+            MeshCache &meshCache()
+            {
+                static MeshCache cache;
+                return cache;
+            }
+
+            /** meshFromFile() without its cache: assimp, then the triangle trees. */
+            std::shared_ptr<const Shape> readMeshFile(const std::string &path, const Eigen::Vector3d &scale)
+            {
+                Assimp::Importer importer;
+                // Triangulate: FCL takes triangles only. PreTransformVertices: a file's node transforms are baked into
+                // the vertices, so the mesh is in the file's frame as a viewer shows it. SortByPType: points and lines
+                // land in meshes of their own, whose faces the loop below skips (it keeps 3-index faces only).
+                const aiScene *scene =
+                    importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                aiProcess_PreTransformVertices | aiProcess_SortByPType);
+                if (scene == nullptr)
+                    throw std::runtime_error(path + ": cannot read mesh: " + importer.GetErrorString());
+                std::vector<Eigen::Vector3d> vertices;
+                std::vector<Eigen::Vector3i> triangles;
+                for (unsigned int m = 0; m < scene->mNumMeshes; ++m)
+                {
+                    const aiMesh *mesh = scene->mMeshes[m];
+                    const int offset = static_cast<int>(vertices.size());
+                    for (unsigned int v = 0; v < mesh->mNumVertices; ++v)
+                    {
+                        const aiVector3D &p = mesh->mVertices[v];
+                        vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
+                    }
+                    for (unsigned int f = 0; f < mesh->mNumFaces; ++f)
+                    {
+                        const aiFace &face = mesh->mFaces[f];
+                        if (face.mNumIndices == 3)
+                            triangles.emplace_back(offset + static_cast<int>(face.mIndices[0]),
+                                                   offset + static_cast<int>(face.mIndices[1]),
+                                                   offset + static_cast<int>(face.mIndices[2]));
+                    }
+                }
+                if (triangles.empty())
+                    throw std::runtime_error(path + ": mesh holds no triangles");
+                return Shape::mesh(std::move(vertices), std::move(triangles), path);
+            }
+        }  // namespace
+
         std::shared_ptr<const Shape> Shape::meshFromFile(const std::string &path, const Eigen::Vector3d &scale)
         {
             requireInputFile(path);  // a directory or device would give assimp's own confusing message
-            Assimp::Importer importer;
-            // Triangulate: FCL takes triangles only. PreTransformVertices: a file's node transforms are baked into the
-            // vertices, so the mesh is in the file's frame as a viewer shows it. SortByPType: points and lines land in
-            // meshes of their own, whose faces the loop below skips (it keeps 3-index faces only).
-            const aiScene *scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                               aiProcess_PreTransformVertices | aiProcess_SortByPType);
-            if (scene == nullptr)
-                throw std::runtime_error(path + ": cannot read mesh: " + importer.GetErrorString());
-            std::vector<Eigen::Vector3d> vertices;
-            std::vector<Eigen::Vector3i> triangles;
-            for (unsigned int m = 0; m < scene->mNumMeshes; ++m)
+            // The key holds the file's contents (a hash of them) rather than its modification time, whose clock
+            // ticks too coarsely to tell apart two writes in a row; reading the bytes costs little beside parsing
+            // them and building the trees.
+            std::error_code error;
+            const std::filesystem::path canonical = std::filesystem::canonical(path, error);
+            std::ifstream in(path, std::ios::binary);
+            const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+            const bool cacheable = !error && !in.bad();
+            const MeshCache::Key key{
+                canonical.string(), std::hash<std::string>{}(bytes), bytes.size(), scale.x(), scale.y(), scale.z()};
+            if (cacheable)
             {
-                const aiMesh *mesh = scene->mMeshes[m];
-                const int offset = static_cast<int>(vertices.size());
-                for (unsigned int v = 0; v < mesh->mNumVertices; ++v)
-                {
-                    const aiVector3D &p = mesh->mVertices[v];
-                    vertices.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
-                }
-                for (unsigned int f = 0; f < mesh->mNumFaces; ++f)
-                {
-                    const aiFace &face = mesh->mFaces[f];
-                    if (face.mNumIndices == 3)
-                        triangles.emplace_back(offset + static_cast<int>(face.mIndices[0]),
-                                               offset + static_cast<int>(face.mIndices[1]),
-                                               offset + static_cast<int>(face.mIndices[2]));
-                }
+                MeshCache &cache = meshCache();
+                const std::lock_guard<std::mutex> lock(cache.mutex);
+                const auto it = cache.shapes.find(key);
+                if (it != cache.shapes.end())
+                    if (auto shape = it->second.lock())
+                        return shape;
             }
-            if (triangles.empty())
-                throw std::runtime_error(path + ": mesh holds no triangles");
-            return mesh(std::move(vertices), std::move(triangles), path);
+            auto shape = readMeshFile(path, scale);
+            if (cacheable)
+            {
+                MeshCache &cache = meshCache();
+                const std::lock_guard<std::mutex> lock(cache.mutex);
+                cache.shapes[key] = shape;
+            }
+            return shape;
         }
 
         void Shape::finish()
