@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""Writes a held-out MovingAI map and scenario file that no bundled problem uses: OUT/rooms.map (200 x 160 cells,
+walls every 40 cells with 2-cell doors, 120 random blocks) and OUT/rooms.map.scen (40 scenarios whose octile grid
+distance is 60-200 cells, computed by Dijkstra as MovingAI's files give it), plus OUT/rooms.yaml, the 64room problem
+pointed at them. Usage: scripts/rooms_map.py OUT [SEED]   (docs/heading-lattice.md, "A held-out map")"""
+import heapq, math, os, random, sys
+
+out = sys.argv[1]
+random.seed(int(sys.argv[2]) if len(sys.argv) > 2 else 7)
+os.makedirs(out, exist_ok=True)
+W, H = 200, 160
+g = [['.'] * W for _ in range(H)]
+for x in range(W):
+    g[0][x] = g[H - 1][x] = '@'
+for y in range(H):
+    g[y][0] = g[y][W - 1] = '@'
+for wx in range(40, W, 40):          # walls across x, three doors each
+    for y in range(H):
+        g[y][wx] = 'T'
+    for _ in range(3):
+        dy = random.randrange(5, H - 5)
+        for k in range(2):
+            g[dy + k][wx] = '.'
+for wy in range(40, H, 40):          # walls across y, four doors each
+    for x in range(W):
+        if g[wy][x] == '.':
+            g[wy][x] = '@'
+    for _ in range(4):
+        dx = random.randrange(5, W - 5)
+        for k in range(2):
+            g[wy][dx + k] = '.'
+for _ in range(120):                 # blocks of 1-5 cells a side
+    x, y = random.randrange(1, W - 6), random.randrange(1, H - 6)
+    w, h = random.randrange(1, 6), random.randrange(1, 6)
+    for yy in range(y, y + h):
+        for xx in range(x, x + w):
+            g[yy][xx] = '@'
+with open(os.path.join(out, 'rooms.map'), 'w') as f:
+    f.write("type octile\nheight %d\nwidth %d\nmap\n%s\n" % (H, W, "\n".join("".join(r) for r in g)))
+
+
+def free(x, y):
+    return 0 <= x < W and 0 <= y < H and g[y][x] in '.G'
+
+
+def dijkstra(sx, sy):  # MovingAI's octile distances: no corner cutting
+    dist = {(sx, sy): 0.0}
+    queue = [(0.0, sx, sy)]
+    while queue:
+        d, x, y = heapq.heappop(queue)
+        if d > dist[(x, y)]:
+            continue
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                nx, ny = x + dx, y + dy
+                if (dx == dy == 0) or not free(nx, ny) or (dx and dy and not (free(x + dx, y) and free(x, y + dy))):
+                    continue
+                nd = d + (math.sqrt(2) if dx and dy else 1)
+                if nd < dist.get((nx, ny), 1e18):
+                    dist[(nx, ny)] = nd
+                    heapq.heappush(queue, (nd, nx, ny))
+    return dist
+
+
+lines = ["version 1"]
+while len(lines) <= 40:
+    sx, sy = random.randrange(W), random.randrange(H)
+    if not free(sx, sy):
+        continue
+    dist = dijkstra(sx, sy)
+    far = [k for k, v in dist.items() if 60 < v < 200]
+    if not far:
+        continue
+    gx, gy = random.choice(far)
+    lines.append("%d\trooms.map\t%d\t%d\t%d\t%d\t%d\t%d\t%.8f" % (int(dist[(gx, gy)] // 4), W, H, sx, sy, gx, gy,
+                                                                 dist[(gx, gy)]))
+with open(os.path.join(out, 'rooms.map.scen'), 'w') as f:
+    f.write("\n".join(lines) + "\n")
+
+here = os.path.dirname(os.path.abspath(__file__))
+problem = open(os.path.join(here, '..', 'problems', 'movingai_64room.yaml')).read()
+problem = problem.replace('name: movingai_64room', 'name: heldout_rooms')
+problem = problem.replace('maps/movingai/64room_000.map.scen', os.path.abspath(os.path.join(out, 'rooms.map.scen')))
+problem = problem.replace('maps/movingai/64room_000.map', os.path.abspath(os.path.join(out, 'rooms.map')))
+problem = problem.replace('buckets: [40, 49]', 'buckets: [0, 100]')
+with open(os.path.join(out, 'rooms.yaml'), 'w') as f:
+    f.write(problem)
+print(os.path.join(out, 'rooms.yaml'))
