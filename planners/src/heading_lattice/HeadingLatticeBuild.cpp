@@ -7,7 +7,6 @@
 #include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
-#include <michi/validity/grid/GridValidityChecker.h>
 
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/util/Time.h>
@@ -152,18 +151,6 @@ namespace michi
                     }
             euclidWeight_ = shift > turnCost_ ? turnCost_ / shift : 1.;
 
-            gridChecker_ = dynamic_cast<const validity::GridValidityChecker *>(si_->getStateValidityChecker().get());
-            if (gridChecker_ != nullptr)
-            {
-                double radius = 0.;
-                for (const auto &p : gridChecker_->footprint())
-                    radius = std::max(radius, p.norm());
-                // The nearest occupied cell's centre is cellDistance() from the centre of the node's cell: the
-                // node is within half a diagonal of its cell's centre and the occupied cell's square within half a
-                // diagonal of its own, so three cells more than the footprint's reach leave every heading free,
-                // for the table (grown by a cell) and for the exact test on the grid alike.
-                gridClear_ = radius + 3. * gridChecker_->table().grid().resolution;
-            }
             nodeState_.assign(nodeCount_, UNCHECKED);
             edgeState_.assign(nodeCount_, 0);
             groupFree_.assign(groupCount_, 0);

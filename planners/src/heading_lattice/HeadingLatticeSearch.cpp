@@ -6,7 +6,6 @@
 #include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
-#include <michi/validity/grid/GridValidityChecker.h>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
@@ -78,28 +77,6 @@ namespace michi
                            });
         }
 
-        bool HeadingLattice::clearByDistance(std::uint32_t g)
-        {
-            if (gridChecker_ == nullptr)
-                return false;
-            // The same answer as nodeValid() of the group's first node, without the check: on an open map most
-            // groups the 2-D search settles are far from every obstacle, and checking their nodes one by one was
-            // most of the heuristic's node checks (docs/heading-lattice.md, "A held-out map").
-            const Vertex first = g * headings_;
-            double x, y;
-            nodePosition(first, x, y);
-            const validity::OccupancyGrid &grid = gridChecker_->table().grid();
-            const int i = grid.column(x), j = grid.row(y);
-            // the disc must lie inside the grid: states beyond it are invalid, whatever the distances say
-            const int cells = static_cast<int>(std::ceil(gridClear_ / grid.resolution)) + 1;
-            if (i < cells || j < cells || i >= grid.width - cells || j >= grid.height - cells)
-                return false;
-            if (!(gridChecker_->cellDistance(i, j) > gridClear_))
-                return false;
-            setNodeState(first, scratch_);
-            return si_->satisfiesBounds(scratch_);
-        }
-
         double HeadingLattice::groupDistance(std::uint32_t g, const ob::PlannerTerminationCondition &ptc, bool &stopped)
         {
             // a resumable search over the groups (8-connected, steps of c and c sqrt 2) from the groups joined to
@@ -114,8 +91,8 @@ namespace michi
                 std::uint8_t &f = groupFree_[group];
                 if (f == 0)
                 {
-                    f = clearByDistance(group) ? 1 : 2;
-                    for (unsigned int k = 0; k < K && f == 2; ++k)
+                    f = 2;
+                    for (unsigned int k = 0; k < K; ++k)
                         if (nodeValid(group * K + k))
                         {
                             f = 1;

@@ -12,14 +12,6 @@
 
 namespace michi
 {
-    namespace validity
-    {
-        class GridValidityChecker;
-    }
-}  // namespace michi
-
-namespace michi
-{
     namespace planners
     {
         /**
@@ -306,15 +298,8 @@ namespace michi
             std::uint32_t searchStamp_{0};
             // the 2-D heuristic over groups (index: group), resumable Dijkstra from the goals
             std::vector<float> hDist_;
-            std::vector<std::uint8_t> hState_;     ///< 0 unseen, 1 open, 2 closed
-            std::vector<std::uint8_t> groupFree_;  ///< 0 unknown, 1 some node free, 2 none
-            /** \brief On the grid checker (null otherwise): its distance transform says that a group's first node is
-                free in one lookup, where the 2-D heuristic would otherwise check the group's nodes one by one. */
-            const validity::GridValidityChecker *gridChecker_{nullptr};
-            double gridClear_{
-                0.};  ///< distance to the nearest occupied cell that frees any heading (footprint + cells)
-            /** \brief The grid checker's distance transform shows group \e g's first node free at every heading. */
-            bool clearByDistance(std::uint32_t g);
+            std::vector<std::uint8_t> hState_;                    ///< 0 unseen, 1 open, 2 closed
+            std::vector<std::uint8_t> groupFree_;                 ///< 0 unknown, 1 some node free, 2 none
             std::vector<std::pair<float, std::uint32_t>> hOpen_;  ///< heap (min first)
             bool hReady_{false};
             std::vector<double> hGoals_;   ///< goal positions the heuristic was made for (x, y pairs)
