@@ -419,10 +419,10 @@ TEST(Shape, AMeshFileLoadedTwiceIsReadOnceWhileHeldAndAgainWhenChanged)
     EXPECT_NE(changed, first);
     EXPECT_NEAR(std::abs(changed->vertices().front().x()), 0.25, 1e-7);
     EXPECT_NEAR(std::abs(first->vertices().front().x()), 0.1, 1e-7);  // the old one is untouched
-    // released by every holder: read from the file again
+    // the old contents' holder lets go: the current contents are still served from what `changed` holds
     const Shape *address = changed.get();
     first.reset();
-    EXPECT_EQ(Shape::meshFromFile(path).get(), address);  // still held by `changed`
+    EXPECT_EQ(Shape::meshFromFile(path).get(), address);
 }
 
 TEST(Shape, UnreadableMeshFilesThrowNamingTheFile)

@@ -408,6 +408,10 @@ namespace michi
             {
                 MeshCache &cache = meshCache();
                 const std::lock_guard<std::mutex> lock(cache.mutex);
+                // entries whose shapes every holder let go of are dropped here, so a long run that loads many
+                // meshes one after another does not keep a key per file it ever read
+                for (auto it = cache.shapes.begin(); it != cache.shapes.end();)
+                    it = it->second.expired() ? cache.shapes.erase(it) : std::next(it);
                 cache.shapes[key] = shape;
             }
             return shape;
