@@ -4,10 +4,13 @@
 #include <ompl/base/spaces/SE2StateSpace.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <iomanip>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,6 +22,69 @@ namespace michi
     {
         namespace
         {
+            /** Tables built in this process (tablesBuilt()). */
+            std::atomic<std::size_t> builtCount{0};
+
+            /** What a HeadingTable is made of: two checkers whose inputs are equal have equal tables. */
+            struct TableInputs
+            {
+                OccupancyGrid grid;
+                std::vector<Eigen::Vector2d> footprint;
+                unsigned int headings{0};
+                double tolerance{0.};
+                bool band{false};  ///< buildBand() wanted (where the table does not test exactly first)
+
+                bool operator==(const TableInputs &o) const
+                {
+                    return grid.width == o.grid.width && grid.height == o.grid.height &&
+                           grid.resolution == o.grid.resolution && grid.origin == o.grid.origin &&
+                           headings == o.headings && tolerance == o.tolerance && band == o.band &&
+                           footprint == o.footprint && grid.cells == o.grid.cells;
+                }
+            };
+
+            /** The tables built last, kept for the next checker over the same map: `michi bench --queries all` and
+                the tests make a planning context, hence a checker, per query of a map, and on movingai_64room a
+                table costs 1.5 s to build (the footprint swept over every cell and heading) against about 10 ms to
+                copy. Each checker gets its own copy, because refresh() changes a checker's table in place. Two
+                entries (at most about 2 x 42 MB, the table's size bound) serve two maps used in turn; more are not
+                kept, so a process that walks through many maps does not hold all their tables. */
+            class TableCache
+            {
+            public:
+                std::unique_ptr<HeadingTable> get(TableInputs inputs)
+                {
+                    {
+                        std::lock_guard<std::mutex> lock(mutex_);
+                        for (const auto &e : entries_)
+                            if (e.first == inputs)
+                                return std::make_unique<HeadingTable>(*e.second);
+                    }
+                    // built outside the lock: checkers of other maps are not held up by this one
+                    auto table = std::make_shared<HeadingTable>(inputs.grid, inputs.footprint, inputs.headings,
+                                                                inputs.tolerance);
+                    if (inputs.band && !table->exactFirst())
+                        table->buildBand();
+                    ++builtCount;
+                    auto copy = std::make_unique<HeadingTable>(*table);
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    entries_.emplace_front(std::move(inputs), std::move(table));
+                    while (entries_.size() > 2)
+                        entries_.pop_back();
+                    return copy;
+                }
+
+            private:
+                std::mutex mutex_;
+                std::deque<std::pair<TableInputs, std::shared_ptr<const HeadingTable>>> entries_;
+            };
+
+            TableCache &tableCache()
+            {
+                static TableCache cache;
+                return cache;
+            }
+
             /** Smallest width of the footprint over all directions (its convex hull's, edge directions). */
             double minimumWidth(const std::vector<Eigen::Vector2d> &footprint)
             {
@@ -159,14 +225,14 @@ namespace michi
             const Eigen::Vector2d origin(o.x() + i0 * res, o.y() + j0 * res);
             OccupancyGrid grid =
                 rasterizeScene(*scene_, res, origin, static_cast<int>(i1 - i0), static_cast<int>(j1 - j0), tolerance_);
-            table_ = std::make_unique<HeadingTable>(std::move(grid), footprint_, settings.headings, tolerance_);
             // the band table where the exact test is costly: a footprint over more than a few table cells (on
             // 64room, 1.4 cells of circumradius, the exact test took about 40 ns and a band table of 6 million
             // entries, 20 MiB, made the queries slower, not faster: measured, docs/checking.md); nor where the
-            // exact test is cheaper than a miss on the band (HeadingTable::exactFirst()); should an update end
-            // exactFirst() there (a map cell split), freeOnGrid() reads the table word and then tests exactly
-            if (exact_ && radius >= 2. * res && !table_->exactFirst())
-                table_->buildBand();
+            // exact test is cheaper than a miss on the band (HeadingTable::exactFirst(), decided in the cache);
+            // should an update end exactFirst() there (a map cell split), freeOnGrid() reads the table word and then
+            // tests exactly
+            table_ = tableCache().get(
+                TableInputs{std::move(grid), footprint_, settings.headings, tolerance_, exact_ && radius >= 2. * res});
             // points of the outline at most one cell apart, for clearance()
             for (std::size_t e = 0; e < footprint_.size(); ++e)
             {
@@ -177,6 +243,11 @@ namespace michi
             }
             distanceTransform();
             buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+
+        std::size_t GridValidityChecker::tablesBuilt()
+        {
+            return builtCount.load();
         }
 
         void GridValidityChecker::distanceTransform()

@@ -104,6 +104,10 @@ namespace michi
             {
                 return buildSeconds_;
             }
+            /** \brief HeadingTables built in this process so far. A checker over the same grid, footprint and
+                headings as one made recently copies that table instead of building it again (the last two are
+                kept). */
+            static std::size_t tablesBuilt();
             /** \brief Bytes of the table, occupancy, prefix sums and distance transform. */
             std::size_t bytes() const;
             /** \brief One line: grid size, resolution, headings, memory, build time. */
