@@ -431,8 +431,8 @@ TEST(GridChecker, PlanningContextInstallsCheckerAndMotionValidator)
 
 TEST(GridChecker, ACheckerOverTheSameMapCopiesTheTableAndKeepsItsOwnUpdates)
 {
-    // a query per planning context (`michi bench --queries all`, the tests) made the same table again for every
-    // query of a map: 1.5 s each on movingai_64room. A second checker over the same grid copies the table
+    // code that makes a planning context per query of a map (the tests, a user's loop) made the same table again
+    // for every query: 1.5 s each on movingai_64room. A second checker over the same grid copies the table
     auto problem = tools::loadProblem(problemPath("se2_corridor"));
     problem.grid.headings = 64;
     problem.grid.resolution = 0.0237;  // no other test makes this table, so the first context below builds it
