@@ -18,6 +18,7 @@
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <mutex>
 
 namespace
 {
@@ -58,6 +59,27 @@ namespace
         for (auto _ : bm)
             valid += f.ctx.checker->isValid(f.states[i++ % f.states.size()]);
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
+    }
+
+    /** isValid from several threads at once (Google Benchmark's Threads): the state checks PathSeed's check_threads
+        and Thunder's race share out. items_per_second over all threads, on real time, shows how they scale. The
+        fixture is made before the threads start (thread 0 alone, then the others wait at the first iteration). */
+    void isValidThreads(benchmark::State &bm, const std::string &name)
+    {
+        static std::mutex made;
+        Fixture *f = nullptr;
+        {
+            std::lock_guard<std::mutex> lock(made);
+            f = &fixture(name);
+        }
+        std::size_t i = static_cast<std::size_t>(bm.thread_index()) * 97, valid = 0, n = 0;
+        for (auto _ : bm)
+        {
+            valid += f->ctx.checker->isValid(f->states[i++ % f->states.size()]);
+            ++n;
+        }
+        bm.SetItemsProcessed(static_cast<std::int64_t>(n));
+        benchmark::DoNotOptimize(valid);
     }
 
     /** The sphere checker of a fixture as `--checker spheres` makes it: SphereModel::enclose of the problem's
@@ -237,6 +259,11 @@ BENCHMARK_CAPTURE(motion, discrete_xarm6_ring, std::string("xarm6_ring"), 0);
 BENCHMARK_CAPTURE(motion, workspace_xarm6_ring, std::string("xarm6_ring"), 2);
 BENCHMARK_CAPTURE(motion, conservative_xarm6_ring, std::string("xarm6_ring"), 1);
 BENCHMARK_CAPTURE(isValid, panda_table_pick, std::string("panda_table_pick"));
+BENCHMARK_CAPTURE(isValidThreads, xarm6_ring, std::string("xarm6_ring"))->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK_CAPTURE(isValidThreads, panda_table_pick, std::string("panda_table_pick"))
+    ->Threads(1)
+    ->Threads(2)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(clearance, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(motion, discrete_panda_table_pick, std::string("panda_table_pick"), 0);
 BENCHMARK_CAPTURE(motion, workspace_panda_table_pick, std::string("panda_table_pick"), 2);

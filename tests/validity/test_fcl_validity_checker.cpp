@@ -431,6 +431,31 @@ TEST(FclValidityChecker, ConcurrentQueriesGiveTheSameAnswers)
     EXPECT_GE(setup.checker->queryCount() - queriesBefore, 4u * 2000u);
 }
 
+TEST(FclValidityChecker, MoreThreadsThanObjectSlotsShareTheSetsAndCountEveryQuery)
+{
+    // The checker keeps one set of FCL objects per thread slot (16): 24 threads at once share slots, take sets from
+    // other slots or make their own, and put them back where there is room. Answers and counts must not change.
+    const auto setup = busyArmSetup();
+    const auto configurations = randomConfigurations(setup, 300, 29);
+    const Answers reference = answer(setup, configurations);
+    const std::uint64_t queriesBefore = setup.checker->queryCount();
+    const int threadCount = 24;
+    std::vector<Answers> results(threadCount);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < threadCount; ++t)
+        threads.emplace_back(
+            [&, t]
+            {
+                results[t] = answer(setup, configurations);
+            });
+    for (auto &thread : threads)
+        thread.join();
+    for (int t = 0; t < threadCount; ++t)
+        EXPECT_EQ(results[t].valid, reference.valid) << "thread " << t;
+    // each answer() is one isValid per configuration (clearance is a distance query, not counted)
+    EXPECT_GE(setup.checker->queryCount() - queriesBefore, static_cast<std::uint64_t>(threadCount) * 300u);
+}
+
 TEST(FclValidityChecker, ConcurrentQueriesWhileTheSceneTimeChanges)
 {
     const auto setup = busyArmSetup();

@@ -74,17 +74,13 @@ namespace michi
                 return scene_;
             }
             /** \brief Number of collision queries answered so far (all threads). */
-            std::uint64_t queryCount() const
-            {
-                return queries_.load();
-            }
+            std::uint64_t queryCount() const;
 
         private:
             class ObjectPool;
             void toReals(const ompl::base::State *state, std::vector<double> &values) const;
             CollisionBodiesPtr bodies_;
             ScenePtr scene_;
-            mutable std::atomic<std::uint64_t> queries_{0};
             std::unique_ptr<ObjectPool> pool_;  ///< FCL objects of the bodies, one set per concurrent query
         };
 
