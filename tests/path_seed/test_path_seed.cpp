@@ -16,9 +16,11 @@
 
 #include <boost/filesystem.hpp>
 
+#include <atomic>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace fs = boost::filesystem;
 namespace ob = ompl::base;
@@ -161,6 +163,7 @@ TEST(PathSeedRepair, FailFastCheckAgreesWithPathCheck)
     const auto si = ctx.setup->getSpaceInformation();
     ompl::RNG::setSeed(4);
     auto sampler = si->allocValidStateSampler();
+    michi::planners::CheckThreads helpers(1);
     int valid = 0, invalid = 0;
     for (int i = 0; i < 20; ++i)
     {
@@ -177,6 +180,15 @@ TEST(PathSeedRepair, FailFastCheckAgreesWithPathCheck)
         // two threads sharing the checks: the same answer
         EXPECT_EQ(michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition(), nullptr, 2), fast)
             << i;
+        // the same two threads kept as a planner keeps them (check_threads 2): the same answer, the same count
+        unsigned long started = 0, kept = 0;
+        michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition(), &started, 2);
+        EXPECT_EQ(
+            michi::planners::checkPathFailFast(si, path, ob::plannerNonTerminatingCondition(), &kept, 2, &helpers),
+            fast)
+            << i;
+        if (fast)
+            EXPECT_EQ(kept, started) << i;  // a valid path costs every check, however they are shared
         (fast ? valid : invalid)++;
     }
     EXPECT_GT(invalid, 0);
@@ -185,6 +197,48 @@ TEST(PathSeedRepair, FailFastCheckAgreesWithPathCheck)
                                                   ob::plannerNonTerminatingCondition());
     EXPECT_EQ(v.state.size(), 2u);
     EXPECT_EQ(v.invalidStates(), 0u);
+}
+
+TEST(CheckThreads, EveryHandOutRunsEachJobOnceAndRethrowsAHelpersError)
+{
+    michi::planners::CheckThreads helpers(2, 0);  // no polling: helpers sleep between hand-outs
+    EXPECT_EQ(helpers.helpers(), 2u);
+    for (unsigned int round = 0; round < 200; ++round)
+    {
+        const unsigned int count = 1 + round % 3;
+        std::vector<std::atomic<int>> ran(3);
+        helpers.run(count,
+                    [&](unsigned int t)
+                    {
+                        ++ran[t];
+                    });
+        // run() returns only after every job ended: each index of the hand-out ran once, the others not at all
+        for (unsigned int t = 0; t < 3; ++t)
+            ASSERT_EQ(ran[t].load(), t < count ? 1 : 0) << "round " << round << " job " << t;
+    }
+    // more jobs than helpers + 1: the extra ones are not run
+    std::atomic<int> jobs{0};
+    helpers.run(5,
+                [&](unsigned int)
+                {
+                    ++jobs;
+                });
+    EXPECT_EQ(jobs.load(), 3);
+    EXPECT_THROW(helpers.run(3,
+                             [](unsigned int t)
+                             {
+                                 if (t == 2)
+                                     throw std::runtime_error("helper failed");
+                             }),
+                 std::runtime_error);
+    // still usable after an error
+    jobs = 0;
+    helpers.run(3,
+                [&](unsigned int)
+                {
+                    ++jobs;
+                });
+    EXPECT_EQ(jobs.load(), 3);
 }
 
 TEST(PathSeedRepair, RRTConnectRepairsAnInvalidStretch)

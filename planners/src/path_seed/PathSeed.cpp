@@ -309,7 +309,7 @@ namespace michi
                     break;
                 // The first decoded path that passes every state and motion check is the answer as it is: paper 001's
                 // case of a new query that the seed's shape already fits, with no repair at all.
-                if (checkPathFailFast(si_, decoded_[o.second], ptc, &checks, threads_))
+                if (checkPathFailFast(si_, decoded_[o.second], ptc, &checks, threads_, checkThreads_.get()))
                 {
                     out = decoded_[o.second];
                     lastSource_ = RECALL;
@@ -330,7 +330,8 @@ namespace michi
             const bool found =
                 // Stitching needs at least two paths to combine; one path that failed its checks cannot be helped by
                 // itself.
-                stitch_ && all.size() > 1 && stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_);
+                stitch_ && all.size() > 1 &&
+                stitchPaths(si_, all, ptc, out, neighbours_, &checks, threads_, checkThreads_.get());
             if (found)
             {
                 lastSource_ = STITCH;
@@ -397,6 +398,11 @@ namespace michi
             lastChecks_ = 0;
             decoded_.clear();
             solution_.clear();
+            // the check helpers live as long as the planner (or until check_threads changes), not one query
+            if (threads_ <= 1)
+                checkThreads_.reset();
+            else if (!checkThreads_ || checkThreads_->helpers() != threads_ - 1)
+                checkThreads_ = std::make_unique<CheckThreads>(threads_ - 1);
             const ob::State *start = pis_.nextStart();
             if (start == nullptr)
             {

@@ -35,7 +35,7 @@ namespace michi
             long checkMotionsFailFast(const ob::SpaceInformationPtr &si,
                                       const std::vector<std::pair<const ob::State *, const ob::State *>> &motions,
                                       const ob::PlannerTerminationCondition &ptc, unsigned long &count,
-                                      unsigned int threads)
+                                      unsigned int threads, CheckThreads *pool)
             {
                 const auto *wmv =
                     dynamic_cast<const validity::WorkspaceMotionValidator *>(si->getMotionValidator().get());
@@ -117,12 +117,22 @@ namespace michi
                     si->freeState(state);
                 };
                 const std::size_t T = std::max<std::size_t>(1, std::min<std::size_t>(threads, items.size() / 8 + 1));
-                std::vector<std::thread> helpers;
-                for (std::size_t t = 1; t < T; ++t)
-                    helpers.emplace_back(work, t, T);
-                work(0, T);
-                for (auto &h : helpers)
-                    h.join();
+                if (pool != nullptr && T > 1 && T <= pool->helpers() + 1)
+                    // the planner's own helpers: no thread started per hand-out
+                    pool->run(static_cast<unsigned int>(T),
+                              [&](unsigned int t)
+                              {
+                                  work(t, T);
+                              });
+                else
+                {
+                    std::vector<std::thread> helpers;
+                    for (std::size_t t = 1; t < T; ++t)
+                        helpers.emplace_back(work, t, T);
+                    work(0, T);
+                    for (auto &h : helpers)
+                        h.join();
+                }
                 count += checked.load();
                 if (failed.load() != all)
                     return failed.load();
@@ -131,7 +141,8 @@ namespace michi
         }  // namespace
 
         bool checkPathFailFast(const ob::SpaceInformationPtr &si, const og::PathGeometric &path,
-                               const ob::PlannerTerminationCondition &ptc, unsigned long *checks, unsigned int threads)
+                               const ob::PlannerTerminationCondition &ptc, unsigned long *checks, unsigned int threads,
+                               CheckThreads *pool)
         {
             const auto &states = const_cast<og::PathGeometric &>(path).getStates();  // OMPL 1.5: no const getStates()
             unsigned long count = 0;
@@ -157,7 +168,7 @@ namespace michi
                 std::vector<std::pair<const ob::State *, const ob::State *>> motions;
                 for (std::size_t i = 0; i + 1 < states.size(); ++i)
                     motions.emplace_back(states[i], states[i + 1]);
-                ok = checkMotionsFailFast(si, motions, ptc, count, threads) == static_cast<long>(motions.size());
+                ok = checkMotionsFailFast(si, motions, ptc, count, threads, pool) == static_cast<long>(motions.size());
             }
             if (checks)
                 *checks += count;
@@ -190,7 +201,7 @@ namespace michi
 
         bool stitchPaths(const ob::SpaceInformationPtr &si, const std::vector<og::PathGeometric> &paths,
                          const ob::PlannerTerminationCondition &ptc, og::PathGeometric &out, unsigned int neighbours,
-                         unsigned long *checks, unsigned int threads)
+                         unsigned long *checks, unsigned int threads, CheckThreads *pool)
         {
             if (paths.empty())
                 return false;
@@ -292,7 +303,7 @@ namespace michi
                 std::vector<std::pair<const ob::State *, const ob::State *>> motions;
                 for (const auto &key : unknown)
                     motions.emplace_back(states[key.first], states[key.second]);
-                const long failed = checkMotionsFailFast(si, motions, ptc, count, threads);
+                const long failed = checkMotionsFailFast(si, motions, ptc, count, threads, pool);
                 if (failed < 0)
                     break;
                 const bool allValid = failed == static_cast<long>(motions.size());

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <string>
+#include <memory>
 #include <vector>
 
 namespace michi
@@ -217,6 +218,8 @@ namespace michi
             bool anchored_{true};
             unsigned int neighbours_{3};
             unsigned int threads_{1};
+            /// helpers for the shared-out checks, made at the first solve() with check_threads > 1 and kept
+            std::unique_ptr<CheckThreads> checkThreads_;
             std::vector<ompl::geometric::PathGeometric> solution_;
             ompl::base::PlannerPtr scratch_;
             std::atomic<int> lastSource_{0};

@@ -1,6 +1,8 @@
 #ifndef MICHI_PLANNERS_PATH_SEED_REPAIR_
 #define MICHI_PLANNERS_PATH_SEED_REPAIR_
 
+#include <michi/planners/path_seed/CheckThreads.h>
+
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/geometric/PathGeometric.h>
@@ -19,10 +21,11 @@ namespace michi
             other motion validator the segments go to SpaceInformation::checkMotion one by one. Returns false
             when \e ptc fires before the check is complete. \e checks (if given) counts the state checks. With
             \e threads > 1 the motions' states (in the same order) are shared out among that many threads, which stop
-            at the first invalid state (the validity checker must be thread-safe, as michi's FCL checker is). */
+            at the first invalid state (the validity checker must be thread-safe, as michi's FCL checker is); with
+            \e pool (at least threads - 1 helpers) its threads do that share instead of threads started per call. */
         bool checkPathFailFast(const ompl::base::SpaceInformationPtr &si, const ompl::geometric::PathGeometric &path,
                                const ompl::base::PlannerTerminationCondition &ptc, unsigned long *checks = nullptr,
-                               unsigned int threads = 1);
+                               unsigned int threads = 1, CheckThreads *pool = nullptr);
 
         /** \brief Where a path is invalid: state i (bounds or collision), segment i (from state i to i + 1). */
         struct PathValidity
@@ -57,7 +60,8 @@ namespace michi
         bool stitchPaths(const ompl::base::SpaceInformationPtr &si,
                          const std::vector<ompl::geometric::PathGeometric> &paths,
                          const ompl::base::PlannerTerminationCondition &ptc, ompl::geometric::PathGeometric &out,
-                         unsigned int neighbours = 3, unsigned long *checks = nullptr, unsigned int threads = 1);
+                         unsigned int neighbours = 3, unsigned long *checks = nullptr, unsigned int threads = 1,
+                         CheckThreads *pool = nullptr);
     }  // namespace planners
 }  // namespace michi
 
