@@ -7,9 +7,6 @@
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
-#include <boost/graph/adjacency_list.hpp>
-#include <boost/graph/dijkstra_shortest_paths.hpp>
-
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -17,6 +14,7 @@
 #include <thread>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -255,29 +253,72 @@ namespace michi
             std::vector<char> vertex(V, 0);  // 0 unknown, 1 valid, 2 invalid
             vertex[0] = vertex[1] = 1;       // start and goal are the query's
             unsigned long count = 0;
-            using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
-                                                boost::property<boost::edge_weight_t, double>>;
+            // The graph is laid out once: edge e joins ends[e] with weight weight[e], and each vertex lists its
+            // (neighbour, edge) pairs. A round's search skips refuted edges and vertices by their flags. Rebuilding a
+            // Boost adjacency_list from the edge map every round was about a third of a stitching solve on the xArm6
+            // (perf, docs/path-seed.md); the search is the same Dijkstra over the same weights.
+            std::vector<std::pair<std::size_t, std::size_t>> ends;
+            std::vector<char> state;  // per edge: 0 unknown, 1 valid, 2 invalid
+            std::vector<double> weight;
+            std::vector<std::vector<std::pair<std::size_t, std::size_t>>> adjacent(V);
+            for (const auto &e : edges)
+            {
+                const std::size_t id = ends.size();
+                ends.push_back(e.first);
+                state.push_back(0);
+                weight.push_back((reals[e.first.first] - reals[e.first.second]).norm());
+                adjacent[e.first.first].emplace_back(e.first.second, id);
+                adjacent[e.first.second].emplace_back(e.first.first, id);
+            }
+            const std::size_t none = std::numeric_limits<std::size_t>::max();
+            std::vector<double> distance(V);
+            std::vector<std::size_t> parentEdge(V), parent(V);
+            using Entry = std::pair<double, std::size_t>;
+            std::vector<Entry> heap;
             bool found = false;
             while (!found && !ptc)
             {
-                Graph graph(V);
-                for (const auto &e : edges)
-                    if (e.second != 2 && vertex[e.first.first] != 2 && vertex[e.first.second] != 2)
-                        boost::add_edge(e.first.first, e.first.second,
-                                        (reals[e.first.first] - reals[e.first.second]).norm(), graph);
-                std::vector<Graph::vertex_descriptor> parent(V);
-                std::vector<double> distance(V);
-                // Rebuilt each round from what is known: invalid states and edges are left out, so the next shortest
-                // path avoids them (LazyPRM's scheme).
-                boost::dijkstra_shortest_paths(graph, 0,
-                                               boost::predecessor_map(parent.data()).distance_map(distance.data()));
-                // Dijkstra leaves an unreached vertex as its own parent.
-                if (parent[1] == 1)
+                // Dijkstra from the start over what is not known invalid (LazyPRM's scheme: the next shortest path
+                // avoids what the last one refuted)
+                std::fill(distance.begin(), distance.end(), std::numeric_limits<double>::infinity());
+                std::fill(parentEdge.begin(), parentEdge.end(), none);
+                distance[0] = 0.;
+                heap.assign(1, Entry{0., 0});
+                while (!heap.empty())
+                {
+                    std::pop_heap(heap.begin(), heap.end(), std::greater<>());
+                    const auto [d, u] = heap.back();
+                    heap.pop_back();
+                    if (d > distance[u])
+                        continue;  // a stale entry
+                    if (u == 1)
+                        break;  // the goal's distance is final
+                    for (const auto &[w, e] : adjacent[u])
+                    {
+                        if (state[e] == 2 || vertex[w] == 2)
+                            continue;
+                        const double through = d + weight[e];
+                        if (through < distance[w])
+                        {
+                            distance[w] = through;
+                            parent[w] = u;
+                            parentEdge[w] = e;
+                            heap.emplace_back(through, w);
+                            std::push_heap(heap.begin(), heap.end(), std::greater<>());
+                        }
+                    }
+                }
+                if (parentEdge[1] == none)
                     break;  // goal unreachable
                 std::vector<std::size_t> route{1};
+                std::vector<std::size_t> routeEdges;
                 while (route.back() != 0)
+                {
+                    routeEdges.push_back(parentEdge[route.back()]);
                     route.push_back(parent[route.back()]);
+                }
                 std::reverse(route.begin(), route.end());
+                std::reverse(routeEdges.begin(), routeEdges.end());
                 // states first, then the unchecked edges as one path (fail-fast order)
                 bool ok = true;
                 for (std::size_t v : route)
@@ -292,26 +333,23 @@ namespace michi
                 og::PathGeometric candidate(si);
                 for (std::size_t v : route)
                     candidate.append(states[v]);
-                std::vector<std::pair<std::size_t, std::size_t>> unknown;
-                for (std::size_t i = 0; i + 1 < route.size(); ++i)
-                {
-                    const auto key = std::make_pair(std::min(route[i], route[i + 1]), std::max(route[i], route[i + 1]));
-                    if (edges[key] == 0)
-                        unknown.push_back(key);
-                }
+                std::vector<std::size_t> unknown;
+                for (std::size_t e : routeEdges)
+                    if (state[e] == 0)
+                        unknown.push_back(e);
                 // all unchecked edges at once, round-robin bisection
                 std::vector<std::pair<const ob::State *, const ob::State *>> motions;
-                for (const auto &key : unknown)
-                    motions.emplace_back(states[key.first], states[key.second]);
+                for (std::size_t e : unknown)
+                    motions.emplace_back(states[ends[e].first], states[ends[e].second]);
                 const long failed = checkMotionsFailFast(si, motions, ptc, count, threads, pool);
                 if (failed < 0)
                     break;
                 const bool allValid = failed == static_cast<long>(motions.size());
                 if (!allValid)
-                    edges[unknown[failed]] = 2;
+                    state[unknown[static_cast<std::size_t>(failed)]] = 2;
                 else
-                    for (const auto &key : unknown)
-                        edges[key] = 1;
+                    for (std::size_t e : unknown)
+                        state[e] = 1;
                 if (allValid && !ptc)
                 {
                     out = candidate;
