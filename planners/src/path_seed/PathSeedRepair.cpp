@@ -16,7 +16,7 @@
 #include <deque>
 #include <functional>
 #include <limits>
-#include <map>
+#include <set>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -207,11 +207,11 @@ namespace michi
             std::vector<const ob::State *> states{paths.front().getState(0),
                                                   paths.front().getState(paths.front().getStateCount() - 1)};
             std::vector<int> owner{-1, -1};
-            std::map<std::pair<std::size_t, std::size_t>, char> edges;  // (a < b) -> 0 unknown, 1 valid, 2 invalid
+            std::set<std::pair<std::size_t, std::size_t>> edges;  // (a < b), each once; their states are kept below
             auto addEdge = [&](std::size_t a, std::size_t b)
             {
                 if (a != b)
-                    edges.emplace(std::make_pair(std::min(a, b), std::max(a, b)), 0);
+                    edges.emplace(std::min(a, b), std::max(a, b));
             };
             for (std::size_t p = 0; p < paths.size(); ++p)
             {
@@ -264,11 +264,11 @@ namespace michi
             for (const auto &e : edges)
             {
                 const std::size_t id = ends.size();
-                ends.push_back(e.first);
+                ends.push_back(e);
                 state.push_back(0);
-                weight.push_back((reals[e.first.first] - reals[e.first.second]).norm());
-                adjacent[e.first.first].emplace_back(e.first.second, id);
-                adjacent[e.first.second].emplace_back(e.first.first, id);
+                weight.push_back((reals[e.first] - reals[e.second]).norm());
+                adjacent[e.first].emplace_back(e.second, id);
+                adjacent[e.second].emplace_back(e.first, id);
             }
             const std::size_t none = std::numeric_limits<std::size_t>::max();
             std::vector<double> distance(V);

@@ -10,8 +10,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace michi
