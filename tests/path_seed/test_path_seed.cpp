@@ -17,10 +17,12 @@
 #include <boost/filesystem.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace fs = boost::filesystem;
 namespace ob = ompl::base;
@@ -239,6 +241,56 @@ TEST(CheckThreads, EveryHandOutRunsEachJobOnceAndRethrowsAHelpersError)
                     ++jobs;
                 });
     EXPECT_EQ(jobs.load(), 3);
+}
+
+TEST(CheckThreads, ShareSkipsHelpersThatHaveNotBegunAndNeverRunsAJobAfterItReturns)
+{
+    for (unsigned int spin : {0u, 200u})
+    {
+        michi::planners::CheckThreads helpers(1, spin);
+        for (unsigned int round = 0; round < 300; ++round)
+        {
+            // the jobs claim items from one counter: whoever runs, every item is done exactly once
+            const std::size_t n = round % 4 == 0 ? 1 : 64;
+            std::vector<std::atomic<int>> done(n);
+            std::atomic<std::size_t> next{0};
+            std::atomic<bool> returned{false}, lateJob{false};
+            std::atomic<int> ran{0};
+            helpers.share(2,
+                          [&](unsigned int)
+                          {
+                              ++ran;
+                              if (returned.load())
+                                  lateJob = true;
+                              for (std::size_t i = next++; i < n; i = next++)
+                                  ++done[i];
+                          });
+            returned = true;
+            for (std::size_t i = 0; i < n; ++i)
+                ASSERT_EQ(done[i].load(), 1) << "spin " << spin << " round " << round << " item " << i;
+            ASSERT_GE(ran.load(), 1);
+            ASSERT_LE(ran.load(), 2);
+            ASSERT_FALSE(lateJob.load()) << "a helper began after share() returned";
+        }
+        // a helper that begins while the caller's job runs does share the work: here the caller's job waits for it
+        // (a bound of 10 s instead of a hang if it never comes)
+        std::atomic<int> began{0};
+        std::atomic<std::size_t> next{0};
+        std::vector<std::atomic<int>> done(64);
+        helpers.share(2,
+                      [&](unsigned int t)
+                      {
+                          ++began;
+                          const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+                          while (t == 0 && began.load() < 2 && std::chrono::steady_clock::now() < until)
+                              std::this_thread::yield();
+                          for (std::size_t i = next++; i < done.size(); i = next++)
+                              ++done[i];
+                      });
+        EXPECT_EQ(began.load(), 2) << "spin " << spin;
+        for (auto &d : done)
+            EXPECT_EQ(d.load(), 1);
+    }
 }
 
 TEST(PathSeedRepair, RRTConnectRepairsAnInvalidStretch)

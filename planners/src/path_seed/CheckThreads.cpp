@@ -25,6 +25,16 @@ namespace michi
 
         void CheckThreads::run(unsigned int count, const std::function<void(unsigned int)> &job)
         {
+            handOut(count, job, false);
+        }
+
+        void CheckThreads::share(unsigned int count, const std::function<void(unsigned int)> &job)
+        {
+            handOut(count, job, true);
+        }
+
+        void CheckThreads::handOut(unsigned int count, const std::function<void(unsigned int)> &job, bool optional)
+        {
             if (count > helpers() + 1)
                 count = helpers() + 1;
             if (count <= 1)
@@ -36,7 +46,10 @@ namespace michi
                 std::lock_guard<std::mutex> lock(mutex_);
                 job_ = &job;
                 count_ = count;
-                running_ = count - 1;
+                // run(): every helper's job is owed; share(): a helper counts itself in when it begins
+                running_ = optional ? 0 : count - 1;
+                optional_ = optional;
+                open_ = true;
                 error_ = nullptr;
                 ++generation_;
             }
@@ -51,6 +64,8 @@ namespace michi
                 own = std::current_exception();
             }
             std::unique_lock<std::mutex> lock(mutex_);
+            // share(): from here no helper begins; those that began are waited for
+            open_ = false;
             // the job refers to the caller's stack: no helper may still run it when run() returns
             finished_.wait(lock,
                            [this]
@@ -87,8 +102,10 @@ namespace michi
                 if (stop_)
                     return;
                 seen = generation_;
-                if (index >= count_)
-                    continue;  // this hand-out needs fewer threads
+                if (index >= count_ || (optional_ && !open_))
+                    continue;  // this hand-out needs fewer threads, or (share()) the caller has finished it
+                if (optional_)
+                    ++running_;
                 const auto *job = job_;
                 lock.unlock();
                 std::exception_ptr error;

@@ -85,15 +85,17 @@ namespace michi
                         pending = true;
                     }
                 }
-                // threads take every threads-th item; the first failure stops all
+                // Threads claim the items in order from one counter, so the caller alone finishes a hand-out that a
+                // helper joins late (or not at all: CheckThreads::share); the first failure stops all.
                 const long all = static_cast<long>(motions.size());
                 std::atomic<long> failed{all};
                 std::atomic<bool> stopped{false};
                 std::atomic<unsigned long> checked{0};
-                auto work = [&](std::size_t first, std::size_t stride)
+                std::atomic<std::size_t> next{0};
+                auto work = [&]
                 {
                     ob::State *state = si->allocState();
-                    for (std::size_t i = first; i < items.size(); i += stride)
+                    for (std::size_t i = next++; i < items.size(); i = next++)
                     {
                         if (failed.load() != all || stopped.load())
                             break;
@@ -116,18 +118,18 @@ namespace michi
                 };
                 const std::size_t T = std::max<std::size_t>(1, std::min<std::size_t>(threads, items.size() / 8 + 1));
                 if (pool != nullptr && T > 1 && T <= pool->helpers() + 1)
-                    // the planner's own helpers: no thread started per hand-out
-                    pool->run(static_cast<unsigned int>(T),
-                              [&](unsigned int t)
-                              {
-                                  work(t, T);
-                              });
+                    // the planner's own helpers: no thread started per hand-out, none waited for that has not begun
+                    pool->share(static_cast<unsigned int>(T),
+                                [&](unsigned int)
+                                {
+                                    work();
+                                });
                 else
                 {
                     std::vector<std::thread> helpers;
                     for (std::size_t t = 1; t < T; ++t)
-                        helpers.emplace_back(work, t, T);
-                    work(0, T);
+                        helpers.emplace_back(work);
+                    work();
                     for (auto &h : helpers)
                         h.join();
                 }
