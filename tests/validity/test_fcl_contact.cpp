@@ -89,6 +89,38 @@ TEST(FclContact, MeshAgainstMeshAsFclSays)
     EXPECT_LT(touching, 290);
 }
 
+TEST(FclContact, RoundPrimitivesAsFclSays)
+{
+    // spheres, capsules and cylinders (an xArm6's links are cylinders) are answered "apart" by their enclosing
+    // capsules before libccd: every pair at random poses near contact must still get FCL's own answer, from both sides
+    const std::vector<ShapePtr> round{Shape::sphere(0.06), Shape::capsule(0.04, 0.25), Shape::cylinder(0.05, 0.3),
+                                      Shape::cylinder(0.12, 0.02)};
+    for (std::size_t i = 0; i < round.size(); ++i)
+        for (std::size_t j = i; j < round.size(); ++j)
+        {
+            SCOPED_TRACE("shapes " + std::to_string(i) + " and " + std::to_string(j));
+            const int touching = compareAtRandomPoses(round[i], round[j], 0.3, 2000, 11 + 5 * i + j);
+            EXPECT_GT(touching, 20);
+            EXPECT_LT(touching, 1980);
+        }
+}
+
+TEST(FclContact, CylinderEndFacesNearlyTouchingAsFclSays)
+{
+    // two cylinders end to end on one axis, then side by side: the enclosing capsules overlap, so FCL decides
+    const ShapePtr c = Shape::cylinder(0.05, 0.3);
+    fcl::CollisionObjectd a(c->geometries().front(), Eigen::Isometry3d::Identity());
+    for (const double gap : {-1e-3, 1e-3, 0.02, 0.06})
+    {
+        fcl::CollisionObjectd endToEnd(c->geometries().front(),
+                                       Eigen::Isometry3d(Eigen::Translation3d(0., 0., 0.3 + gap)));
+        EXPECT_EQ(validity::objectsTouch(&a, &endToEnd), fclCollides(a, endToEnd)) << "end to end, gap " << gap;
+        EXPECT_EQ(validity::objectsTouch(&a, &endToEnd), gap < 0.) << "end to end, gap " << gap;
+        fcl::CollisionObjectd side(c->geometries().front(), Eigen::Isometry3d(Eigen::Translation3d(0.1 + gap, 0., 0.)));
+        EXPECT_EQ(validity::objectsTouch(&a, &side), gap < 0.) << "side by side, gap " << gap;
+    }
+}
+
 TEST(FclContact, MeshInsideABoxTouchesIt)
 {
     // FCL tests the mesh's triangles against the solid box: a link wholly inside collides, though no triangle

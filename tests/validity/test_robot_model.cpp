@@ -447,6 +447,38 @@ TEST(RobotModel, MixedRobotForwardKinematicsMatchesProductOfTransforms)
     }
 }
 
+TEST(RobotModel, RevoluteAxesOfEverySignAndAGeneralAxisMatchTheRotationAboutThem)
+{
+    // forwardKinematics turns about a coordinate axis by mixing two columns, and about any other axis by the general
+    // rotation: both must give the product of transforms
+    const std::vector<Eigen::Vector3d> axes{-Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitY(),
+                                            -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                                            Eigen::Vector3d(0.6, 0., 0.8)};
+    std::ostringstream urdf;
+    urdf << "<robot name=\"axes\"><link name=\"l0\"/>";
+    for (std::size_t j = 0; j < axes.size(); ++j)
+        urdf << "<link name=\"l" << j + 1 << "\"/><joint name=\"j" << j << "\" type=\"revolute\"><parent link=\"l" << j
+             << "\"/><child link=\"l" << j + 1 << "\"/><origin xyz=\"0.1 0.02 0.3\" rpy=\"0.2 -0.1 0.4\"/><axis xyz=\""
+             << axes[j].x() << " " << axes[j].y() << " " << axes[j].z()
+             << "\"/><limit lower=\"-3\" upper=\"3\" effort=\"1\" velocity=\"1\"/></joint>";
+    urdf << "</robot>";
+    const auto model = RobotModel::fromUrdfString(urdf.str(), "axes", ".");
+    const Eigen::Isometry3d origin = translation(0.1, 0.02, 0.3) * rotation(0.4, Eigen::Vector3d::UnitZ()) *
+                                     rotation(-0.1, Eigen::Vector3d::UnitY()) * rotation(0.2, Eigen::Vector3d::UnitX());
+    for (const std::vector<double> &q :
+         {std::vector<double>{0.3, -1.2, 2.5, -2.9, 0.7}, std::vector<double>{-0.4, 0.9, -1.7, 1.1, -2.2}})
+    {
+        const auto poses = model->forwardKinematics(q);
+        Eigen::Isometry3d expected = Eigen::Isometry3d::Identity();
+        for (std::size_t j = 0; j < axes.size(); ++j)
+        {
+            expected = expected * origin * rotation(q[j], axes[j]);
+            expectPoseNear(expected, poses[model->linkIndex("l" + std::to_string(j + 1))], 1e-12,
+                           "link " + std::to_string(j + 1));
+        }
+    }
+}
+
 TEST(RobotModel, Xarm6ForwardKinematicsMatchesProductOfTransforms)
 {
     const auto model = RobotModel::fromUrdfString(xarm6Urdf(), "<xarm6 test urdf>", ".");
