@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace michi;
@@ -119,6 +120,30 @@ TEST(FclContact, CylinderEndFacesNearlyTouchingAsFclSays)
         fcl::CollisionObjectd side(c->geometries().front(), Eigen::Isometry3d(Eigen::Translation3d(0.1 + gap, 0., 0.)));
         EXPECT_EQ(validity::objectsTouch(&a, &side), gap < 0.) << "side by side, gap " << gap;
     }
+}
+
+TEST(FclContact, EnclosingCapsuleHoldsEveryVertexOfEveryPandaMesh)
+{
+    // objectsTouch() calls two objects apart when their enclosing capsules are: that is sound only if every vertex (and
+    // so every triangle, the capsule being convex) lies inside
+    for (const char *name : {"link0", "link1", "link2", "link3", "link4", "link5", "link6", "link7", "hand", "finger"})
+    {
+        const ShapePtr mesh = pandaMesh(name);
+        const Shape::Capsule *c = mesh->enclosingCapsule();
+        ASSERT_NE(c, nullptr) << name;
+        const Eigen::Vector3d axis = c->b - c->a;
+        double farthest = 0.;
+        for (const auto &v : mesh->vertices())
+        {
+            const double t =
+                axis.squaredNorm() > 0. ? std::clamp((v - c->a).dot(axis) / axis.squaredNorm(), 0., 1.) : 0.;
+            farthest = std::max(farthest, (v - (c->a + t * axis)).norm());
+        }
+        EXPECT_LE(farthest, c->radius) << name;
+        // and it is tight enough to be worth asking: no larger than the sphere about the origin that holds the mesh
+        EXPECT_LT(c->radius, mesh->boundingRadius()) << name;
+    }
+    EXPECT_EQ(Shape::cylinder(0.1, 0.2)->enclosingCapsule(), nullptr);
 }
 
 TEST(FclContact, MeshInsideABoxTouchesIt)

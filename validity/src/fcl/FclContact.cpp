@@ -40,8 +40,9 @@ namespace michi
                 return shape != nullptr ? shape->collisionMesh() : nullptr;
             }
 
-            /** The capsule that holds a sphere (a segment of length 0), a capsule or a cylinder (its axis, its radius),
-                as the segment p-q and the radius r; false for other geometry. */
+            /** The capsule that holds a sphere (a segment of length 0), a capsule, a cylinder (its axis, its radius) or
+                a Shape's mesh (Shape::enclosingCapsule()), as the segment p-q and the radius r; false for other
+                geometry. */
             bool enclosingCapsule(const fcl::CollisionObjectd *o, Eigen::Vector3d &p, Eigen::Vector3d &q, double &r)
             {
                 const fcl::CollisionGeometryd *g = o->collisionGeometry().get();
@@ -60,7 +61,18 @@ namespace michi
                         half = 0.5 * static_cast<const fcl::Cylinderd *>(g)->lz;
                         break;
                     default:
-                        return false;
+                    {
+                        // a mesh made by Shape: the capsule that holds its vertices, hence its triangles
+                        const Shape *shape =
+                            o->getObjectType() == fcl::OT_BVH ? Shape::owner(g) : static_cast<const Shape *>(nullptr);
+                        const Shape::Capsule *c = shape != nullptr ? shape->enclosingCapsule() : nullptr;
+                        if (c == nullptr)
+                            return false;
+                        p = o->getTransform() * c->a;
+                        q = o->getTransform() * c->b;
+                        r = c->radius;
+                        return true;
+                    }
                 }
                 // FCL's capsules and cylinders are centred on their frame's origin, along its z axis
                 const Eigen::Vector3d axis = half * o->getRotation().col(2);
@@ -108,9 +120,10 @@ namespace michi
                 return (w + s * d1 - t * d2).squaredNorm();
             }
 
-            /** Two spheres, capsules or cylinders whose enclosing capsules are apart by more than a micrometre: apart,
-                without libccd's iterative test (cylinder pairs through it were a fifth of an xArm6 state check in
-                perf). Only a "free" answer is given this way; nearer pairs still go to FCL. */
+            /** Two spheres, capsules, cylinders or meshes whose enclosing capsules are apart by more than a
+                micrometre: apart, without libccd's iterative test (cylinder pairs through it were a fifth of an xArm6
+                state check in perf) or a walk of a mesh's tree. Only a "free" answer is given this way; nearer pairs
+                still go to FCL. */
             bool roundShapesApart(const fcl::CollisionObjectd *a, const fcl::CollisionObjectd *b)
             {
                 Eigen::Vector3d pa, qa, pb, qb;

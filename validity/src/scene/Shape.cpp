@@ -14,7 +14,10 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/bv/OBBRSS.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -294,6 +297,69 @@ namespace michi
             return s;
         }
 
+        namespace
+        {
+            /** The capsule along \e axis (unit) through \e centre that holds every vertex, with the smallest radius
+                about that line and the shortest segment for it. */
+            Shape::Capsule capsuleAlong(const std::vector<Eigen::Vector3d> &vertices, const Eigen::Vector3d &centre,
+                                        const Eigen::Vector3d &axis)
+            {
+                double r2 = 0.;
+                for (const auto &v : vertices)
+                {
+                    const Eigen::Vector3d d = v - centre;
+                    r2 = std::max(r2, (d - d.dot(axis) * axis).squaredNorm());
+                }
+                const double r = std::sqrt(r2);
+                // a vertex at axial position t and distance d from the line lies in the end sphere about the
+                // segment's end e when |t - e| <= sqrt(r^2 - d^2)
+                double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+                for (const auto &v : vertices)
+                {
+                    const Eigen::Vector3d d = v - centre;
+                    const double t = d.dot(axis);
+                    const double reach = std::sqrt(std::max(0., r * r - (d - t * axis).squaredNorm()));
+                    lo = std::min(lo, t + reach);
+                    hi = std::max(hi, t - reach);
+                }
+                if (lo > hi)
+                    lo = hi = 0.5 * (lo + hi);
+                // the farthest vertices lie on the surface: a little over it, so that rounding never puts one outside
+                return {centre + lo * axis, centre + hi * axis, r * (1. + 1e-9) + 1e-9};
+            }
+
+            /** Of the capsules along the vertices' principal axes and the frame's axes, the one of least volume. */
+            Shape::Capsule enclosingCapsuleOf(const std::vector<Eigen::Vector3d> &vertices)
+            {
+                Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+                for (const auto &v : vertices)
+                    centre += v;
+                centre /= static_cast<double>(vertices.size());
+                Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+                for (const auto &v : vertices)
+                    covariance += (v - centre) * (v - centre).transpose();
+                const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+                std::vector<Eigen::Vector3d> axes{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                                  Eigen::Vector3d::UnitZ()};
+                for (int i = 0; i < 3; ++i)
+                    if (eigen.info() == Eigen::Success && eigen.eigenvectors().col(i).allFinite())
+                        axes.push_back(eigen.eigenvectors().col(i).normalized());
+                Shape::Capsule best;
+                double bestVolume = std::numeric_limits<double>::infinity();
+                for (const auto &axis : axes)
+                {
+                    const Shape::Capsule c = capsuleAlong(vertices, centre, axis);
+                    const double volume = M_PI * c.radius * c.radius * ((c.b - c.a).norm() + 4. / 3. * c.radius);
+                    if (volume < bestVolume)
+                    {
+                        bestVolume = volume;
+                        best = c;
+                    }
+                }
+                return best;
+            }
+        }  // namespace
+
         std::shared_ptr<const Shape> Shape::mesh(std::vector<Eigen::Vector3d> vertices,
                                                  std::vector<Eigen::Vector3i> triangles, std::string source)
         {
@@ -321,6 +387,7 @@ namespace michi
             // same triangles serves collision queries against primitives and other meshes (collisionMesh()).
             s->geometries_.push_back(bvhModel<fcl::OBBRSSd>(s->vertices_, tris));
             s->collisionMesh_ = bvhModel<fcl::OBBd>(s->vertices_, tris);
+            s->capsule_ = enclosingCapsuleOf(s->vertices_);
             s->finish();
             return s;
         }

@@ -85,6 +85,18 @@ namespace michi
             /** \brief The shape a geometry of geometries() belongs to (its FCL user data); null for a geometry no
                 Shape made. */
             static const Shape *owner(const fcl::CollisionGeometryd *geometry);
+            /** \brief A capsule (the segment a-b grown by radius) that contains a mesh: every vertex, hence every
+                triangle, lies inside it. For a quick "apart" answer before a mesh's tree is walked (objectsTouch()). */
+            struct Capsule
+            {
+                Eigen::Vector3d a{Eigen::Vector3d::Zero()}, b{Eigen::Vector3d::Zero()};
+                double radius{0.};
+            };
+            /** \brief The enclosing capsule of a mesh, in the shape's frame; null for other shapes. */
+            const Capsule *enclosingCapsule() const
+            {
+                return type_ == Type::MESH ? &capsule_ : nullptr;
+            }
             /** \brief Radius of a sphere about the shape's origin that contains the shape. */
             double boundingRadius() const
             {
@@ -109,6 +121,7 @@ namespace michi
             std::vector<std::shared_ptr<fcl::CollisionGeometryd>> geometries_;
             std::shared_ptr<fcl::CollisionGeometryd> collisionMesh_;  ///< see collisionMesh()
             double boundingRadius_{0.};
+            Capsule capsule_;  ///< meshes: see enclosingCapsule()
         };
 
         using ShapePtr = std::shared_ptr<const Shape>;
