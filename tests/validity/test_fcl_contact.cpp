@@ -2,7 +2,9 @@
 // answer must be FCL's own on the OBBRSS tree the mesh is placed with (the Panda's collision meshes against every
 // primitive, an extruded polygon and another mesh, at random poses near contact), including a mesh wholly inside a
 // box and a box wholly inside a mesh's bounds. The extruded polygon must keep the OBBRSS path: FCL's OBB of a convex
-// piece does not hold it, and with it this test found missed contacts.
+// piece does not hold it, and with it this test found missed contacts. Spheres, capsules, cylinders and meshes are
+// called apart by their enclosing capsules before FCL is asked: the same comparison covers them, and every mesh
+// vertex must lie inside its capsule.
 
 #include <michi/validity/fcl/FclContact.h>
 #include <michi/validity/scene/Shape.h>
