@@ -201,7 +201,19 @@ TEST(PathSeedRepair, FailFastCheckAgreesWithPathCheck)
     EXPECT_EQ(v.invalidStates(), 0u);
 }
 
-TEST(CheckThreads, EveryHandOutRunsEachJobOnceAndRethrowsAHelpersError)
+namespace
+{
+    /** For a job 0 that must see \e n jobs begun (helpers that do begin share the work): waits up to 10 s, so a
+        helper that never comes fails the test instead of hanging it. */
+    void awaitBegun(const std::atomic<int> &begun, int n)
+    {
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (begun.load() < n && std::chrono::steady_clock::now() < until)
+            std::this_thread::yield();
+    }
+}  // namespace
+
+TEST(CheckThreads, EveryHandOutRunsEachJobAtMostOnceAndRethrowsAHelpersError)
 {
     michi::planners::CheckThreads helpers(2, 0);  // no polling: helpers sleep between hand-outs
     EXPECT_EQ(helpers.helpers(), 2u);
@@ -209,37 +221,49 @@ TEST(CheckThreads, EveryHandOutRunsEachJobOnceAndRethrowsAHelpersError)
     {
         const unsigned int count = 1 + round % 3;
         std::vector<std::atomic<int>> ran(3);
-        helpers.run(count,
-                    [&](unsigned int t)
-                    {
-                        ++ran[t];
-                    });
-        // run() returns only after every job ended: each index of the hand-out ran once, the others not at all
+        std::atomic<int> begun{0};
+        helpers.share(count,
+                      [&](unsigned int t)
+                      {
+                          ++begun;
+                          ++ran[t];
+                          if (t == 0)
+                              awaitBegun(begun, static_cast<int>(count));
+                      });
+        // job 0 waited for the others: each index of the hand-out ran once, the others not at all
         for (unsigned int t = 0; t < 3; ++t)
             ASSERT_EQ(ran[t].load(), t < count ? 1 : 0) << "round " << round << " job " << t;
     }
     // more jobs than helpers + 1: the extra ones are not run
     std::atomic<int> jobs{0};
-    helpers.run(5,
-                [&](unsigned int)
-                {
-                    ++jobs;
-                });
+    helpers.share(5,
+                  [&](unsigned int t)
+                  {
+                      ++jobs;
+                      if (t == 0)
+                          awaitBegun(jobs, 3);
+                  });
     EXPECT_EQ(jobs.load(), 3);
-    EXPECT_THROW(helpers.run(3,
-                             [](unsigned int t)
-                             {
-                                 if (t == 2)
-                                     throw std::runtime_error("helper failed");
-                             }),
+    std::atomic<int> begun{0};
+    EXPECT_THROW(helpers.share(3,
+                               [&](unsigned int t)
+                               {
+                                   ++begun;
+                                   if (t == 0)
+                                       awaitBegun(begun, 3);
+                                   if (t == 2)
+                                       throw std::runtime_error("helper failed");
+                               }),
                  std::runtime_error);
     // still usable after an error
     jobs = 0;
-    helpers.run(3,
-                [&](unsigned int)
-                {
-                    ++jobs;
-                });
+    helpers.share(3,
+                  [&](unsigned int t)
+                  {
+                      ++jobs;
+                      if (t == 0)
+                          awaitBegun(jobs, 3);
+                  });
     EXPECT_EQ(jobs.load(), 3);
 }
 
@@ -273,7 +297,6 @@ TEST(CheckThreads, ShareSkipsHelpersThatHaveNotBegunAndNeverRunsAJobAfterItRetur
             ASSERT_FALSE(lateJob.load()) << "a helper began after share() returned";
         }
         // a helper that begins while the caller's job runs does share the work: here the caller's job waits for it
-        // (a bound of 10 s instead of a hang if it never comes)
         std::atomic<int> began{0};
         std::atomic<std::size_t> next{0};
         std::vector<std::atomic<int>> done(64);
@@ -281,9 +304,8 @@ TEST(CheckThreads, ShareSkipsHelpersThatHaveNotBegunAndNeverRunsAJobAfterItRetur
                       [&](unsigned int t)
                       {
                           ++began;
-                          const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-                          while (t == 0 && began.load() < 2 && std::chrono::steady_clock::now() < until)
-                              std::this_thread::yield();
+                          if (t == 0)
+                              awaitBegun(began, 2);
                           for (std::size_t i = next++; i < done.size(); i = next++)
                               ++done[i];
                       });

@@ -23,17 +23,7 @@ namespace michi
                 t.join();
         }
 
-        void CheckThreads::run(unsigned int count, const std::function<void(unsigned int)> &job)
-        {
-            handOut(count, job, false);
-        }
-
         void CheckThreads::share(unsigned int count, const std::function<void(unsigned int)> &job)
-        {
-            handOut(count, job, true);
-        }
-
-        void CheckThreads::handOut(unsigned int count, const std::function<void(unsigned int)> &job, bool optional)
         {
             if (count > helpers() + 1)
                 count = helpers() + 1;
@@ -46,9 +36,8 @@ namespace michi
                 std::lock_guard<std::mutex> lock(mutex_);
                 job_ = &job;
                 count_ = count;
-                // run(): every helper's job is owed; share(): a helper counts itself in when it begins
-                running_ = optional ? 0 : count - 1;
-                optional_ = optional;
+                // a helper counts itself in when it begins, while the caller's job still runs
+                running_ = 0;
                 open_ = true;
                 error_ = nullptr;
                 ++generation_;
@@ -64,9 +53,9 @@ namespace michi
                 own = std::current_exception();
             }
             std::unique_lock<std::mutex> lock(mutex_);
-            // share(): from here no helper begins; those that began are waited for
+            // from here no helper begins; those that began are waited for, since the job refers to the caller's
+            // stack: no helper may still run it when share() returns
             open_ = false;
-            // the job refers to the caller's stack: no helper may still run it when run() returns
             finished_.wait(lock,
                            [this]
                            {
@@ -102,10 +91,9 @@ namespace michi
                 if (stop_)
                     return;
                 seen = generation_;
-                if (index >= count_ || (optional_ && !open_))
-                    continue;  // this hand-out needs fewer threads, or (share()) the caller has finished it
-                if (optional_)
-                    ++running_;
+                if (index >= count_ || !open_)
+                    continue;  // this hand-out needs fewer threads, or the caller has finished it
+                ++running_;
                 const auto *job = job_;
                 lock.unlock();
                 std::exception_ptr error;

@@ -33,18 +33,15 @@ namespace michi
             {
                 return static_cast<unsigned int>(threads_.size());
             }
-            /** \brief Run \e job(0) on the calling thread and \e job(1) .. \e job(count - 1) on helpers, and return
-                when all have returned (count - 1 at most helpers()). An exception a helper's job throws is thrown
-                again here, after every job has ended. Not reentrant: one run() at a time. */
-            void run(unsigned int count, const std::function<void(unsigned int)> &job);
-            /** \brief The same for work the jobs claim as they go (an atomic counter over a list), which the caller's
-                job alone can finish: a helper that has not begun its job when \e job(0) returns skips this hand-out
-                instead of being waited for. A sleeping helper takes tens of microseconds to wake (a futex on a VM),
-                and a hand-out whose first check fails is over sooner than that (docs/path-seed.md). */
+            /** \brief Run \e job(0) on the calling thread and \e job(1) .. \e job(count - 1) on helpers (count - 1
+                at most helpers()), for work the jobs claim as they go (an atomic counter over a list), which the
+                caller's job alone can finish: a helper that has not begun its job when \e job(0) returns skips this
+                hand-out instead of being waited for (a sleeping helper takes tens of microseconds to wake, and a
+                hand-out whose first check fails is over sooner: docs/path-seed.md). Returns when every job that
+                began has returned; an exception one threw is thrown again here. Not reentrant. */
             void share(unsigned int count, const std::function<void(unsigned int)> &job);
 
         private:
-            void handOut(unsigned int count, const std::function<void(unsigned int)> &job, bool optional);
             void loop(unsigned int index);
 
             std::vector<std::thread> threads_;
@@ -53,9 +50,8 @@ namespace michi
             const std::function<void(unsigned int)> *job_{nullptr};
             unsigned int count_{0};                     ///< jobs of the current hand-out, the caller's included
             std::atomic<std::uint64_t> generation_{0};  ///< hand-outs so far (a helper runs each at most once)
-            unsigned int running_{0};                   ///< helpers' jobs not yet returned
-            bool optional_{false};                      ///< share(): helpers join only while open_
-            bool open_{false};                          ///< share(): the caller's job still runs
+            unsigned int running_{0};                   ///< helpers' jobs begun and not yet returned
+            bool open_{false};                          ///< the caller's job still runs: helpers may join
             std::atomic<bool> stop_{false};
             std::exception_ptr error_;
             unsigned int spin_;
