@@ -51,6 +51,14 @@ namespace michi
                 for (std::size_t k = 1; ok && k <= n; ++k)
                 {
                     const double t = static_cast<double>(k) / static_cast<double>(n);
+                    if (k == n)
+                    {
+                        // The segment's end is the path's own state, not interpolate(a, b, 1): a + (b - a) * 1 can
+                        // land an ulp past b, and past a joint limit when b sits on it (held-out IK goals clamped to
+                        // a limit: every planner's valid path was refused as out of bounds).
+                        ok = check(b, i, t);
+                        break;
+                    }
                     space->interpolate(a, b, t, s);
                     ok = check(s, i, t);
                 }
