@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 
@@ -161,6 +162,27 @@ TEST_F(CliOptions, NumbersMustBeFiniteAndInRange)
                      "experience-queries", "--regions");
     expectUsageError("dualarm " + p + " --out " + out() + " --time 0", "dualarm", "--time");
     EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(CliOptions, ExperienceQueriesOfAnSe2ProblemAreWrittenOrRefusedWithAReason)
+{
+    // An SE(2) problem has no URDF joints: perturbed queries are checked against its bounds (this crashed once,
+    // reading joint limits of a robot model it does not have); task regions need an arm and say so.
+    const std::string p = problemFile("se2_corridor");
+    const std::string file = (dir_ / "q.yaml").string();
+    const CommandRun made = runMichi("experience-queries " + p + " --out " + file + " --count 4 --training 2");
+    ASSERT_EQ(made.exitCode, 0) << made.output;
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("training:\n  - {start: ["), std::string::npos) << text;
+    EXPECT_NE(text.find("held_out:\n  - {start: ["), std::string::npos) << text;
+    const std::string regions = (dir_ / "r.yaml").string();
+    std::ofstream(regions) << "tip_link: x\n";
+    const CommandRun refused =
+        runMichi("experience-queries " + p + " --out " + (dir_ / "r-out.yaml").string() + " --regions " + regions);
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    EXPECT_NE(refused.output.find("task regions need an arm"), std::string::npos) << refused.output;
+    EXPECT_FALSE(fs::exists(dir_ / "r-out.yaml"));
 }
 
 TEST_F(CliOptions, BadOutputPathsAreNamedBeforeAnyWork)

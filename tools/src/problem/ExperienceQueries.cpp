@@ -286,8 +286,9 @@ namespace michi
                     for (auto &x : q.goal)
                         x = std::round((x + rng.uniformReal(-goalSpread, goalSpread)) * 1e6) / 1e6;
                     found = invalidReason(ctx, q.start).empty() && invalidReason(ctx, q.goal).empty();
-                    // the stored values are the ones checked: within joint limits (enforceBounds would clamp)
-                    for (std::size_t k = 0; k < q.start.size() && found; ++k)
+                    // the stored values are the ones checked: within joint limits (enforceBounds would clamp); a
+                    // problem without a URDF arm (an SE(2) robot) has no joints, its bounds were checked above
+                    for (std::size_t k = 0; problem.kind == Problem::Kind::ARM && k < q.start.size() && found; ++k)
                     {
                         const auto &j = problem.model->variableJoint(problem.groupVariables[k]);
                         if (j.type != validity::RobotJoint::Type::CONTINUOUS)
