@@ -100,6 +100,34 @@ TEST_F(ProblemFiles, PiFormsAndGroups)
     EXPECT_DOUBLE_EQ(g.fixedValues[0], 0.3);
 }
 
+TEST_F(ProblemFiles, AliasesThatRepeatTheFileExponentiallyAreRefused)
+{
+    // ten levels of nine aliases each: 9^10 values in 400 bytes ("billion laughs"); the duplicate-key walk over them
+    // ran for hours before it was bounded by the file's size
+    std::string bomb = "a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]\n";
+    for (int i = 1; i <= 10; ++i)
+    {
+        const std::string prev = "*a" + std::to_string(i - 1);
+        bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+        for (int k = 0; k < 9; ++k)
+            bomb += (k ? ", " : "") + prev;
+        bomb += "]\n";
+    }
+    const std::string message =
+        error(write("bomb.yaml", bomb + "robot: {urdf: arm.urdf}\nstart: [0, 0]\ngoal: [1, 1]\n"));
+    EXPECT_NE(message.find("bomb.yaml"), std::string::npos) << message;
+    EXPECT_NE(message.find("aliases"), std::string::npos) << message;
+    // an alias that reuses a value is fine
+    const auto p =
+        michi::tools::loadProblem(write("alias.yaml",
+                                        "robot: {urdf: arm.urdf}\n"
+                                        "scene:\n  obstacles:\n"
+                                        "    - {name: a, box: &size [0.1, 0.1, 1], pose: {xyz: [0, 0.7, 0]}}\n"
+                                        "    - {name: b, box: *size, pose: {xyz: [0, -0.7, 0]}}\n"
+                                        "start: [0, 0]\ngoal: [1, 1]\n"));
+    EXPECT_EQ(p.scene->size(), 2u);
+}
+
 TEST_F(ProblemFiles, ErrorsNameFileAndKey)
 {
     struct Case

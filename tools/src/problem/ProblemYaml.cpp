@@ -21,12 +21,21 @@ namespace michi
         {
             namespace
             {
-                /** Throws on the first mapping that holds a key twice (yaml-cpp would keep only one of them). */
+                /** Throws on the first mapping that holds a key twice (yaml-cpp would keep only one of them).
+                    \e budget: values still to visit. Written out, a file has at most about as many values as
+                    characters; aliases (*name) repeat a subtree without writing it, and nested ones repeat it
+                    exponentially (a "billion laughs" file), so a walk past the budget stops with an error instead
+                    of running for hours. */
                 void rejectDuplicateKeys(const std::string &file, const YAML::Node &n, const std::string &key,
-                                         int depth)
+                                         int depth, std::size_t &budget)
                 {
                     if (depth > 200)  // deeper nesting is no michi file; stop before the stack does
                         throw ProblemError(file, key, "nested more than 200 levels deep");
+                    if (budget == 0)
+                        throw ProblemError(file, key,
+                                           "more values than the file has characters: aliases (*name) repeat "
+                                           "too much of it");
+                    --budget;
                     if (n.IsMap())
                     {
                         std::set<std::string> seen;
@@ -38,12 +47,12 @@ namespace michi
                                 throw ProblemError(file, child,
                                                    "duplicate key (line " + std::to_string(kv.first.Mark().line + 1) +
                                                        "): each key may appear once");
-                            rejectDuplicateKeys(file, kv.second, child, depth + 1);
+                            rejectDuplicateKeys(file, kv.second, child, depth + 1, budget);
                         }
                     }
                     else if (n.IsSequence())
                         for (std::size_t i = 0; i < n.size(); ++i)
-                            rejectDuplicateKeys(file, n[i], key + "[" + std::to_string(i) + "]", depth + 1);
+                            rejectDuplicateKeys(file, n[i], key + "[" + std::to_string(i) + "]", depth + 1, budget);
                 }
 
                 YAML::Node parseYamlFile(const std::string &file)
@@ -68,7 +77,8 @@ namespace michi
                                            "not valid YAML (line " + std::to_string(e.mark.line + 1) + ", column " +
                                                std::to_string(e.mark.column + 1) + "): " + e.msg);
                     }
-                    rejectDuplicateKeys(file, root, "", 0);
+                    std::size_t budget = 2 * text.size() + 1000;
+                    rejectDuplicateKeys(file, root, "", 0, budget);
                     return root;
                 }
             }  // namespace
