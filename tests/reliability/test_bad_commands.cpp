@@ -157,3 +157,100 @@ TEST_F(BadCommands, TenThousandObstacleMapLoads)
     const CommandRun run = runMichi("plan " + (dir_ / "checker.yaml").string() + PLAN + (dir_ / "o").string());
     EXPECT_EQ(run.exitCode, 0) << run.output;
 }
+
+// A bad-input sweep (2026-12-02) found these; each was a crash, a hang, output outside --out, a script line from a
+// flag, geometry silently dropped or a raw library message.
+
+TEST_F(BadCommands, GeometryThatWouldDropOutOfCheckingIsRefused)
+{
+    // a zero mesh scale flattens the ring into a point
+    const fs::path ring = dir_ / "p/xarm6_ring.yaml";
+    spit(ring, std::regex_replace(slurp(ring), std::regex(R"(mesh: \{file: meshes/ring.stl\})"),
+                                  "mesh: {file: meshes/ring.stl, scale: [0, 1, 1]}"));
+    expectCleanError("plan " + ring.string() + PLAN + (dir_ / "o").string(), "mesh scale", dir_ / "o");
+    // a map threshold of 0 marks no pixel occupied: every wall gone
+    const fs::path map = dir_ / "p/se2_corridor_pgm.yaml";
+    const std::string mapText = slurp(map);
+    spit(map, std::regex_replace(mapText, std::regex(R"(threshold: 0\.5)"), "threshold: 0"));
+    expectCleanError("plan " + map.string() + PLAN + (dir_ / "o").string(), "scene.map.threshold", dir_ / "o");
+    // a footprint prism of height 0
+    spit(map, std::regex_replace(mapText, std::regex(R"(\n  height: 1)"), "\n  height: 0"));
+    expectCleanError("plan " + map.string() + PLAN + (dir_ / "o").string(), "robot.height", dir_ / "o");
+}
+
+TEST_F(BadCommands, UrdfNestedThousandsDeepOrWithAHugeAxis)
+{
+    // TinyXML recursed once per level and overflowed the stack (a segfault)
+    std::string deep = "<robot name=\"deep\"><link name=\"base\"/>";
+    for (int i = 0; i < 20000; ++i)
+        deep += "<a>";
+    for (int i = 0; i < 20000; ++i)
+        deep += "</a>";
+    spit(dir_ / "p/robots/planar_2link.urdf", deep + "</robot>\n");
+    expectCleanError("plan " + (dir_ / "p/planar_2link.yaml").string() + PLAN + (dir_ / "o").string(),
+                     "nested more than", dir_ / "o");
+    // an axis of length 1e300: its norm overflowed, and the joint silently never moved (no path)
+    const fs::path urdf = dir_ / "p/robots/planar_2link_axis.urdf";
+    fs::copy_file(michi::test::sourcePath("problems/robots/planar_2link.urdf"), urdf);
+    spit(urdf, std::regex_replace(slurp(urdf), std::regex(R"(<axis xyz="0 0 1"/>)"), R"(<axis xyz="0 0 1e300"/>)"));
+    const fs::path problem = dir_ / "p/planar_2link_axis.yaml";
+    spit(problem, std::regex_replace(slurp(dir_ / "p/planar_2link.yaml"), std::regex(R"(planar_2link\.urdf)"),
+                                     "planar_2link_axis.urdf"));
+    const CommandRun run = runMichi("plan " + problem.string() + PLAN + (dir_ / "axis").string());
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+}
+
+TEST_F(BadCommands, NamesAndFlagsThatWouldWriteOutsideTheirPlace)
+{
+    // a problem name with a path in it wrote DIR/../../x-<planner>.path
+    const fs::path file = dir_ / "p/planar_2link.yaml";
+    spit(file, std::regex_replace(slurp(file), std::regex(R"(\nname: planar_2link)"), "\nname: ../../escaped"));
+    expectCleanError("plan " + file.string() + PLAN + (dir_ / "o").string(), "name", dir_ / "o");
+    for (const auto &e : fs::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find("escaped"), std::string::npos) << e.path();
+    // a newline in --partition became a command of the sbatch script
+    const fs::path campaign = dir_ / "c.yaml";
+    spit(campaign, "name: c\nruns: 1\nproblems: [" + (dir_ / "p/se2_corridor.yaml").string() +
+                       "]\nplanners: [geometric::RRTConnect]\ncheckers: [fcl]\n");
+    expectCleanError("campaign slurm " + campaign.string() + " --shards 2 --out " + (dir_ / "s").string() +
+                         " --partition $'a\\nrm -rf /tmp/x'",
+                     "--partition", dir_ / "s");
+    // a billion runs were listed in memory before any ran
+    spit(campaign, std::regex_replace(slurp(campaign), std::regex(R"(runs: 1)"), "runs: 1000000000"));
+    expectCleanError("campaign plan " + campaign.string(), "runs", dir_ / "never");
+}
+
+TEST_F(BadCommands, KeysParametersAndListsAreReadAsWritten)
+{
+    const fs::path file = dir_ / "p/planar_2link.yaml";
+    const std::string original = slurp(file);
+    // a list as a mapping key: yaml-cpp's "bad conversion" without a file name
+    spit(file, original + "extras:\n  ? [a, b]\n  : 1\n");
+    expectCleanError("plan " + file.string() + PLAN + (dir_ / "o").string(), "a key must be a plain name", dir_ / "o");
+    // a planner listed twice: plan took the last silently
+    const std::regex first(R"(\n  - geometric::RRTConnect\n  - geometric::PRM\n)");
+    spit(file, std::regex_replace(original, first, "\n  - geometric::PRM\n  - geometric::PRM\n"));
+    expectCleanError("plan " + file.string() + PLAN + (dir_ / "o").string(), "listed twice", dir_ / "o");
+    // a flag parameter given 2, an integer given 8.5: OMPL took them (as true, as 8)
+    spit(file, std::regex_replace(original, first,
+                                  "\n  - {name: geometric::RRTConnect, params: {intermediate_states: 2}}\n"
+                                  "  - geometric::PRM\n"));
+    expectCleanError("bench " + file.string() + " --runs 1 --time 0.1 --out " + (dir_ / "o").string(),
+                     "intermediate_states", dir_ / "o");
+    spit(file, std::regex_replace(original, first,
+                                  "\n  - geometric::RRTConnect\n"
+                                  "  - {name: geometric::PRM, params: {max_nearest_neighbors: 8.5}}\n"));
+    expectCleanError("bench " + file.string() + " --runs 1 --time 0.1 --out " + (dir_ / "o").string(),
+                     "max_nearest_neighbors", dir_ / "o");
+    // range: pi/4 passes michi's range check; OMPL's setter could not read it ("Failed converting string")
+    spit(file, std::regex_replace(original, first,
+                                  "\n  - {name: geometric::RRTConnect, params: {range: pi/4}}\n"
+                                  "  - geometric::PRM\n"));
+    const CommandRun run = runMichi("plan " + file.string() + PLAN + (dir_ / "pi").string());
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    // an empty name in a list flag was dropped
+    spit(file, original);
+    expectCleanError(
+        "bench " + file.string() + " --planners geometric::RRTConnect,, --runs 1 --out " + (dir_ / "o").string(),
+        "--planners", dir_ / "o");
+}

@@ -246,3 +246,26 @@ TEST(BadInputs, ConservativeMotionsEndWhenGeometryIsFarFromItsJoint)
     // it returns (the test would hang otherwise), and the motion through the post is never passed
     EXPECT_FALSE(validator->checkMotion(a.get(), b.get()));
 }
+
+TEST(BadInputs, MeshScaleAndMapThresholdThatWouldEmptyTheGeometryAreRejected)
+{
+    // a zero scale flattens a mesh into a plane or a point; a negative one mirrors it and stays allowed
+    const std::string stl = test::sourcePath("problems/meshes/ring.stl");
+    for (const Eigen::Vector3d &scale : {Eigen::Vector3d(0., 1., 1.), Eigen::Vector3d(1., 1., std::nan(""))})
+    {
+        const std::string message = errorOf(
+            [&]
+            {
+                validity::Shape::meshFromFile(stl, scale);
+            });
+        EXPECT_NE(message.find("mesh scale"), std::string::npos) << scale.transpose() << ": " << message;
+    }
+    EXPECT_NO_THROW(validity::Shape::meshFromFile(stl, Eigen::Vector3d(-1., 1., 1.)));
+    // a threshold of 0 marks no pixel occupied, above 1 every one
+    const std::string pgm = test::sourcePath("problems/maps/se2_corridor.pgm");
+    for (double threshold : {0., -1., 1.5})
+        EXPECT_THROW(validity::occupancyObstacles(pgm, 0.05, Eigen::Vector2d::Zero(), 1., threshold),
+                     std::invalid_argument)
+            << threshold;
+    EXPECT_FALSE(validity::occupancyObstacles(pgm, 0.05, Eigen::Vector2d::Zero(), 1., 0.5).empty());
+}

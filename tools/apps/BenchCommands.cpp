@@ -72,7 +72,11 @@ namespace michi
                     {
                         return std::find(names.begin(), names.end(), n) != names.end();
                     };
-                    const auto parts = splitComma(text);
+                    // split here rather than by splitComma(): any malformed list gets the message below
+                    std::vector<std::string> parts;
+                    std::stringstream in(text);
+                    for (std::string item; std::getline(in, item, ',');)
+                        parts.push_back(item);
                     const bool single = parts.size() == 1 && known(parts[0]) && text == parts[0];
                     const bool pair = parts.size() == 2 && known(parts[0]) && known(parts[1]) &&
                                       // A pair is FCL and one other: a benchmark context holds FCL and at most one
@@ -104,12 +108,12 @@ namespace michi
                         problem.benchmark.seed = *args.seed;  // runBenchmark seeds ompl::RNG with it
                     BenchOptions options;
                     if (compare)
-                        for (const auto &name : splitComma(*args.checker))
+                        for (const auto &name : splitComma("--checker", *args.checker))
                             if (name != "fcl")
                                 options.compareChecker = name;
                     options.queries = args.queries;
                     options.outDir = args.out;
-                    options.planners = splitComma(args.planners);
+                    options.planners = splitComma("--planners", args.planners);
                     options.runs = args.runs.value_or(0);        // 0: the problem's benchmark.runs
                     options.timeLimit = args.time.value_or(0.);  // 0: the problem's benchmark.time_limit
                     options.query = args.query.value_or(0);

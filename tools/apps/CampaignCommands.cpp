@@ -126,8 +126,15 @@ namespace michi
                     const Campaign c = load(args);
                     if (args.seed)
                         throw UsageError("--seed: put the seed in the campaign file for Slurm (every task reads it)");
-                    const SlurmScripts s =
-                        writeSlurmScripts(c, args.file, *args.shards, args.out, selfPath(), args.partition);
+                    SlurmScripts s;
+                    try
+                    {
+                        s = writeSlurmScripts(c, args.file, *args.shards, args.out, selfPath(), args.partition);
+                    }
+                    catch (const std::invalid_argument &e)
+                    {
+                        throw UsageError(e.what());  // a flag's value: exit 2, as other bad flags
+                    }
                     std::cout << "wrote " << s.run << "\n      " << s.merge << "\n      " << s.submit
                               << "\nsubmit with: sh " << shellQuote(s.submit) << std::endl;
                     return 0;

@@ -8,6 +8,7 @@
 
 #include <boost/filesystem.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -97,13 +98,16 @@ namespace michi
                 return values;
             }
 
-            std::vector<std::string> splitComma(const std::string &text)
+            std::vector<std::string> splitComma(const std::string &option, const std::string &text)
             {
                 std::vector<std::string> parts;
                 std::stringstream in(text);
                 for (std::string item; std::getline(in, item, ',');)
-                    if (!item.empty())
-                        parts.push_back(item);
+                    parts.push_back(item);
+                // "a,,b" or "a," is a typo, not a shorter list: said, rather than run without the missing name
+                if (!text.empty() &&
+                    (text.back() == ',' || std::find(parts.begin(), parts.end(), std::string()) != parts.end()))
+                    throw UsageError(option + ": an empty name in '" + text + "' (names separated by single commas)");
                 return parts;
             }
 

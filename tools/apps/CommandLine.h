@@ -49,7 +49,7 @@ namespace michi
                                               double highest, bool lowestIncluded = false, std::size_t size = 0);
 
             /** \brief "A,B,C" as its non-empty items. */
-            std::vector<std::string> splitComma(const std::string &text);
+            std::vector<std::string> splitComma(const std::string &option, const std::string &text);
 
             enum class OutputKind
             {

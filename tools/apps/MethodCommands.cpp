@@ -208,7 +208,7 @@ namespace michi
                     options.outDir = args.out;
                     options.episodes = args.episodes.value_or(20);
                     options.seed = args.seed.value_or(1);
-                    options.methods = splitComma(args.methods);
+                    options.methods = splitComma("--methods", args.methods);
                     options.html = args.html;
                     options.progress = &std::cerr;
                     std::cout << runReplan(options);

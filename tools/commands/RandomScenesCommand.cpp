@@ -79,7 +79,8 @@ namespace michi
                 out << "name: " << p.name << "\n";
                 out << "description: >-\n  " << p.description << "\n";
                 out << block(root, "robot", &robot);
-                out << "scene:\n  obstacles:\n";
+                // an empty list written as such: "obstacles:" alone reads as null, which the loader refuses
+                out << "scene:\n  obstacles:" << (random.polygons.empty() ? " []" : "") << "\n";
                 for (std::size_t i = 0; i < random.polygons.size(); ++i)
                 {
                     out << "    - name: polygon" << i << "\n      polygon:\n        points: [";

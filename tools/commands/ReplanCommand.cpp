@@ -129,7 +129,7 @@ namespace michi
                         std::string known;
                         for (const auto &m : all)
                             known += (known.empty() ? "" : ", ") + m.id;
-                        throw std::invalid_argument("unknown method '" + name + "' (known: " + known + ")");
+                        throw std::invalid_argument("--methods: unknown method '" + name + "' (known: " + known + ")");
                     }
                     methods.push_back(*it);
                 }

@@ -72,7 +72,11 @@ namespace michi
                         if (!kv.second.IsMap())
                             fail(file, path, "expected a mapping of DualRoadmap parameter names to values");
                         for (const auto &p : kv.second)
-                            s.dualParams[p.first.as<std::string>()] = p.second.as<std::string>();
+                        {
+                            if (!p.second.IsScalar())
+                                fail(file, path + "." + p.first.Scalar(), "expected a value (a number or a word)");
+                            s.dualParams[p.first.Scalar()] = p.second.Scalar();
+                        }
                         continue;
                     }
                     if (key == "clock")

@@ -18,6 +18,8 @@
 #include <ompl/util/Console.h>
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
 #include <mutex>
 #include <tuple>
 #include <sstream>
@@ -118,8 +120,16 @@ namespace michi
                     if (problem.kind != Problem::Kind::SE2)
                         throw ProblemError(problem.file, "collision.checker",
                                            "the grid checker is for SE2 robots (robot.type se2)");
-                    ctx.grid = std::make_shared<validity::GridValidityChecker>(si, problem.footprint, ctx.scene,
-                                                                               problem.se2Bounds, problem.grid);
+                    try
+                    {
+                        ctx.grid = std::make_shared<validity::GridValidityChecker>(si, problem.footprint, ctx.scene,
+                                                                                   problem.se2Bounds, problem.grid);
+                    }
+                    catch (const std::invalid_argument &e)
+                    {
+                        // the settings of collision.grid (a resolution too fine for the map, too many headings)
+                        throw ProblemError(problem.file, "collision.grid", e.what());
+                    }
                     ctx.setup->setStateValidityChecker(ctx.grid);
                     si->setMotionValidator(std::make_shared<validity::GridMotionValidator>(si, ctx.grid));
                     return;
@@ -338,8 +348,59 @@ namespace michi
                     throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
                                        "value '" + kv.second + "' " + problem + " of " + planner.getName() +
                                            " (declared range " + range + ")");
-                if (!params.setParam(kv.first, kv.second))
-                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                const std::string where = "planners." + spec.name + ".params." + kv.first;
+                // The value as the parameter's type reads it: OMPL converts with a lexical cast that truncates 8.5
+                // for an integer and takes 2 or -1 for a flag, and that cannot read the forms michi's numbers allow
+                // (pi/4, 1e3 for an integer); a number is handed over in plain decimal.
+                const ob::GenericParam *param = params.getParams().at(kv.first).get();
+                std::string value = kv.second;
+                if (dynamic_cast<const ob::SpecificParam<bool> *>(param) != nullptr)
+                {
+                    if (value != "0" && value != "1" && value != "true" && value != "false")
+                        throw ProblemError(
+                            file, where,
+                            "value '" + value + "' of " + planner.getName() + ": expected 0, 1, true or false");
+                }
+                else
+                {
+                    const bool integer = dynamic_cast<const ob::SpecificParam<int> *>(param) != nullptr ||
+                                         dynamic_cast<const ob::SpecificParam<unsigned int> *>(param) != nullptr ||
+                                         dynamic_cast<const ob::SpecificParam<long> *>(param) != nullptr ||
+                                         dynamic_cast<const ob::SpecificParam<unsigned long> *>(param) != nullptr;
+                    const bool real = dynamic_cast<const ob::SpecificParam<double> *>(param) != nullptr ||
+                                      dynamic_cast<const ob::SpecificParam<float> *>(param) != nullptr;
+                    if (integer || real)
+                    {
+                        double v = 0.;
+                        try
+                        {
+                            v = problem_file::Reader::parseNumber(value);
+                        }
+                        catch (const std::exception &)
+                        {
+                            throw ProblemError(file, where,
+                                               "value '" + value + "' of " + planner.getName() + ": expected a number");
+                        }
+                        if (integer && (v != std::floor(v) || std::abs(v) > 9e15))
+                            throw ProblemError(
+                                file, where, "value '" + value + "' of " + planner.getName() + ": expected an integer");
+                        std::ostringstream plain;
+                        plain << std::setprecision(17) << v;
+                        value = integer ? std::to_string(static_cast<long long>(v)) : plain.str();
+                    }
+                }
+                bool accepted = false;
+                try
+                {
+                    accepted = params.setParam(kv.first, value);
+                }
+                catch (const std::exception &e)
+                {
+                    throw ProblemError(file, where,
+                                       "value '" + kv.second + "' rejected by " + planner.getName() + ": " + e.what());
+                }
+                if (!accepted)
+                    throw ProblemError(file, where,
                                        "value '" + kv.second + "' rejected by " + planner.getName() + " (range " +
                                            params[kv.first].getRangeSuggestion() + ")");
             }

@@ -227,6 +227,8 @@ namespace michi
                 r.fail("time_limit", "expected seconds in (0, 1e6]");
             if (root["runs"])
                 c.runs = r.count(root["runs"], "runs");
+            if (c.runs < 1 || c.runs > 100000)  // as michi bench --runs
+                r.fail("runs", "expected an integer in 1..100000");
             c.hangMargin = r.number(root, "hang_margin", "", c.hangMargin);
             if (!(c.hangMargin > 0.) || c.hangMargin > 1e6)
                 r.fail("hang_margin", "expected seconds in (0, 1e6]");
@@ -236,6 +238,14 @@ namespace michi
             readDatasets(r, file, root["datasets"], c);
             readPlanners(r, root["planners"], c);
             readCheckers(r, root["checkers"], c);
+            // the work units are listed in memory (planUnits): a billion of them would exhaust it before any ran
+            double entries = 0.;
+            for (const auto &dataset : c.datasets)
+                entries += static_cast<double>(dataset.entries.size());
+            const double units = entries * static_cast<double>(c.planners.size()) *
+                                 static_cast<double>(c.checkers.size()) * static_cast<double>(c.runs);
+            if (units > 1e7)
+                r.fail("runs", "the campaign would have more than 10 million work units");
             return c;
         }
 

@@ -20,6 +20,14 @@ namespace michi
         {
             if (shards == 0)
                 throw std::invalid_argument("shards: expected at least 1");
+            // The partition goes into an #SBATCH line unquoted: a newline or a shell character in it would become a
+            // command of the script. Slurm's partition names (and lists of them) need none of those.
+            if (partition.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.,-") !=
+                std::string::npos)
+                throw std::invalid_argument(
+                    "--partition: expected a Slurm partition name (letters, digits, '_', '.', "
+                    "'-', ',' between names), got '" +
+                    partition + "'");
             // Absolute paths throughout: array tasks start on other nodes and in Slurm's own working directory.
             const fs::path out = fs::absolute(outDir);
             const std::string file = fs::absolute(campaignFile).string();

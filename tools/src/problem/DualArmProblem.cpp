@@ -147,6 +147,12 @@ namespace michi
                     s.stirStep = r.positive(st["step"], "dual_arm.stirring.step");
                 if (s.stirStep > s.stirSide)
                     r.fail("dual_arm.stirring.step", "expected a step no longer than the side");
+                // a hand's small square, traced with an IK solve per step: beyond an arm's reach, or millions of
+                // steps, it would only exhaust memory
+                if (s.stirSide > 2.)
+                    r.fail("dual_arm.stirring.side", "expected at most 2 m (the side of a hand's stirring square)");
+                if (s.stirSide / s.stirStep > 10000.)
+                    r.fail("dual_arm.stirring.step", "expected at most 10000 steps along the side");
             }
             if (n["seed_samples"])
                 s.seedSamples = r.count(n["seed_samples"], "dual_arm.seed_samples");

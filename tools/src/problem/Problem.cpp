@@ -6,6 +6,7 @@
 #include <michi/tools/problem/ExperienceQueries.h>
 #include <michi/tools/problem/MoveItImport.h>
 
+#include <algorithm>
 #include <yaml-cpp/yaml.h>
 
 #include <boost/filesystem.hpp>
@@ -58,6 +59,22 @@ namespace michi
             Problem problem;
             problem.file = path;
             problem.name = root["name"] ? r.text(root["name"], "name") : fs::path(path).stem().string();
+            if (root["name"])
+            {
+                // The name becomes part of output file names (DIR/<name>-<planner>.path, DIR/<name>.db): a '/' or
+                // a leading '.' would write outside DIR, a control character would break the logs.
+                const std::string &n = problem.name;
+                const bool control = std::any_of(n.begin(), n.end(),
+                                                 [](char c)
+                                                 {
+                                                     return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+                                                 });
+                if (n.empty() || n.size() > 128 || n.front() == '.' || n.find_first_of("/\\") != std::string::npos ||
+                    control)
+                    r.fail("name",
+                           "expected 1 to 128 characters without '/', '\\' or control characters, not "
+                           "starting with '.' (it names the output files)");
+            }
             if (root["description"])
                 problem.description = r.text(root["description"], "description");
 

@@ -179,6 +179,10 @@ namespace michi
                     r.fail("robot.footprint", e.what());
                 }
                 problem.footprintHeight = r.number(robot, "height", "robot", 1.);
+                // the footprint becomes a prism from z = 0 to this height
+                if (!(problem.footprintHeight > 0.))
+                    r.fail("robot.height",
+                           "expected a positive height in metres, got " + std::to_string(problem.footprintHeight));
                 // A map problem may leave the bounds out: the map's extent gives them later.
                 if (mapBounds && !robot["bounds"])
                     return;

@@ -321,6 +321,12 @@ namespace michi
                             origin = Eigen::Vector2d(o[0], o[1]);
                         }
                         const double threshold = r.number(map, "threshold", key, 0.5);
+                        // 0 or below marks no pixel occupied (every wall gone), above 1 every pixel
+                        if (!(threshold > 0. && threshold <= 1.))
+                            r.fail(key + ".threshold",
+                                   "expected a number in (0, 1] (a share of the image's maximum "
+                                   "grey value), got " +
+                                       std::to_string(threshold));
                         try
                         {
                             problem.scene->add(

@@ -121,6 +121,13 @@ namespace michi
                     }
                     else
                         r.fail(key, "expected a planner name or {name, params, checker}");
+                    // runs are named by planner (and checker): a second entry would be a second set of parameters
+                    // under the same name, and michi plan would take one of them silently
+                    for (const auto &earlier : problem.planners)
+                        if (earlier.name == spec.name && earlier.checker == spec.checker)
+                            r.fail(key, "'" + spec.name + "'" +
+                                            (spec.checker.empty() ? "" : " on checker " + spec.checker) +
+                                            " is listed twice");
                     problem.planners.push_back(spec);
                 }
             }

@@ -41,7 +41,13 @@ namespace michi
                         std::set<std::string> seen;
                         for (const auto &kv : n)
                         {
-                            const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
+                            // every reader takes keys as names: a list or mapping as a key ("? [a, b] : 1") is
+                            // refused here, once, rather than as yaml-cpp's "bad conversion" wherever it is read
+                            if (!kv.first.IsScalar())
+                                throw ProblemError(file, key.empty() ? "?" : key + ".?",
+                                                   "a key must be a plain name, not a list or a mapping (line " +
+                                                       std::to_string(kv.first.Mark().line + 1) + ")");
+                            const std::string k = kv.first.Scalar();
                             const std::string child = key.empty() ? k : key + "." + k;
                             if (!seen.insert(k).second)
                                 throw ProblemError(file, child,

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <string>
 
 namespace fs = boost::filesystem;
 
@@ -61,6 +62,51 @@ namespace michi
                                  .normalized()
                                  .toRotationMatrix();
                 return t;
+            }
+
+            /** How deep the elements of \e xml nest (a scan of the tags, skipping comments, declarations, CDATA
+                and quoted attribute values). urdfdom's TinyXML parser recurses once per level and overflows the
+                stack on a file nested 200,000 deep; a URDF nests a handful of levels. Malformed text ends the scan
+                early: the parser then says what is wrong. */
+            std::size_t xmlNestingDepth(const std::string &xml)
+            {
+                std::size_t depth = 0, deepest = 0, i = 0;
+                const std::size_t n = xml.size();
+                auto skipPast = [&](const char *end)
+                {
+                    const std::size_t at = xml.find(end, i);
+                    i = at == std::string::npos ? n : at + std::char_traits<char>::length(end);
+                };
+                while ((i = xml.find('<', i)) != std::string::npos)
+                {
+                    if (xml.compare(i, 4, "<!--") == 0)
+                        skipPast("-->");
+                    else if (xml.compare(i, 9, "<![CDATA[") == 0)
+                        skipPast("]]>");
+                    else if (xml.compare(i, 2, "<?") == 0)
+                        skipPast("?>");
+                    else if (xml.compare(i, 2, "<!") == 0)
+                        skipPast(">");
+                    else
+                    {
+                        const bool closing = i + 1 < n && xml[i + 1] == '/';
+                        // to the tag's end, past quoted values (which may hold '>')
+                        char quote = 0;
+                        std::size_t j = i + 1;
+                        for (; j < n && (quote != 0 || xml[j] != '>'); ++j)
+                            if (quote != 0 ? xml[j] == quote : (xml[j] == '"' || xml[j] == '\''))
+                                quote = quote != 0 ? 0 : xml[j];
+                        if (j >= n)
+                            break;
+                        const bool selfClosing = xml[j - 1] == '/';
+                        if (closing)
+                            depth = depth > 0 ? depth - 1 : 0;
+                        else if (!selfClosing)
+                            deepest = std::max(deepest, ++depth);
+                        i = j + 1;
+                    }
+                }
+                return deepest;
             }
 
             std::string resolveMesh(const std::string &uri, const std::string &baseDir, const std::string &source)
@@ -111,6 +157,11 @@ namespace michi
         std::shared_ptr<RobotModel> RobotModel::fromUrdfString(const std::string &xml, const std::string &source,
                                                                const std::string &baseDir)
         {
+            // a URDF nests a handful of levels (robot, link, collision, geometry, shape)
+            const std::size_t maxDepth = 100;
+            if (xmlNestingDepth(xml) > maxDepth)
+                throw UrdfError(source + ": not a valid URDF: elements nested more than " + std::to_string(maxDepth) +
+                                " levels deep");
             urdf::ModelInterfaceSharedPtr urdfModel;
             {
                 std::lock_guard<std::mutex> lock(consoleMutex);
@@ -267,6 +318,11 @@ namespace michi
                 {
                     if (!axis.allFinite())
                         throw UrdfError(source + ": joint '" + joint.name + "': axis is not finite");
+                    // scaled by its largest component first: the norm of (0, 0, 1e300) overflows to inf, and
+                    // normalized() would then give a zero axis, a joint that silently never moves
+                    const double largest = axis.cwiseAbs().maxCoeff();
+                    if (largest > 0.)
+                        axis /= largest;
                     if (axis.norm() < 1e-12)
                         throw UrdfError(source + ": joint '" + joint.name + "': zero axis");
                     // URDF allows an axis of any length; the kinematics needs a unit axis so that q is radians (or

@@ -244,6 +244,8 @@ namespace michi
         {
             if (!(resolution > 0.))
                 throw std::invalid_argument(pgmPath + ": resolution must be positive");
+            if (!(threshold > 0. && threshold <= 1.))
+                throw std::invalid_argument(pgmPath + ": threshold must be in (0, 1]");
             const GreyImage image = readGreyImage(pgmPath);
             std::vector<std::uint8_t> occupied(image.grey.size());
             for (std::size_t i = 0; i < occupied.size(); ++i)

@@ -450,6 +450,12 @@ namespace michi
 
         std::shared_ptr<const Shape> Shape::meshFromFile(const std::string &path, const Eigen::Vector3d &scale)
         {
+            // A zero scale flattens the mesh into a plane or a point, which collides with nearly nothing: the link or
+            // obstacle would silently drop out of checking. A negative one mirrors the mesh (some URDFs do that).
+            for (int i = 0; i < 3; ++i)
+                if (!std::isfinite(scale[i]) || scale[i] == 0.)
+                    throw std::invalid_argument(path + ": mesh scale " + std::to_string(scale[i]) + " (axis " +
+                                                std::string(1, "xyz"[i]) + ") must be finite and non-zero");
             requireInputFile(path);  // a directory or device would give assimp's own confusing message
             // The key holds the file's contents (a hash of them) rather than its modification time, whose clock
             // ticks too coarsely to tell apart two writes in a row; reading the bytes costs little beside parsing
