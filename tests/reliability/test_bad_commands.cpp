@@ -254,3 +254,24 @@ TEST_F(BadCommands, KeysParametersAndListsAreReadAsWritten)
         "bench " + file.string() + " --planners geometric::RRTConnect,, --runs 1 --out " + (dir_ / "o").string(),
         "--planners", dir_ / "o");
 }
+
+TEST_F(BadCommands, InputsThatWereAcceptedAsIfTheyMeantSomething)
+{
+    // an SRDF passive joint that is no joint of the robot (MoveIt's top-level form)
+    const fs::path srdf = dir_ / "p/robots/panda/panda.srdf";
+    const std::string srdfText = slurp(srdf);
+    spit(srdf, std::regex_replace(srdfText, std::regex("</robot>"), "<passive_joint name=\"nojoint\"/></robot>"));
+    const std::string problem = (dir_ / "p/panda_table_pick.yaml").string();
+    expectCleanError("plan " + problem + PLAN + (dir_ / "o").string(), "nojoint", dir_ / "o");
+    spit(srdf, srdfText);
+    // a MoveIt request constraining one joint twice, with two values
+    const fs::path request = dir_ / "p/moveit/table_pick/request0001.yaml";
+    const std::string requestText = slurp(request);
+    spit(request, std::regex_replace(requestText, std::regex("joint_name: panda_joint3"), "joint_name: panda_joint2"));
+    expectCleanError("plan " + problem + PLAN + (dir_ / "o").string(), "constrained twice", dir_ / "o");
+    spit(request, requestText);
+    // a seed library learned from no training query at all
+    expectCleanError(
+        "path-seed-library " + (dir_ / "p/planar_2link.yaml").string() + " --out " + (dir_ / "lib.seeds").string(),
+        "no training queries", dir_ / "lib.seeds");
+}

@@ -398,6 +398,11 @@ namespace michi
                        << sets.training.name << ")";
                 return report.str();
             }
+            // nothing to learn from: an empty library written as if it were one would mislead every later run
+            if (problem.experience.training.empty())
+                throw ProblemError(
+                    problem.file, "experience",
+                    "no training queries to learn seeds from (experience.queries or experience.dataset)");
             const PlanningContext ctx = makePlanningContext(problem, 0);
             planners::PathSeedLibrary library(planners::seedVariantFromName(variant));
             const auto paths = solveTrainingQueries(problem, ctx, nullptr);

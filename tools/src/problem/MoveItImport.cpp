@@ -426,6 +426,8 @@ namespace michi
                     const int a = srdfLink(path, e, "link1", model), b = srdfLink(path, e, "link2", model);
                     srdf.disabledCollisions.emplace_back(model.links()[a].name, model.links()[b].name);
                 }
+                else if (name == "passive_joint")
+                    srdfJoint(path, e, model);  // MoveIt's top-level form: the joint must exist, it is not planned
                 else if (name == "group")
                 {
                     const std::string group = attribute(path, e, "name");
@@ -650,6 +652,12 @@ namespace michi
             if (request.startNames.size() != request.startPositions.size())
                 r.fail(key + ".position", std::to_string(request.startPositions.size()) + " positions for " +
                                               std::to_string(request.startNames.size()) + " names");
+            // a joint named twice has two values: which one is meant cannot be told
+            for (std::size_t i = 0; i < request.startNames.size(); ++i)
+                for (std::size_t j = 0; j < i; ++j)
+                    if (request.startNames[i] == request.startNames[j])
+                        r.fail(key + ".name[" + std::to_string(i) + "]",
+                               "joint '" + request.startNames[i] + "' is named twice");
 
             const YAML::Node goals = root["goal_constraints"];
             if (!goals || goals.IsNull() || (goals.IsSequence() && goals.size() == 0))
@@ -668,6 +676,9 @@ namespace michi
                 const std::string k = "goal_constraints[0].joint_constraints[" + std::to_string(i) + "]";
                 request.goal.emplace_back(r.text(r.require(list[i], "joint_name", k), k + ".joint_name"),
                                           r.number(r.require(list[i], "position", k), k + ".position"));
+                for (std::size_t j = 0; j + 1 < request.goal.size(); ++j)
+                    if (request.goal[j].first == request.goal.back().first)
+                        r.fail(k + ".joint_name", "joint '" + request.goal.back().first + "' is constrained twice");
             }
             return request;
         }

@@ -163,7 +163,7 @@ namespace michi
                                   double fallback) const
             {
                 const YAML::Node n = map[name];
-                return n ? number(n, key + "." + name) : fallback;
+                return n ? number(n, key.empty() ? name : key + "." + name) : fallback;
             }
 
             std::vector<double> Reader::numbers(const YAML::Node &n, const std::string &key, std::size_t size) const
