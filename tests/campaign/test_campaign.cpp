@@ -162,6 +162,16 @@ TEST_F(Campaign, BadCampaignFileNamesFileAndKeyAndWritesNothing)
     run = runMichi("campaign run " + param.string() + " --shard 5/4 --out " + out.string());
     EXPECT_EQ(run.exitCode, 2) << run.output;
     EXPECT_NE(run.output.find("--shard: expected K/N"), std::string::npos) << run.output;
+
+    // the J-map cannot check an SE(2) robot: said before any unit runs (each unit used to fail at run time while
+    // the campaign exited 0)
+    const fs::path jmap = write("jmap.yaml", "problems: [" + problemFile("se2_corridor") +
+                                                 "]\nplanners: [geometric::RRTConnect]\ncheckers: [fcl, jmap]\n");
+    run = runMichi("campaign run " + jmap.string() + " --out " + out.string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find(jmap.string() + ": checkers[1]: checker 'jmap' cannot check"), std::string::npos)
+        << run.output;
+    EXPECT_FALSE(fs::exists(out / "units"));
 }
 
 TEST_F(Campaign, FourShardsMergeIntoTheUnshardedRunsAndSegfaultsAreFailedRuns)

@@ -238,6 +238,28 @@ namespace michi
             readDatasets(r, file, root["datasets"], c);
             readPlanners(r, root["planners"], c);
             readCheckers(r, root["checkers"], c);
+            // A checker that cannot serve a dataset's robot (the grid checker on an arm, the J-map or spheres on an
+            // SE(2) robot) would fail each of its units at run time while the campaign reports success: said now,
+            // from each dataset's first problem (a folder's problems share their robot).
+            for (std::size_t i = 0; i < c.checkers.size(); ++i)
+            {
+                const std::string &checker = c.checkers[i];
+                if (checker != "grid" && checker != "jmap" && checker != "spheres")
+                    continue;
+                for (const auto &dataset : c.datasets)
+                {
+                    if (dataset.entries.empty())
+                        continue;
+                    const Problem problem = loadProblem(dataset.entries.front().problemFile);
+                    const bool se2 = problem.kind == Problem::Kind::SE2;
+                    if ((checker == "grid") != se2)
+                        r.fail("checkers[" + std::to_string(i) + "]",
+                               "checker '" + checker + "' cannot check " + problem.file + "'s robot (" +
+                                   (checker == "grid" ? "the grid checker is for SE(2) robots"
+                                                      : "the " + checker + " checker is for arms") +
+                                   ")");
+                }
+            }
             // the work units are listed in memory (planUnits): a billion of them would exhaust it before any ran
             double entries = 0.;
             for (const auto &dataset : c.datasets)
