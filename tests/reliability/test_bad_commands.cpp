@@ -270,6 +270,12 @@ TEST_F(BadCommands, InputsThatWereAcceptedAsIfTheyMeantSomething)
     spit(request, std::regex_replace(requestText, std::regex("joint_name: panda_joint3"), "joint_name: panda_joint2"));
     expectCleanError("plan " + problem + PLAN + (dir_ / "o").string(), "constrained twice", dir_ / "o");
     spit(request, requestText);
+    // a spherized URDF of another robot: no link matched, so every link was covered from its own geometry and the
+    // file silently did nothing
+    const std::string problemText = slurp(problem);
+    spit(problem, problemText + "collision:\n  checker: spheres\n  spheres: {urdf: robots/xarm6.urdf}\n");
+    expectCleanError("plan " + problem + PLAN + (dir_ / "o").string(), "names none of the links", dir_ / "o");
+    spit(problem, problemText);
     // a seed library learned from no training query at all
     expectCleanError(
         "path-seed-library " + (dir_ / "p/planar_2link.yaml").string() + " --out " + (dir_ / "lib.seeds").string(),

@@ -500,6 +500,15 @@ namespace michi
                                                                           const SphereModelSettings &settings)
         {
             const auto spherized = RobotModel::fromUrdfFile(spherizedUrdf);
+            // Links it does not name are covered from their own geometry (safe), but a file that names none of the
+            // robot's links is another robot's: most likely the wrong file, said rather than ignored.
+            bool shared = false;
+            for (const auto &link : model.links())
+                for (const auto &l : spherized->links())
+                    shared = shared || (l.name == link.name && !link.collisions.empty());
+            if (!shared)
+                throw UrdfError(spherizedUrdf + ": names none of the links of robot '" + model.name() +
+                                "' that have collision geometry (a spherized URDF of another robot?)");
             std::shared_ptr<SphereModel> m(new SphereModel);
             for (const auto &link : model.links())
             {
