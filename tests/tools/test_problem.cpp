@@ -308,3 +308,44 @@ TEST(BundledProblems, LoadWithValidStartAndGoal)
     }
     EXPECT_GE(count, 4);  // planar_2link, planar_3dof_hand, xarm6_ring, se2_corridor at least
 }
+
+TEST_F(ProblemFiles, MimicJointsFollowTheirJointAndAreNeverPlanned)
+{
+    // j2 turns with j1 (URDF <mimic>), j3 is free
+    std::string urdf = ARM_URDF;
+    urdf.insert(urdf.find(R"(</joint>
+</robot>)"),
+                R"(<mimic joint="j1" multiplier="-2" offset="0.1"/>)");
+    urdf.insert(urdf.find("</robot>"), R"(<link name="l3"/><joint name="j3" type="revolute"><parent link="l2"/>
+    <child link="l3"/><origin xyz="0.4 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="1" velocity="1"/>
+  </joint>)");
+    write("mimic.urdf", urdf);
+    const auto p = michi::tools::loadProblem(
+        write("fixed.yaml",
+              "robot: {urdf: mimic.urdf, groups: {wrist: [j3]}, group: wrist, fixed_joints: {j1: 0.3}}\n"
+              "start: [0.1]\ngoal: [1.2]\n"));
+    EXPECT_DOUBLE_EQ(p.fixedValues[0], 0.3);
+    EXPECT_DOUBLE_EQ(p.fixedValues[1], -0.5);  // -2 * 0.3 + 0.1, where it stayed at 0 before
+    const auto ctx = michi::tools::makePlanningContext(p);
+    EXPECT_DOUBLE_EQ(ctx.fixedValues[1], -0.5);
+
+    const std::vector<std::pair<std::string, std::string>> refused{
+        // planned: a dimension that would move nothing real
+        {"robot: {urdf: mimic.urdf, groups: {a: [j2, j3]}, group: a}\nstart: [0, 0]\ngoal: [1, 1]\n", "'j2'"},
+        // the joint it follows planned: the mimic's link would move where no bound follows it
+        {"robot: {urdf: mimic.urdf, groups: {a: [j1, j3]}, group: a}\nstart: [0, 0]\ngoal: [1, 1]\n", "'j1'"},
+        // no group: every movable joint, j1 and j2 among them
+        {"robot: {urdf: mimic.urdf}\nstart: [0, 0, 0]\ngoal: [1, 1, 1]\n", "robot.group"},
+        // given a value of its own
+        {"robot: {urdf: mimic.urdf, groups: {a: [j3]}, group: a, fixed_joints: {j2: 0.2}}\nstart: [0]\ngoal: [1]\n",
+         "robot.fixed_joints.j2"},
+    };
+    for (std::size_t i = 0; i < refused.size(); ++i)
+    {
+        const std::string file = write("refused" + std::to_string(i) + ".yaml", refused[i].first);
+        const std::string what = error(file);
+        EXPECT_NE(what.find(file), std::string::npos) << i << ": " << what;
+        EXPECT_NE(what.find(refused[i].second), std::string::npos) << i << ": " << what;
+        EXPECT_NE(what.find("mimic"), std::string::npos) << i << ": " << what;
+    }
+}

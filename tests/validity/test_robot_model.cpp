@@ -732,3 +732,68 @@ TEST(RobotModel, DisplacementBoundsContainTheMotionOfEveryPoint)
         }
     }
 }
+
+namespace
+{
+    /** A gripper: a palm and two fingers on prismatic joints, the right one following the left (URDF <mimic>) with
+        \e mimic's attribute text. */
+    std::string gripperUrdf(const std::string &mimic)
+    {
+        return R"(<robot name="gripper"><link name="palm"/>
+  <link name="left"><collision><geometry><box size="0.01 0.02 0.05"/></geometry></collision></link>
+  <link name="right"><collision><geometry><box size="0.01 0.02 0.05"/></geometry></collision></link>
+  <joint name="left_joint" type="prismatic"><parent link="palm"/><child link="left"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>
+  <joint name="right_joint" type="prismatic"><parent link="palm"/><child link="right"/><axis xyz="0 -1 0"/>
+    <limit lower="-0.01" upper="0.04" effort="1" velocity="1"/>)" +
+               mimic + R"(</joint></robot>)";
+    }
+}  // namespace
+
+TEST(RobotModel, MimicJointFollowsTheJointItNames)
+{
+    const auto model = RobotModel::fromUrdfString(
+        gripperUrdf(R"(<mimic joint="left_joint" multiplier="0.5" offset="-0.01"/>)"), "gripper", ".");
+    const RobotJoint &right = model->joints()[model->jointIndex("right_joint")];
+    ASSERT_EQ(right.mimic, model->jointIndex("left_joint"));
+    EXPECT_DOUBLE_EQ(right.mimicMultiplier, 0.5);
+    EXPECT_DOUBLE_EQ(right.mimicOffset, -0.01);
+    // whatever the configuration held for the mimic joint, it becomes 0.5 * left - 0.01
+    std::vector<double> q{0.04, 0.03};
+    model->applyMimic(q);
+    EXPECT_DOUBLE_EQ(q[0], 0.04);
+    EXPECT_DOUBLE_EQ(q[1], 0.01);
+    EXPECT_NEAR(model->forwardKinematics(q)[model->linkIndex("right")].translation().y(), -0.01, 1e-15);
+    // a joint without <mimic> follows nothing
+    EXPECT_EQ(model->joints()[model->jointIndex("left_joint")].mimic, -1);
+}
+
+TEST(RobotModel, MimicOfAnUnknownFixedOrMimicJointIsAUrdfErrorNamingIt)
+{
+    auto expectError = [](const std::string &urdf, const std::string &part)
+    {
+        try
+        {
+            RobotModel::fromUrdfString(urdf, "gripper.urdf", ".");
+            ADD_FAILURE() << "accepted: " << part;
+        }
+        catch (const validity::UrdfError &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("gripper.urdf"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        }
+    };
+    // before, the right finger stayed wherever its own value put it, not where the real gripper holds it
+    expectError(gripperUrdf(R"(<mimic joint="nosuch"/>)"), "names no joint");
+    expectError(gripperUrdf(R"(<mimic joint="right_joint"/>)"), "another movable joint");
+    expectError(gripperUrdf(R"(<mimic joint="left_joint" multiplier="1e300"/>)"), "multiplier or offset");
+    std::string chain = gripperUrdf(R"(<mimic joint="left_joint"/>)");
+    chain.insert(chain.find("</robot>"), R"(<link name="tip"/><joint name="tip_joint" type="prismatic">
+      <parent link="right"/><child link="tip"/><axis xyz="0 0 1"/><limit lower="0" upper="0.01" effort="1" velocity="1"/>
+      <mimic joint="right_joint"/></joint>)");
+    expectError(chain, "itself a mimic joint");
+    // on a fixed joint (the bundled Panda's fingers) <mimic> means nothing and is left alone
+    std::string fixed = gripperUrdf(R"(<mimic joint="nosuch"/>)");
+    fixed.replace(fixed.find(R"(name="right_joint" type="prismatic")"), 35, R"(name="right_joint" type="fixed")");
+    EXPECT_NO_THROW(RobotModel::fromUrdfString(fixed, "gripper.urdf", "."));
+}

@@ -234,6 +234,8 @@ namespace michi
                 throw std::invalid_argument("makePlanningContext: fixed values for " +
                                             std::to_string(ctx.fixedValues.size()) + " joints, the robot has " +
                                             std::to_string(problem.model->variableCount()));
+            if (problem.kind == Problem::Kind::ARM)
+                problem.model->applyMimic(ctx.fixedValues);  // the pictures and reports use these values too
             ctx.bodies = problem.kind == Problem::Kind::ARM
                              ? std::make_shared<validity::RobotGroupBodies>(problem.model, problem.groupVariables,
                                                                             ctx.fixedValues)

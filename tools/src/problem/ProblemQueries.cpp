@@ -106,6 +106,8 @@ namespace michi
                     }
                     problem.fixedValues[v] = value;
                 }
+                // the request's values for mimic joints give way to the joints they follow, as on the robot
+                problem.model->applyMimic(problem.fixedValues);
                 return query;
             }
         }  // namespace problem_file

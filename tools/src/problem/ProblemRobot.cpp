@@ -88,6 +88,27 @@ namespace michi
                 }
                 for (const auto &joint : problem.groups[problem.group])
                     problem.groupVariables.push_back(model.variableIndex(joint));
+                // A mimic joint (URDF <mimic>) follows the joint it names. Planned itself, it would be a dimension that
+                // moves nothing real; with the joint it follows planned, its links would move where neither the
+                // checkers' kinematics nor the motion validators' displacement bounds follow them.
+                for (int v : problem.groupVariables)
+                {
+                    const auto &j = model.variableJoint(static_cast<std::size_t>(v));
+                    if (j.mimic >= 0)
+                        r.fail("robot.group", "group '" + problem.group + "' plans joint '" + j.name +
+                                                  "', which follows '" + model.joints()[j.mimic].name +
+                                                  "' (URDF <mimic>): plan neither, or leave the mimic joint out");
+                    for (const auto &other : model.joints())
+                        if (other.mimic >= 0 && model.joints()[other.mimic].name == j.name)
+                            r.fail("robot.group", "group '" + problem.group + "' plans joint '" + j.name +
+                                                      "', which mimic joint '" + other.name +
+                                                      "' follows (URDF <mimic>): not supported; give '" + j.name +
+                                                      "' a value in robot.fixed_joints instead" +
+                                                      (problem.group == "all" && !robot["group"]
+                                                           ? std::string(" (with no robot.group every movable "
+                                                                         "joint is planned: name a group)")
+                                                           : std::string()));
+                }
 
                 // joints outside the group: mid-range, or 0 when 0 is within the limits, unless given
                 problem.fixedValues.assign(model.variableCount(), 0.);
@@ -106,6 +127,9 @@ namespace michi
                         const std::string joint = kv.first.as<std::string>();
                         const std::string key = "robot.fixed_joints." + joint;
                         const int v = checkJoint(joint, key);
+                        if (const int m = model.variableJoint(static_cast<std::size_t>(v)).mimic; m >= 0)
+                            r.fail(key, "joint '" + joint + "' follows '" + model.joints()[m].name +
+                                            "' (URDF <mimic>): give '" + model.joints()[m].name + "' a value instead");
                         problem.fixedValues[v] = r.number(kv.second, key);
                         const auto &j = model.variableJoint(v);
                         if (j.type != validity::RobotJoint::Type::CONTINUOUS &&
@@ -114,6 +138,7 @@ namespace michi
                                             std::to_string(j.upper) + "]");
                     }
                 }
+                model.applyMimic(problem.fixedValues);
                 if (const YAML::Node allowed = robot["allowed_collisions"])
                 {
                     if (!allowed.IsSequence())

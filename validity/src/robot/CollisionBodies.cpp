@@ -32,6 +32,17 @@ namespace michi
             for (int v : variables_)
                 if (v < 0 || v >= static_cast<int>(model_->variableCount()))
                     throw std::invalid_argument("group variable index out of range");
+            // Mimic joints (URDF <mimic>) follow their joints in the fixed values. A planned joint that is one, or
+            // that one follows, would move links that neither these poses nor the displacement bounds follow.
+            for (int v : variables_)
+            {
+                const RobotJoint &joint = model_->variableJoint(static_cast<std::size_t>(v));
+                for (const RobotJoint &other : model_->joints())
+                    if (other.mimic >= 0 && (&other == &joint || &model_->joints()[other.mimic] == &joint))
+                        throw std::invalid_argument("planned joint '" + joint.name + "' is or drives mimic joint '" +
+                                                    other.name + "': not supported");
+            }
+            model_->applyMimic(fixedValues_);
             std::vector<int> bodyOfLink(model_->links().size(), -1);
             for (std::size_t l = 0; l < model_->links().size(); ++l)
             {

@@ -356,8 +356,50 @@ namespace michi
                 model->jointOrder_.push_back(static_cast<int>(model->joints_.size()));
                 model->joints_.push_back(joint);
             }
+            // URDF <mimic> on a movable joint: it moves with the joint it names. Resolved once every joint is known;
+            // a name that is no movable joint of this URDF would leave the mimic joint wherever its own value put it,
+            // not where the real robot holds it.
+            for (std::size_t l = 1; l < queue.size(); ++l)
+            {
+                const auto &ujoint = queue[l]->parent_joint;
+                RobotJoint &joint = model->joints_[static_cast<std::size_t>(model->jointIndex(ujoint->name))];
+                if (!ujoint->mimic || !joint.movable())
+                    continue;
+                const std::string what =
+                    source + ": joint '" + joint.name + "': <mimic joint=\"" + ujoint->mimic->joint_name + "\">";
+                int master = -1;
+                try
+                {
+                    master = model->jointIndex(ujoint->mimic->joint_name);
+                }
+                catch (const std::out_of_range &)
+                {
+                    throw UrdfError(what + " names no joint of this URDF");
+                }
+                if (!model->joints_[master].movable() || master == model->jointIndex(joint.name))
+                    throw UrdfError(what + " must name another movable joint");
+                if (!isGeometryValue(ujoint->mimic->multiplier) || !isGeometryValue(ujoint->mimic->offset))
+                    throw UrdfError(what + ": multiplier or offset " +
+                                    geometryValueProblem(isGeometryValue(ujoint->mimic->multiplier)
+                                                             ? ujoint->mimic->offset
+                                                             : ujoint->mimic->multiplier));
+                joint.mimic = master;
+                joint.mimicMultiplier = ujoint->mimic->multiplier;
+                joint.mimicOffset = ujoint->mimic->offset;
+            }
+            for (const auto &joint : model->joints_)
+                if (joint.mimic >= 0 && model->joints_[joint.mimic].mimic >= 0)
+                    throw UrdfError(source + ": joint '" + joint.name + "' mimics '" +
+                                    model->joints_[joint.mimic].name + "', itself a mimic joint: not supported");
             model->computeDisplacementBounds();
             return model;
+        }
+
+        void RobotModel::applyMimic(double *q) const
+        {
+            for (const auto &joint : joints_)
+                if (joint.mimic >= 0)
+                    q[joint.variable] = joint.mimicMultiplier * q[joints_[joint.mimic].variable] + joint.mimicOffset;
         }
 
         std::vector<std::string> RobotModel::variableNames() const

@@ -56,6 +56,12 @@ namespace michi
             double lower{0.};
             double upper{0.};
             int variable{-1};  ///< index of its value in a configuration vector, -1 for fixed joints
+            /** A movable joint with a URDF <mimic>: the joint whose value it follows (value = mimicMultiplier *
+                that value + mimicOffset), -1 for none. Its own configuration value is only ever that
+                (RobotModel::applyMimic()). */
+            int mimic{-1};
+            double mimicMultiplier{1.};
+            double mimicOffset{0.};
 
             bool movable() const
             {
@@ -119,6 +125,13 @@ namespace michi
                 basePose_ = pose;
             }
 
+            /** \brief Set the value of every mimic joint (RobotJoint::mimic) in the configuration \e q
+                (variableCount() values) from the joint it follows. */
+            void applyMimic(double *q) const;
+            void applyMimic(std::vector<double> &q) const
+            {
+                applyMimic(q.data());
+            }
             /** \brief World pose of every link for configuration \e q (variableCount() values). */
             void forwardKinematics(const double *q, std::vector<Eigen::Isometry3d> &linkPoses) const;
             std::vector<Eigen::Isometry3d> forwardKinematics(const std::vector<double> &q) const;
