@@ -221,6 +221,20 @@ TEST_F(Campaign, FourShardsMergeIntoTheUnshardedRunsAndSegfaultsAreFailedRuns)
     EXPECT_NE(summary.find("| geometric::RRTConnect | 4 | 4 (100 %) | 0 |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| test::Segfault | 4 | 0 (0 %) | 4 |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("crash SIGSEGV (signal 11)"), std::string::npos) << summary;
+
+    // a plan cut short (a full disk, a copy stopped half way) is named as such; before, its records read as units of
+    // another campaign ("unit 2 is not in the campaign's plan")
+    const fs::path cut = dir_ / "cut";
+    fs::create_directories(cut / "units");
+    for (const auto &e : fs::directory_iterator(whole / "units"))
+        fs::copy_file(e.path(), cut / "units" / e.path().filename());
+    const std::string plan = slurp(whole / "campaign.plan");
+    write("cut/campaign.plan", plan.substr(0, plan.find('\n', plan.size() / 2) + 3));  // inside a unit line
+    run = runMichi("campaign merge " + cut.string() + " --out " + (dir_ / "cut-merged").string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find("campaign.plan"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("truncated"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir_ / "cut-merged"));
 }
 
 TEST_F(Campaign, KilledShardResumesWithoutLosingAFinishedUnit)

@@ -83,12 +83,31 @@ namespace michi
                     records.emplace(r.id, std::move(r));  // a unit in two folders (a rerun shard) counts once
                 }
             }
+            // Every unit line is "id, problem, file#query, planner, checker, run k, seed s" between tabs, ids counting
+            // from 0, and the file ends with a newline (run writes it whole): anything else is a plan cut short or
+            // edited, whose unit count would otherwise be misread (a truncated plan gave "unit 2 is not in the
+            // campaign's plan").
             std::size_t planned = 0;
             {
+                const std::string planFile = (fs::path(dirs.front()) / "campaign.plan").string();
+                if (!plan.empty() && plan.back() != '\n')
+                    throw std::runtime_error(planFile + ": ends in the middle of a line (a truncated plan)");
                 std::istringstream in(plan);
                 std::string line;
-                while (std::getline(in, line))
-                    planned += !line.empty() && line[0] != '#';
+                for (std::size_t number = 1; std::getline(in, line); ++number)
+                {
+                    if (line.empty() || line[0] == '#')
+                        continue;
+                    std::vector<std::string> fields;
+                    std::istringstream cells(line);
+                    for (std::string cell; std::getline(cells, cell, '\t');)
+                        fields.push_back(cell);
+                    if (fields.size() != 7 || fields[0] != std::to_string(planned) || fields[5].rfind("run ", 0) != 0 ||
+                        fields[6].rfind("seed ", 0) != 0)
+                        throw std::runtime_error(planFile + ": line " + std::to_string(number) + " is not unit " +
+                                                 std::to_string(planned) + " of a plan (a truncated or edited plan)");
+                    ++planned;
+                }
             }
             const unsigned int seed = planSeed(plan);
 
@@ -99,8 +118,10 @@ namespace michi
             {
                 // Ids are places in the plan: an id past its end is no unit of this campaign.
                 if (kv.first >= planned)
-                    throw std::runtime_error("unit " + std::to_string(kv.first) + " is not in the campaign's plan (" +
-                                             std::to_string(planned) + " units)");
+                    throw std::runtime_error("unit " + std::to_string(kv.first) + " is not in " +
+                                             (fs::path(dirs.front()) / "campaign.plan").string() + " (" +
+                                             std::to_string(planned) +
+                                             " units: a truncated plan, or a record of another campaign)");
                 result.failed += kv.second.outcome != "done";
                 all.push_back(kv.second);
             }
