@@ -389,6 +389,25 @@ TEST(JMap, RandomScenesContainment)
     std::cout << "random scenes: false-invalid " << double(totalFalse) / totalSamples << " of all samples" << std::endl;
 }
 
+TEST(JMap, BuildReportsEverySliceAndTheMapForgetsTheCallback)
+{
+    // `michi jmap` on an arm swept by FCL runs for minutes: it prints how far the build got from this callback
+    const auto c = loadPlanar("planar_2link");
+    PlanarIntervalSource source(c.arm, c.obstacles, planarAxes(*c.arm, 0, 1));
+    JMapSettings settings;
+    settings.slices = 12;
+    std::vector<std::pair<int, int>> calls;
+    settings.progress = [&calls](int done, int total)
+    {
+        calls.emplace_back(done, total);
+    };
+    const auto map = JMap::build(source, settings);
+    ASSERT_EQ(calls.size(), 12u);
+    for (int i = 0; i < 12; ++i)
+        EXPECT_EQ(calls[i], std::make_pair(i + 1, 12));
+    EXPECT_FALSE(map->settings().progress);
+}
+
 TEST(JMap, QueriesMatchBoostGeometry)
 {
     const auto c = loadPlanar("planar_2link");

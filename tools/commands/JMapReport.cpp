@@ -44,7 +44,24 @@ namespace michi
                      << (jp.planar ? "planar exact" : "fcl sweep") << ")" << std::endl;
             const auto mapStart = std::chrono::steady_clock::now();
             const auto source = jp.makeSource(jp.axes);
-            const validity::JMapPtr map = validity::JMap::build(*source, settings.map);
+            validity::JMapSettings mapSettings = settings.map;
+            if (log)
+            {
+                // an arm swept by FCL (xarm6_ring: about four minutes here) reports where it is every few seconds
+                auto shown = mapStart;
+                mapSettings.progress = [log, mapStart, shown](int done, int total) mutable
+                {
+                    const auto now = std::chrono::steady_clock::now();
+                    if (done == total || std::chrono::duration<double>(now - shown).count() < 5.)
+                        return;
+                    shown = now;
+                    const double spent = seconds(mapStart);
+                    *log << "michi jmap: " << done << " of " << total << " slices in " << static_cast<int>(spent)
+                         << " s, about " << static_cast<int>(spent / done * (total - done) + 0.5) << " s left"
+                         << std::endl;
+                };
+            }
+            const validity::JMapPtr map = validity::JMap::build(*source, mapSettings);
             validity::JMapPtr grown;
             validity::MultiPolygon2 neck;
             if (jp.planar && jp.handLength > 0.)

@@ -445,10 +445,13 @@ namespace michi
                 }
                 // The slice's intervals: the union of its columns', so they contain every collision in the whole cell.
                 s.intervals = mergeIntervals(std::move(all));
+                if (settings.progress)
+                    settings.progress(i + 1, settings.slices);
             }
             std::shared_ptr<JMap> map(new JMap());
             map->slices_ = std::move(slices);
             map->settings_ = settings;
+            map->settings_.progress = nullptr;  // the caller's callback need not outlive the build
             map->lo1_ = axes.lo1;
             map->hi1_ = axes.hi1;
             map->lo2_ = axes.lo2;

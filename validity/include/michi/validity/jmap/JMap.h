@@ -226,6 +226,9 @@ namespace michi
             /** \brief Compute every slice's true intervals at its centre (the paper's segments, for pictures
                 and checks); false leaves JMapSlice::trueIntervals empty and saves a third of the build. */
             bool trueIntervals{true};
+            /** \brief Called by JMap::build() after each slice with (slices done, slices): an arm swept by FCL takes
+                minutes, and a command shows how far it got. Empty: nothing is called. */
+            std::function<void(int, int)> progress;
         };
 
         /** \brief One cell of axis 1. */
