@@ -95,9 +95,10 @@ namespace michi
                 {
                     const auto &j = model.variableJoint(static_cast<std::size_t>(v));
                     if (j.mimic >= 0)
-                        r.fail("robot.group", "group '" + problem.group + "' plans joint '" + j.name +
-                                                  "', which follows '" + model.joints()[j.mimic].name +
-                                                  "' (URDF <mimic>): plan neither, or leave the mimic joint out");
+                        r.fail("robot.group",
+                               "group '" + problem.group + "' plans joint '" + j.name + "', which follows '" +
+                                   model.joints()[j.mimic].name +
+                                   "' (URDF <mimic>) and is not a joint of its own: leave it out of the group");
                     for (const auto &other : model.joints())
                         if (other.mimic >= 0 && model.joints()[other.mimic].name == j.name)
                             r.fail("robot.group", "group '" + problem.group + "' plans joint '" + j.name +
