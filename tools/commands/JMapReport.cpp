@@ -47,7 +47,7 @@ namespace michi
             validity::JMapSettings mapSettings = settings.map;
             if (log)
             {
-                // an arm swept by FCL (xarm6_ring: about four minutes here) reports where it is every few seconds
+                // an arm swept by FCL (xarm6_ring: about five minutes here) reports where it is every few seconds
                 auto shown = mapStart;
                 mapSettings.progress = [log, mapStart, shown](int done, int total) mutable
                 {

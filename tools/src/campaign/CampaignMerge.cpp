@@ -87,9 +87,9 @@ namespace michi
             // from 0, and the file ends with a newline (run writes it whole): anything else is a plan cut short or
             // edited, whose unit count would otherwise be misread (a truncated plan gave "unit 2 is not in the
             // campaign's plan").
+            const std::string planFile = (fs::path(dirs.front()) / "campaign.plan").string();
             std::size_t planned = 0;
             {
-                const std::string planFile = (fs::path(dirs.front()) / "campaign.plan").string();
                 if (!plan.empty() && plan.back() != '\n')
                     throw std::runtime_error(planFile + ": ends in the middle of a line (a truncated plan)");
                 std::istringstream in(plan);
@@ -118,8 +118,7 @@ namespace michi
             {
                 // Ids are places in the plan: an id past its end is no unit of this campaign.
                 if (kv.first >= planned)
-                    throw std::runtime_error("unit " + std::to_string(kv.first) + " is not in " +
-                                             (fs::path(dirs.front()) / "campaign.plan").string() + " (" +
+                    throw std::runtime_error("unit " + std::to_string(kv.first) + " is not in " + planFile + " (" +
                                              std::to_string(planned) +
                                              " units: a truncated plan, or a record of another campaign)");
                 result.failed += kv.second.outcome != "done";

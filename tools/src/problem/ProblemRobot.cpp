@@ -93,22 +93,23 @@ namespace michi
                 // checkers' kinematics nor the motion validators' displacement bounds follow them.
                 for (int v : problem.groupVariables)
                 {
+                    const validity::RobotJoint *mimic = model.mimicTiedTo(static_cast<std::size_t>(v));
+                    if (mimic == nullptr)
+                        continue;
                     const auto &j = model.variableJoint(static_cast<std::size_t>(v));
-                    if (j.mimic >= 0)
+                    if (mimic == &j)
                         r.fail("robot.group",
                                "group '" + problem.group + "' plans joint '" + j.name + "', which follows '" +
                                    model.joints()[j.mimic].name +
                                    "' (URDF <mimic>) and is not a joint of its own: leave it out of the group");
-                    for (const auto &other : model.joints())
-                        if (other.mimic >= 0 && model.joints()[other.mimic].name == j.name)
-                            r.fail("robot.group", "group '" + problem.group + "' plans joint '" + j.name +
-                                                      "', which mimic joint '" + other.name +
-                                                      "' follows (URDF <mimic>): not supported; give '" + j.name +
-                                                      "' a value in robot.fixed_joints instead" +
-                                                      (problem.group == "all" && !robot["group"]
-                                                           ? std::string(" (with no robot.group every movable "
-                                                                         "joint is planned: name a group)")
-                                                           : std::string()));
+                    r.fail("robot.group", "group '" + problem.group + "' plans joint '" + j.name +
+                                              "', which mimic joint '" + mimic->name +
+                                              "' follows (URDF <mimic>): not supported; give '" + j.name +
+                                              "' a value in robot.fixed_joints instead" +
+                                              (problem.group == "all" && !robot["group"]
+                                                   ? std::string(" (with no robot.group every movable "
+                                                                 "joint is planned: name a group)")
+                                                   : std::string()));
                 }
 
                 // joints outside the group: mid-range, or 0 when 0 is within the limits, unless given

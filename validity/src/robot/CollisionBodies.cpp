@@ -35,13 +35,9 @@ namespace michi
             // Mimic joints (URDF <mimic>) follow their joints in the fixed values. A planned joint that is one, or
             // that one follows, would move links that neither these poses nor the displacement bounds follow.
             for (int v : variables_)
-            {
-                const RobotJoint &joint = model_->variableJoint(static_cast<std::size_t>(v));
-                for (const RobotJoint &other : model_->joints())
-                    if (other.mimic >= 0 && (&other == &joint || &model_->joints()[other.mimic] == &joint))
-                        throw std::invalid_argument("planned joint '" + joint.name + "' is or drives mimic joint '" +
-                                                    other.name + "': not supported");
-            }
+                if (const RobotJoint *mimic = model_->mimicTiedTo(static_cast<std::size_t>(v)))
+                    throw std::invalid_argument("planned joint '" + model_->variableJoint(v).name +
+                                                "' is or drives mimic joint '" + mimic->name + "': not supported");
             model_->applyMimic(fixedValues_);
             std::vector<int> bodyOfLink(model_->links().size(), -1);
             for (std::size_t l = 0; l < model_->links().size(); ++l)

@@ -362,7 +362,8 @@ namespace michi
             for (std::size_t l = 1; l < queue.size(); ++l)
             {
                 const auto &ujoint = queue[l]->parent_joint;
-                RobotJoint &joint = model->joints_[static_cast<std::size_t>(model->jointIndex(ujoint->name))];
+                const int self = model->jointIndex(ujoint->name);
+                RobotJoint &joint = model->joints_[static_cast<std::size_t>(self)];
                 if (!ujoint->mimic || !joint.movable())
                     continue;
                 const std::string what =
@@ -376,7 +377,7 @@ namespace michi
                 {
                     throw UrdfError(what + " names no joint of this URDF");
                 }
-                if (!model->joints_[master].movable() || master == model->jointIndex(joint.name))
+                if (!model->joints_[master].movable() || master == self)
                     throw UrdfError(what + " must name another movable joint");
                 if (!isGeometryValue(ujoint->mimic->multiplier) || !isGeometryValue(ujoint->mimic->offset))
                     throw UrdfError(what + ": multiplier or offset " +
@@ -400,6 +401,15 @@ namespace michi
             for (const auto &joint : joints_)
                 if (joint.mimic >= 0)
                     q[joint.variable] = joint.mimicMultiplier * q[joints_[joint.mimic].variable] + joint.mimicOffset;
+        }
+
+        const RobotJoint *RobotModel::mimicTiedTo(std::size_t variable) const
+        {
+            const RobotJoint &joint = variableJoint(variable);
+            for (const RobotJoint &other : joints_)
+                if (other.mimic >= 0 && (&other == &joint || &joints_[other.mimic] == &joint))
+                    return &other;
+            return nullptr;
         }
 
         std::vector<std::string> RobotModel::variableNames() const

@@ -132,6 +132,10 @@ namespace michi
             {
                 applyMimic(q.data());
             }
+            /** \brief The mimic joint tied to configuration value \e variable: its own joint when that is a mimic
+                joint, else a mimic joint that follows it; null for none. Such a value cannot be planned: the mimic's
+                links would move where neither applyMimic() on fixed values nor the displacement bounds follow. */
+            const RobotJoint *mimicTiedTo(std::size_t variable) const;
             /** \brief World pose of every link for configuration \e q (variableCount() values). */
             void forwardKinematics(const double *q, std::vector<Eigen::Isometry3d> &linkPoses) const;
             std::vector<Eigen::Isometry3d> forwardKinematics(const std::vector<double> &q) const;
