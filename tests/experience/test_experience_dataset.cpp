@@ -9,6 +9,7 @@
 #include <michi/tools/problem/ExperienceDataset.h>
 #include <michi/tools/problem/Problem.h>
 
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
@@ -154,6 +155,38 @@ TEST(ExperienceDataset, InstallsEachProblemsSceneAndTrainsEveryPlannerOnTheSameP
     EXPECT_EQ(names(*ctx.scene), names(*held.scene));
     thunder->sceneChanged();  // forgets its edge checks, keeps its paths
     EXPECT_EQ(thunder->experienceCount(), learned);
+}
+
+// michi plan: an experience planner learns what the problem teaches, then plans in the problem's own scene and query
+TEST(ExperienceDataset, LearnBeforePlanningTrainsThenRestoresTheProblemsSceneAndQuery)
+{
+    ompl::RNG::setSeed(4);
+    const std::string file = variant("experience: {dataset: " + (SOURCE / "datasets/table_pick").string() +
+                                     ", training: 0-1, held_out: 50-50, training_time: 5}");
+    const Problem problem = loadProblem(file);
+    michi::tools::ContextOptions options;
+    options.scene = michi::tools::copyScene(*problem.scene);
+    const auto ctx = michi::tools::makePlanningContext(problem, options);
+    const auto si = ctx.setup->getSpaceInformation();
+    const auto pdef = ctx.setup->getProblemDefinition();
+    std::vector<double> start, goal;
+    si->getStateSpace()->copyToReals(start, pdef->getStartState(0));
+    const auto own = names(*problem.scene);
+
+    auto seeds = std::make_shared<michi::planners::PathSeed>(si);
+    EXPECT_EQ(michi::tools::learnBeforePlanning(problem, ctx, seeds, 0, nullptr), 2u);
+    EXPECT_EQ(seeds->experienceCount(), 2u);
+    // the last training problem's scene and start were installed while learning; the problem's are back
+    EXPECT_EQ(names(*ctx.scene), own);
+    std::vector<double> after;
+    si->getStateSpace()->copyToReals(after, ctx.setup->getProblemDefinition()->getStartState(0));
+    EXPECT_EQ(after, start);
+
+    // a planner that learns nothing is left alone; a context sharing the problem's scene is a programming error
+    auto rrt = std::make_shared<ompl::geometric::RRTConnect>(si);
+    EXPECT_EQ(michi::tools::learnBeforePlanning(problem, ctx, rrt, 0, nullptr), 0u);
+    const auto shared = michi::tools::makePlanningContext(problem, 0);
+    EXPECT_THROW(michi::tools::learnBeforePlanning(problem, shared, seeds, 0, nullptr), std::logic_error);
 }
 
 TEST(ExperienceDataset, ADatasetProblemWithAnotherRobotIsRefused)

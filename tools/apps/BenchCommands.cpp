@@ -10,6 +10,7 @@
 #include <michi/tools/problem/PathFile.h>
 #include <michi/tools/problem/Problem.h>
 #include <michi/tools/problem/Dataset.h>
+#include <michi/tools/problem/ExperienceDataset.h>
 #include <michi/tools/viewer/ReplayPage.h>
 
 #include <ompl/geometric/PathGeometric.h>
@@ -18,6 +19,8 @@
 #include <boost/filesystem.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <iomanip>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -157,7 +160,12 @@ namespace michi
                     // seed.
                     ompl::RNG::setSeed(args.seed.value_or(problem.benchmark.seed));
                     const std::size_t query = args.query.value_or(0);
-                    PlanningContext ctx = makePlanningContext(problem, query);
+                    ContextOptions contextOptions;
+                    contextOptions.query = query;
+                    if (!problem.experience.dataset.empty())
+                        // an experience planner learns the dataset's training problems in their own scenes first
+                        contextOptions.scene = copyScene(*problem.scene);
+                    PlanningContext ctx = makePlanningContext(problem, contextOptions);
                     const std::string &name = args.planner;
                     ompl::base::PlannerPtr planner;
                     try
@@ -172,6 +180,15 @@ namespace michi
                     {
                         throw UsageError(std::string("--planner: ") + e.what());  // an unknown planner name
                     }
+                    // as in michi bench: an experience planner plans with what the problem's experience section
+                    // teaches (library, training queries or problems), learned before the timed solve
+                    const auto learnStart = std::chrono::steady_clock::now();
+                    const std::size_t learned = learnBeforePlanning(problem, ctx, planner, query, &std::cerr);
+                    if (learned > 0)
+                        std::cerr << "michi plan: " << name << " learned " << learned << " paths in "
+                                  << std::setprecision(3)
+                                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - learnStart).count()
+                                  << " s (not part of the planning time)" << std::endl;
                     ctx.setup->setPlanner(planner);
                     const double time = args.time.value_or(problem.benchmark.timeLimit);
                     const auto status = ctx.setup->solve(time);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <stdexcept>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -112,11 +113,32 @@ namespace michi
                 ++learned;
             }
             if (progress)
-                *progress << "michi bench: training: " << learned << " of " << training.entries.size()
+                *progress << "michi: training: " << learned << " of " << training.entries.size()
                           << " training problems of " << training.name << " solved by RRT-Connect (" << time
                           << " s each, each in its own scene) in " << std::setprecision(3)
                           << std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count()
                           << " s (not in run times)" << std::endl;
+            return learned;
+        }
+
+        std::size_t learnBeforePlanning(const Problem &problem, const PlanningContext &ctx,
+                                        const ob::PlannerPtr &planner, std::size_t query, std::ostream *progress)
+        {
+            auto *learner = dynamic_cast<planners::ExperiencePlanner *>(planner.get());
+            if (learner == nullptr)
+                return 0;
+            std::size_t learned = trainExperiencePlanners(problem, ctx, {planner}, progress);
+            if (problem.experience.dataset.empty())
+                return learned;
+            if (ctx.scene == problem.scene)
+                // installScene() would clear the very obstacles it is about to copy back
+                throw std::logic_error("learnBeforePlanning: the context shares the problem's scene");
+            const ExperienceDataset sets = loadExperienceDataset(problem);
+            learned += trainOnDataset(problem, ctx, sets.training, problem.experience.trainingTime, {planner},
+                                      progress);
+            // the training left its last problem's scene and query installed
+            installDatasetQuery(problem, ctx, problem, query);
+            learner->sceneChanged();
             return learned;
         }
     }  // namespace tools

@@ -472,7 +472,7 @@ namespace michi
                     paths.push_back(path);
             }
             if (progress)
-                *progress << "michi bench: training: " << paths.size() << " of " << (only ? 1 : training.size())
+                *progress << "michi: training: " << paths.size() << " of " << (only ? 1 : training.size())
                           << " training queries solved by RRT-Connect (" << problem.experience.trainingTime
                           << " s each) in " << std::setprecision(3) << seconds(began) << " s (not in run times)"
                           << std::endl;
@@ -524,7 +524,7 @@ namespace michi
                         learner->addExperience(here);
                 }
                 if (progress)
-                    *progress << "michi bench: experience learned on " << other.file << " (" << paths.size()
+                    *progress << "michi: experience learned on " << other.file << " (" << paths.size()
                               << " paths of its robot); this problem's robot checks them when it uses them"
                               << std::endl;
                 return paths.size();
@@ -541,7 +541,7 @@ namespace michi
             if (!problem.experience.library.empty())
                 for (auto *learner : learners)
                     if (!learner->loadExperience(problem.experience.library) && progress)
-                        *progress << "michi bench: experience.library: "
+                        *progress << "michi: experience.library: "
                                   << dynamic_cast<ob::Planner *>(learner)->getName() << " cannot read "
                                   << problem.experience.library << " (not its format); it starts empty" << std::endl;
             if (learners.empty())

@@ -54,6 +54,16 @@ namespace michi
         std::size_t trainOnDataset(const Problem &problem, const PlanningContext &ctx, const Dataset &training,
                                    double time, const std::vector<ompl::base::PlannerPtr> &planners,
                                    std::ostream *progress);
+
+        /** \brief What `michi bench` does before its runs, for one planner about to plan query \e query of \e
+            problem (`michi plan`): when \e planner is an experience planner, it reads the problem's library and
+            learns its training queries (trainExperiencePlanners) and, for an experience dataset, the training
+            problems, each in its own scene (trainOnDataset), after which the problem's own scene and query are
+            installed again. \e ctx must hold a scene of its own (ContextOptions::scene, copyScene) when the
+            problem has a dataset. Returns the paths learned (0 for other planners). */
+        std::size_t learnBeforePlanning(const Problem &problem, const PlanningContext &ctx,
+                                        const ompl::base::PlannerPtr &planner, std::size_t query,
+                                        std::ostream *progress);
     }  // namespace tools
 }  // namespace michi
 
