@@ -11,6 +11,9 @@
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/sphere.h>
 
+#include <algorithm>
+#include <array>
+#include <random>
 #include <set>
 
 using namespace michi;
@@ -270,6 +273,56 @@ TEST(Scene, Polygons2dUniteObstacleShadows)
     EXPECT_NEAR(bg::area(polygons), 3. + 0.25 + 3., 1e-12);
     EXPECT_TRUE(bg::within(validity::Point2(10.5, 1.5), polygons));
     EXPECT_FALSE(bg::within(validity::Point2(11.5, 1.5), polygons));
+}
+
+// uniteFootprints unites only pieces whose boxes overlap: the region of all of them, whatever their layout
+TEST(Scene, UniteFootprintsCoversWhatTheUnionOfAllCovers)
+{
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> where(0., 20.), size(0.1, 2.);
+    std::vector<validity::MultiPolygon2> parts;
+    std::vector<std::array<double, 4>> boxes;
+    for (int i = 0; i < 300; ++i)
+    {
+        const double x = where(random), y = where(random), w = size(random), h = size(random);
+        parts.push_back({validity::makePolygon2({{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}})});
+        boxes.push_back({x, y, x + w, y + h});
+    }
+    // the rectangles' union area, exactly: over the grid their edges make, a cell is in or out
+    std::vector<double> xs, ys;
+    for (const auto &b : boxes)
+    {
+        xs.insert(xs.end(), {b[0], b[2]});
+        ys.insert(ys.end(), {b[1], b[3]});
+    }
+    std::sort(xs.begin(), xs.end());
+    std::sort(ys.begin(), ys.end());
+    double rectangles = 0.;
+    for (std::size_t i = 0; i + 1 < xs.size(); ++i)
+        for (std::size_t j = 0; j + 1 < ys.size(); ++j)
+        {
+            const double cx = 0.5 * (xs[i] + xs[i + 1]), cy = 0.5 * (ys[j] + ys[j + 1]);
+            for (const auto &b : boxes)
+                if (b[0] < cx && cx < b[2] && b[1] < cy && cy < b[3])
+                {
+                    rectangles += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
+                    break;
+                }
+        }
+    // a frame with a hole, and a square inside the hole: apart from the frame's outline, within its box
+    validity::Polygon2 frame = validity::makePolygon2({{30, 0}, {36, 0}, {36, 6}, {30, 6}});
+    frame.inners().push_back(validity::makePolygon2({{31, 1}, {31, 5}, {35, 5}, {35, 1}}).outer());
+    bg::correct(frame);
+    parts.push_back({frame});
+    parts.push_back({validity::makePolygon2({{32, 2}, {34, 2}, {34, 4}, {32, 4}})});
+    parts.push_back({});  // an obstacle whose shadow is empty
+    const validity::MultiPolygon2 united = validity::uniteFootprints(parts);
+    EXPECT_TRUE(bg::is_valid(united));
+    // (uniting every piece into one growing union, as before, was 1e-5 off here; this is 5e-8 off)
+    EXPECT_NEAR(bg::area(united), rectangles + 20. + 4., 1e-6);
+    EXPECT_TRUE(bg::within(validity::Point2(33, 3), united));
+    EXPECT_FALSE(bg::within(validity::Point2(31.5, 3), united));
+    EXPECT_TRUE(validity::uniteFootprints({}).empty());
 }
 
 TEST(Scene, PolygonSceneHelperMakesOnePrismPerPolygon)

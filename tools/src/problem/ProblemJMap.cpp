@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
+#include <mutex>
 
 namespace michi
 {
@@ -60,9 +62,26 @@ namespace michi
                 const auto arm = jp.arm;
                 const auto links = jp.armLinks;
                 const auto scene = ctx.scene;
-                jp.makeSource = [arm, links, scene](const validity::JMapAxes &axes)
+                // The scene's outlines are united once per scene version, not once per tile: on a map of thousands
+                // of obstacles the union is what a tile cost.
+                struct United
                 {
-                    return std::make_shared<validity::PlanarIntervalSource>(arm, scene->polygons2d(), axes, links);
+                    std::mutex mutex;
+                    std::uint64_t version{std::numeric_limits<std::uint64_t>::max()};
+                    validity::MultiPolygon2 polygons;
+                };
+                auto united = std::make_shared<United>();
+                jp.makeSource = [arm, links, scene, united](const validity::JMapAxes &axes)
+                {
+                    std::lock_guard<std::mutex> lock(united->mutex);
+                    // the version is read first: a change during the union makes the next tile unite again
+                    const std::uint64_t version = scene->changeCount();
+                    if (version != united->version)
+                    {
+                        united->polygons = scene->polygons2d();
+                        united->version = version;
+                    }
+                    return std::make_shared<validity::PlanarIntervalSource>(arm, united->polygons, axes, links);
                 };
             }
             else

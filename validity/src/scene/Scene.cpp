@@ -15,6 +15,7 @@ namespace michi
     {
         Scene::Scene() = default;
 
+
         void Scene::place(Entry &entry, const Eigen::Isometry3d &pose)
         {
             entry.obstacle.pose = pose;
@@ -222,16 +223,11 @@ namespace michi
 
         MultiPolygon2 Scene::polygons2d() const
         {
-            MultiPolygon2 all;
-            // obstacles() copies under the shared lock; the union, which is slow for many obstacles, runs without
-            // holding it.
+            // obstacles() copies under the shared lock; the union runs without holding it.
+            std::vector<MultiPolygon2> parts;
             for (const auto &o : obstacles())
-            {
-                MultiPolygon2 merged;
-                bg::union_(all, o.shape->footprint(o.pose), merged);
-                all = std::move(merged);
-            }
-            return all;
+                parts.push_back(o.shape->footprint(o.pose));
+            return uniteFootprints(std::move(parts));
         }
 
         std::pair<Eigen::Vector3d, Eigen::Vector3d> Scene::bounds() const

@@ -24,6 +24,10 @@ namespace michi
         /** \brief Build a valid (corrected) polygon from an outline given in either orientation. */
         Polygon2 makePolygon2(const std::vector<Point2> &outline);
 
+        /** \brief The union of \e parts (an obstacle's footprint each): only parts whose bounding boxes overlap,
+            directly or through others, are united with Boost.Geometry; the rest are listed as they are. */
+        MultiPolygon2 uniteFootprints(std::vector<MultiPolygon2> parts);
+
         /** \brief A circle approximated by a regular polygon that contains it (vertices outside the circle). */
         Polygon2 circlePolygon2(const Point2 &centre, double radius, int sides = 32);
     }  // namespace validity
