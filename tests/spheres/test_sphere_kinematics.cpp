@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 using namespace michi;
@@ -37,6 +39,33 @@ class SphereKinematicsOf : public ::testing::TestWithParam<std::string>
 {
 };
 
+namespace
+{
+    /** Largest difference between the float frames and the double ones: the sphere checker's centres come from
+        the float frames, and every sphere radius is grown by 1e-5 m for rounding, so they must stay well inside
+        that (a metre-long arm: a few 1e-7). */
+    double floatFramesError(const SphereKinematics &kinematics, const double *values)
+    {
+        std::vector<RigidFrame> exact(kinematics.frameCount());
+        std::vector<FloatFrame> fast(kinematics.frameCount());
+        kinematics.frames(values, exact.data());
+        kinematics.framesFloat(values, fast.data());
+        double worst = 0.;
+        for (std::size_t k = 0; k < exact.size(); ++k)
+        {
+            const FloatFrame &f = fast[k];
+            for (int r = 0; r < 4; ++r)
+            {
+                const double e[4] = {r < 3 ? exact[k].r(r, 0) : 0., r < 3 ? exact[k].r(r, 1) : 0.,
+                                     r < 3 ? exact[k].r(r, 2) : 0., r < 3 ? exact[k].t(r) : 0.};
+                worst = std::max({worst, std::abs(f.c0(r) - e[0]), std::abs(f.c1(r) - e[1]),
+                                  std::abs(f.c2(r) - e[2]), std::abs(f.t(r) - e[3])});
+            }
+        }
+        return worst;
+    }
+}  // namespace
+
 TEST_P(SphereKinematicsOf, SameLinkPosesAsTheRobotModel)
 {
     const auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + GetParam() + ".yaml");
@@ -64,6 +93,7 @@ TEST_P(SphereKinematicsOf, SameLinkPosesAsTheRobotModel)
                                                                    : rng.uniformReal(joint.lower, joint.upper);
         }
         kinematics.frames(values.data(), frames.data());
+        EXPECT_LT(floatFramesError(kinematics, values.data()), 1e-6);
         model.forwardKinematics(group->fullConfiguration(values.data()).data(), poses);
         for (std::size_t l = 0; l < links.size(); ++l)
         {
@@ -129,6 +159,7 @@ TEST(SphereKinematics, GeneralAxesPrismaticAndHeldJoints)
             full[v] = values.back();
         }
         kinematics.frames(values.data(), frames.data());
+        EXPECT_LT(floatFramesError(kinematics, values.data()), 1e-6);
         model->forwardKinematics(full.data(), poses);
         for (std::size_t l = 0; l < links.size(); ++l)
         {

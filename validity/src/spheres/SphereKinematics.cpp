@@ -69,8 +69,15 @@ namespace michi
                     const double zSign = joint.axis == Eigen::Vector3d::UnitZ()    ? 1.
                                          : joint.axis == -Eigen::Vector3d::UnitZ() ? -1.
                                                                                    : 0.;
-                    steps_.push_back({parent.first, origin, joint.axis, joint.type == RobotJoint::Type::PRISMATIC,
-                                      static_cast<int>(group - variables.begin()), zSign});
+                    Step step{parent.first, origin, joint.axis, joint.type == RobotJoint::Type::PRISMATIC,
+                              static_cast<int>(group - variables.begin()), zSign, {}, {}, {}};
+                    for (int c = 0; c < 3; ++c)
+                        for (int r = 0; r < 3; ++r)
+                            step.rotation[3 * c + r] = Eigen::Array4f::Constant(static_cast<float>(origin.r(r, c)));
+                    for (int r = 0; r < 3; ++r)
+                        step.translation[r] = Eigen::Array4f::Constant(static_cast<float>(origin.t(r)));
+                    step.slide = (origin.r * joint.axis).cast<float>();
+                    steps_.push_back(step);
                     it = stepOfJoint.emplace(j, static_cast<int>(steps_.size())).first;
                 }
                 return {it->second, RigidFrame{}};
@@ -132,6 +139,65 @@ namespace michi
                 f.r.noalias() = p.r * l.r;
                 f.t.noalias() = p.r * l.t;
                 f.t += p.t;
+            }
+        }
+
+        void SphereKinematics::framesFloat(const double *values, FloatFrame *out) const
+        {
+            const Eigen::Isometry3d &base = model_.basePose();
+            FloatFrame &b = out[0];
+            for (int r = 0; r < 3; ++r)
+            {
+                b.c0(r) = static_cast<float>(base.linear()(r, 0));
+                b.c1(r) = static_cast<float>(base.linear()(r, 1));
+                b.c2(r) = static_cast<float>(base.linear()(r, 2));
+                b.t(r) = static_cast<float>(base.translation()(r));
+            }
+            b.c0(3) = b.c1(3) = b.c2(3) = b.t(3) = 0.f;
+            for (std::size_t k = 0; k < steps_.size(); ++k)
+            {
+                const Step &step = steps_[k];
+                const FloatFrame &p = out[step.parent];
+                FloatFrame &f = out[k + 1];
+                const Eigen::Array4f *o = step.rotation;
+                // the joint's origin in the world: the parent's rotation times the origin's (M), its translation
+                const Eigen::Array4f m0 = p.c0 * o[0] + p.c1 * o[1] + p.c2 * o[2];
+                const Eigen::Array4f m1 = p.c0 * o[3] + p.c1 * o[4] + p.c2 * o[5];
+                const Eigen::Array4f m2 = p.c0 * o[6] + p.c1 * o[7] + p.c2 * o[8];
+                f.t = p.c0 * step.translation[0] + p.c1 * step.translation[1] + p.c2 * step.translation[2] + p.t;
+                const double q = values[step.value];
+                if (step.prismatic)
+                {
+                    f.c0 = m0;
+                    f.c1 = m1;
+                    f.c2 = m2;
+                    const float qf = static_cast<float>(q);
+                    f.t += p.c0 * (qf * step.slide.x()) + p.c1 * (qf * step.slide.y()) + p.c2 * (qf * step.slide.z());
+                    continue;
+                }
+                double s, c;
+                fastSinCos(q, s, c);
+                if (step.zSign != 0.)
+                {
+                    // about z: the joint's rotation mixes M's first two columns
+                    const float sf = static_cast<float>(s * step.zSign), cf = static_cast<float>(c);
+                    f.c0 = cf * m0 + sf * m1;
+                    f.c1 = cf * m1 - sf * m0;
+                    f.c2 = m2;
+                    continue;
+                }
+                // Rodrigues' rotation about the unit axis, on the right of M
+                const Eigen::Vector3d &a = step.axis;
+                const double v = 1. - c;
+                Eigen::Matrix3f rot;
+                rot << static_cast<float>(c + a.x() * a.x() * v), static_cast<float>(a.x() * a.y() * v - a.z() * s),
+                    static_cast<float>(a.x() * a.z() * v + a.y() * s), static_cast<float>(a.y() * a.x() * v + a.z() * s),
+                    static_cast<float>(c + a.y() * a.y() * v), static_cast<float>(a.y() * a.z() * v - a.x() * s),
+                    static_cast<float>(a.z() * a.x() * v - a.y() * s), static_cast<float>(a.z() * a.y() * v + a.x() * s),
+                    static_cast<float>(c + a.z() * a.z() * v);
+                f.c0 = m0 * rot(0, 0) + m1 * rot(1, 0) + m2 * rot(2, 0);
+                f.c1 = m0 * rot(0, 1) + m1 * rot(1, 1) + m2 * rot(2, 1);
+                f.c2 = m0 * rot(0, 2) + m1 * rot(1, 2) + m2 * rot(2, 2);
             }
         }
     }  // namespace validity

@@ -26,6 +26,14 @@ namespace michi
             Eigen::Vector3d t{Eigen::Vector3d::Zero()};
         };
 
+        /** \brief The same transform in floats, each column of the rotation and the translation in a 4-lane
+            array (the last lane 0): a product of two frames is then 9 multiply-adds of whole SIMD registers. */
+        struct FloatFrame
+        {
+            Eigen::Array4f c0{Eigen::Array4f::Zero()}, c1{Eigen::Array4f::Zero()}, c2{Eigen::Array4f::Zero()},
+                t{Eigen::Array4f::Zero()};
+        };
+
         class SphereKinematics
         {
         public:
@@ -51,6 +59,9 @@ namespace michi
             /** \brief Every frame for group values \e values (frame 0: the robot's base pose, read per call).
                 \e frames holds frameCount() entries. */
             void frames(const double *values, RigidFrame *frames) const;
+            /** \brief The same frames in floats (the sphere checker's: its centres are floats; the difference to
+                frames() is a few 1e-7 m on a metre-long arm, far below the checker's rounding margin). */
+            void framesFloat(const double *values, FloatFrame *frames) const;
 
         private:
             struct Step
@@ -61,6 +72,11 @@ namespace michi
                 bool prismatic;
                 int value;     ///< group index of its value
                 double zSign;  ///< axis +z: 1, -z: -1, other: 0 (general rotation)
+                // for framesFloat: offset.r(i, j) in every lane at [3 j + i], offset.t(i) in every lane, and the
+                // axis in the parent's frame (offset.r * axis, a prismatic joint's direction)
+                Eigen::Array4f rotation[9];
+                Eigen::Array4f translation[3];
+                Eigen::Vector3f slide;
             };
             const RobotModel &model_;
             std::vector<Step> steps_;  ///< frame s + 1 is made by step s; parents come first

@@ -22,7 +22,7 @@ namespace michi
         /** Per-thread working arrays of a query. */
         struct SphereValidityChecker::Scratch
         {
-            std::vector<RigidFrame> frames;
+            std::vector<FloatFrame> frames;
             std::vector<char> placed;  ///< per body: its spheres are placed for this state
             std::vector<float> x, y, z, r;
             std::vector<Eigen::Vector3f> bodyCentre;
@@ -444,7 +444,7 @@ namespace michi
             // Joints outside the planned group and fixed joints are folded into the kinematics' offsets: only the
             // group's values are read per query.
             s.frames.resize(kinematics_->frameCount());
-            kinematics_->frames(values, s.frames.data());
+            kinematics_->framesFloat(values, s.frames.data());
             const std::size_t n = radius_.size(), nb = bodyLink_.size();
             s.x.resize(n);
             s.y.resize(n);
@@ -455,8 +455,10 @@ namespace michi
             s.placed.assign(nb, 0);
             for (std::size_t b = 0; b < nb; ++b)
             {
-                const RigidFrame &f = s.frames[bodyFrame_[b]];
-                s.bodyCentre[b] = (f.r * frameCentre_[b].cast<double>() + f.t).cast<float>();
+                const FloatFrame &f = s.frames[bodyFrame_[b]];
+                const Eigen::Vector3f &c = frameCentre_[b];
+                const Eigen::Array4f centre = f.c0 * c.x() + f.c1 * c.y() + f.c2 * c.z() + f.t;
+                s.bodyCentre[b] = centre.head<3>().matrix();
             }
         }
 
@@ -469,14 +471,12 @@ namespace michi
             s.placed[b] = 1;
             using Map = Eigen::Map<Eigen::ArrayXf>;
             using MapC = Eigen::Map<const Eigen::ArrayXf>;
-            const RigidFrame &f = s.frames[bodyFrame_[b]];
-            const Eigen::Matrix3f m = f.r.cast<float>();
-            const Eigen::Vector3f t = f.t.cast<float>();
+            const FloatFrame &f = s.frames[bodyFrame_[b]];
             const int first = begin_[b], count = begin_[b + 1] - begin_[b];
             const MapC cx(fx_.data() + first, count), cy(fy_.data() + first, count), cz(fz_.data() + first, count);
-            Map(s.x.data() + first, count) = m(0, 0) * cx + m(0, 1) * cy + m(0, 2) * cz + t.x();
-            Map(s.y.data() + first, count) = m(1, 0) * cx + m(1, 1) * cy + m(1, 2) * cz + t.y();
-            Map(s.z.data() + first, count) = m(2, 0) * cx + m(2, 1) * cy + m(2, 2) * cz + t.z();
+            Map(s.x.data() + first, count) = f.c0(0) * cx + f.c1(0) * cy + f.c2(0) * cz + f.t(0);
+            Map(s.y.data() + first, count) = f.c0(1) * cx + f.c1(1) * cy + f.c2(1) * cz + f.t(1);
+            Map(s.z.data() + first, count) = f.c0(2) * cx + f.c1(2) * cy + f.c2(2) * cz + f.t(2);
         }
 
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
