@@ -24,9 +24,8 @@ namespace michi
             ReplanSettings readSettings(const std::string &file)
             {
                 ReplanSettings s;
-                YAML::Node root;
-                root = problem_file::loadYaml(file);  // errors name the file (and line)
-                const YAML::Node extras = root["extras"];
+                // errors name the file (and line); only this section is copied
+                const YAML::Node extras = problem_file::loadYamlSection(file, "extras");
                 if (!extras || !extras.IsMap() || !extras["replan"])
                     return s;
                 const YAML::Node r = extras["replan"];

@@ -104,10 +104,10 @@ namespace michi
         DualArmSpec loadDualArmSpec(const Problem &problem)
         {
             SectionReader r(problem.file);
-            const YAML::Node root = problem_file::loadYaml(problem.file);  // parsed once, by loadProblem()
+            // parsed once, by loadProblem(); only this section is copied
+            const YAML::Node n = problem_file::loadYamlSection(problem.file, "dual_arm");
             if (problem.kind != Problem::Kind::ARM)
                 r.fail("robot", "the dual-arm analysis needs a URDF robot");
-            const YAML::Node n = root["dual_arm"];
             if (!n)
                 r.fail("dual_arm", "missing (required by michi dualarm; see docs/dual-arm.md)");
             r.keys(n, "dual_arm",

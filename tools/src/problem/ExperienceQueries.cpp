@@ -168,8 +168,8 @@ namespace michi
         ExperienceQueries readExperienceQueries(const std::string &problemFile, const Problem &problem)
         {
             ExperienceQueries out;
-            const YAML::Node root = problem_file::loadYaml(problemFile);  // parsed once, by loadProblem()
-            const YAML::Node e = root["experience"];
+            // parsed once, by loadProblem(); only this section is copied
+            const YAML::Node e = problem_file::loadYamlSection(problemFile, "experience");
             if (!e)
                 return out;
             if (!e.IsMap())

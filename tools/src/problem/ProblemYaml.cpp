@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <mutex>
 
@@ -89,34 +90,59 @@ namespace michi
                 }
             }  // namespace
 
+            namespace
+            {
+                /** The parsed tree per file, size and modification time: every section reader (dual_arm,
+                    experience, extras.replan) asks for the problem file again, and each file is parsed once.
+                    \e copy gets what the caller keeps out of the cached tree, under the cache's lock. */
+                YAML::Node cachedYaml(const std::string &file, const std::function<YAML::Node(const YAML::Node &)> &copy)
+                {
+                    struct Cached
+                    {
+                        std::uintmax_t size;
+                        std::filesystem::file_time_type time;
+                        YAML::Node root;
+                    };
+                    static std::mutex cacheMutex;
+                    static std::map<std::string, Cached> cache;
+                    std::error_code ec;
+                    const auto size = std::filesystem::file_size(file, ec);
+                    const auto time =
+                        ec ? std::filesystem::file_time_type() : std::filesystem::last_write_time(file, ec);
+                    if (!ec)
+                    {
+                        std::lock_guard<std::mutex> lock(cacheMutex);
+                        auto it = cache.find(file);
+                        if (it != cache.end() && it->second.size == size && it->second.time == time)
+                            return copy(it->second.root);
+                    }
+                    // parsed outside the lock: several threads may read several files at once
+                    YAML::Node root = parseYamlFile(file);
+                    if (ec)
+                        return copy(root);
+                    std::lock_guard<std::mutex> lock(cacheMutex);
+                    return copy(cache.insert_or_assign(file, Cached{size, time, root}).first->second.root);
+                }
+            }  // namespace
+
             YAML::Node loadYaml(const std::string &file)
             {
-                // every section reader (dual_arm, experience, extras.replan) asks for the problem file again:
-                // keep the parsed tree per file, size and modification time so each file is parsed once
-                struct Cached
-                {
-                    std::uintmax_t size;
-                    std::filesystem::file_time_type time;
-                    YAML::Node root;
-                };
-                static std::mutex cacheMutex;
-                static std::map<std::string, Cached> cache;
-                std::error_code ec;
-                const auto size = std::filesystem::file_size(file, ec);
-                const auto time = ec ? std::filesystem::file_time_type() : std::filesystem::last_write_time(file, ec);
-                {
-                    std::lock_guard<std::mutex> lock(cacheMutex);
-                    auto it = cache.find(file);
-                    if (!ec && it != cache.end() && it->second.size == size && it->second.time == time)
-                        return YAML::Clone(it->second.root);  // a copy: callers may change their tree
-                }
-                YAML::Node root = parseYamlFile(file);
-                if (!ec)
-                {
-                    std::lock_guard<std::mutex> lock(cacheMutex);
-                    cache[file] = Cached{size, time, YAML::Clone(root)};
-                }
-                return root;
+                // a copy: callers may change their tree, never the cached one
+                return cachedYaml(file,
+                                  [](const YAML::Node &root)
+                                  {
+                                      return YAML::Clone(root);
+                                  });
+            }
+
+            YAML::Node loadYamlSection(const std::string &file, const std::string &key)
+            {
+                return cachedYaml(file,
+                                  [&key](const YAML::Node &root)
+                                  {
+                                      const YAML::Node section = root.IsMap() ? root[key] : YAML::Node();
+                                      return section ? YAML::Clone(section) : YAML::Node(YAML::NodeType::Undefined);
+                                  });
             }
 
             void Reader::fail(const std::string &key, const std::string &message) const

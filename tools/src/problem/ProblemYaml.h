@@ -26,6 +26,10 @@ namespace michi
                 the first and drops the rest silently). Throws ProblemError naming the file and the line. */
             YAML::Node loadYaml(const std::string &file);
 
+            /** \brief The same file's top-level entry \e key (an undefined node when absent): a copy of that entry
+                alone, so a section reader does not copy a scene of thousands of obstacles it never reads. */
+            YAML::Node loadYamlSection(const std::string &file, const std::string &key);
+
             /** Reads typed values out of a YAML tree and turns every mistake into a ProblemError naming the key. */
             class Reader
             {
