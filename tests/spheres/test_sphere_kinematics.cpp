@@ -58,8 +58,8 @@ namespace
             {
                 const double e[4] = {r < 3 ? exact[k].r(r, 0) : 0., r < 3 ? exact[k].r(r, 1) : 0.,
                                      r < 3 ? exact[k].r(r, 2) : 0., r < 3 ? exact[k].t(r) : 0.};
-                worst = std::max({worst, std::abs(f.c0(r) - e[0]), std::abs(f.c1(r) - e[1]),
-                                  std::abs(f.c2(r) - e[2]), std::abs(f.t(r) - e[3])});
+                worst = std::max({worst, std::abs(f.c0(r) - e[0]), std::abs(f.c1(r) - e[1]), std::abs(f.c2(r) - e[2]),
+                                  std::abs(f.t(r) - e[3])});
             }
         }
         return worst;

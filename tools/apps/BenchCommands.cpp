@@ -185,10 +185,10 @@ namespace michi
                     const auto learnStart = std::chrono::steady_clock::now();
                     const std::size_t learned = learnBeforePlanning(problem, ctx, planner, query, &std::cerr);
                     if (learned > 0)
-                        std::cerr << "michi plan: " << name << " learned " << learned << " paths in "
-                                  << std::setprecision(3)
-                                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - learnStart).count()
-                                  << " s (not part of the planning time)" << std::endl;
+                        std::cerr
+                            << "michi plan: " << name << " learned " << learned << " paths in " << std::setprecision(3)
+                            << std::chrono::duration<double>(std::chrono::steady_clock::now() - learnStart).count()
+                            << " s (not part of the planning time)" << std::endl;
                     ctx.setup->setPlanner(planner);
                     const double time = args.time.value_or(problem.benchmark.timeLimit);
                     const auto status = ctx.setup->solve(time);

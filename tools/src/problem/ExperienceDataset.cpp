@@ -134,8 +134,8 @@ namespace michi
                 // installScene() would clear the very obstacles it is about to copy back
                 throw std::logic_error("learnBeforePlanning: the context shares the problem's scene");
             const ExperienceDataset sets = loadExperienceDataset(problem);
-            learned += trainOnDataset(problem, ctx, sets.training, problem.experience.trainingTime, {planner},
-                                      progress);
+            learned +=
+                trainOnDataset(problem, ctx, sets.training, problem.experience.trainingTime, {planner}, progress);
             // the training left its last problem's scene and query installed
             installDatasetQuery(problem, ctx, problem, query);
             learner->sceneChanged();

@@ -541,9 +541,9 @@ namespace michi
             if (!problem.experience.library.empty())
                 for (auto *learner : learners)
                     if (!learner->loadExperience(problem.experience.library) && progress)
-                        *progress << "michi: experience.library: "
-                                  << dynamic_cast<ob::Planner *>(learner)->getName() << " cannot read "
-                                  << problem.experience.library << " (not its format); it starts empty" << std::endl;
+                        *progress << "michi: experience.library: " << dynamic_cast<ob::Planner *>(learner)->getName()
+                                  << " cannot read " << problem.experience.library
+                                  << " (not its format); it starts empty" << std::endl;
             if (learners.empty())
                 return 0;
             if (!problem.experience.learnedOn.empty())

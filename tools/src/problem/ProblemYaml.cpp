@@ -95,7 +95,8 @@ namespace michi
                 /** The parsed tree per file, size and modification time: every section reader (dual_arm,
                     experience, extras.replan) asks for the problem file again, and each file is parsed once.
                     \e copy gets what the caller keeps out of the cached tree, under the cache's lock. */
-                YAML::Node cachedYaml(const std::string &file, const std::function<YAML::Node(const YAML::Node &)> &copy)
+                YAML::Node cachedYaml(const std::string &file,
+                                      const std::function<YAML::Node(const YAML::Node &)> &copy)
                 {
                     struct Cached
                     {

@@ -15,7 +15,6 @@ namespace michi
     {
         Scene::Scene() = default;
 
-
         void Scene::place(Entry &entry, const Eigen::Isometry3d &pose)
         {
             entry.obstacle.pose = pose;

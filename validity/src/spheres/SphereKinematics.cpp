@@ -69,8 +69,15 @@ namespace michi
                     const double zSign = joint.axis == Eigen::Vector3d::UnitZ()    ? 1.
                                          : joint.axis == -Eigen::Vector3d::UnitZ() ? -1.
                                                                                    : 0.;
-                    Step step{parent.first, origin, joint.axis, joint.type == RobotJoint::Type::PRISMATIC,
-                              static_cast<int>(group - variables.begin()), zSign, {}, {}, {}};
+                    Step step{parent.first,
+                              origin,
+                              joint.axis,
+                              joint.type == RobotJoint::Type::PRISMATIC,
+                              static_cast<int>(group - variables.begin()),
+                              zSign,
+                              {},
+                              {},
+                              {}};
                     for (int c = 0; c < 3; ++c)
                         for (int r = 0; r < 3; ++r)
                             step.rotation[3 * c + r] = Eigen::Array4f::Constant(static_cast<float>(origin.r(r, c)));
@@ -191,10 +198,11 @@ namespace michi
                 const double v = 1. - c;
                 Eigen::Matrix3f rot;
                 rot << static_cast<float>(c + a.x() * a.x() * v), static_cast<float>(a.x() * a.y() * v - a.z() * s),
-                    static_cast<float>(a.x() * a.z() * v + a.y() * s), static_cast<float>(a.y() * a.x() * v + a.z() * s),
-                    static_cast<float>(c + a.y() * a.y() * v), static_cast<float>(a.y() * a.z() * v - a.x() * s),
-                    static_cast<float>(a.z() * a.x() * v - a.y() * s), static_cast<float>(a.z() * a.y() * v + a.x() * s),
-                    static_cast<float>(c + a.z() * a.z() * v);
+                    static_cast<float>(a.x() * a.z() * v + a.y() * s),
+                    static_cast<float>(a.y() * a.x() * v + a.z() * s), static_cast<float>(c + a.y() * a.y() * v),
+                    static_cast<float>(a.y() * a.z() * v - a.x() * s),
+                    static_cast<float>(a.z() * a.x() * v - a.y() * s),
+                    static_cast<float>(a.z() * a.y() * v + a.x() * s), static_cast<float>(c + a.z() * a.z() * v);
                 f.c0 = m0 * rot(0, 0) + m1 * rot(1, 0) + m2 * rot(2, 0);
                 f.c1 = m0 * rot(0, 1) + m1 * rot(1, 1) + m2 * rot(2, 1);
                 f.c2 = m0 * rot(0, 2) + m1 * rot(1, 2) + m2 * rot(2, 2);
