@@ -57,6 +57,13 @@ namespace
         return file;
     }
 
+    /** A table_pick variant trained on problems 0-1 (5 s each) and holding out \e heldOut. */
+    std::string tablePick(const std::string &heldOut)
+    {
+        return variant("experience: {dataset: " + (SOURCE / "datasets/table_pick").string() +
+                       ", training: 0-1, held_out: " + heldOut + ", training_time: 5}");
+    }
+
     std::string error(const std::string &file, bool resolve = false)
     {
         try
@@ -123,8 +130,7 @@ TEST(ExperienceDataset, BadKeysAreNamed)
 TEST(ExperienceDataset, InstallsEachProblemsSceneAndTrainsEveryPlannerOnTheSamePaths)
 {
     ompl::RNG::setSeed(4);
-    const std::string file = variant("experience: {dataset: " + (SOURCE / "datasets/table_pick").string() +
-                                     ", training: 0-1, held_out: 50-50, training_time: 5}");
+    const std::string file = tablePick("50-50");
     const Problem problem = loadProblem(file);
     const auto sets = michi::tools::loadExperienceDataset(problem);
     michi::tools::ContextOptions options;
@@ -161,8 +167,7 @@ TEST(ExperienceDataset, InstallsEachProblemsSceneAndTrainsEveryPlannerOnTheSameP
 TEST(ExperienceDataset, LearnBeforePlanningTrainsThenRestoresTheProblemsSceneAndQuery)
 {
     ompl::RNG::setSeed(4);
-    const std::string file = variant("experience: {dataset: " + (SOURCE / "datasets/table_pick").string() +
-                                     ", training: 0-1, held_out: 50-50, training_time: 5}");
+    const std::string file = tablePick("50-50");
     const Problem problem = loadProblem(file);
     michi::tools::ContextOptions options;
     options.scene = michi::tools::copyScene(*problem.scene);
@@ -211,8 +216,7 @@ TEST(ExperienceDataset, ADatasetProblemWithAnotherRobotIsRefused)
 TEST(ExperienceDataset, BenchRunsEachHeldOutProblemOncePerPlanner)
 {
     ompl::RNG::setSeed(5);
-    const std::string file = variant("experience: {dataset: " + (SOURCE / "datasets/table_pick").string() +
-                                     ", training: 0-1, held_out: 50-51, training_time: 5}");
+    const std::string file = tablePick("50-51");
     const Problem problem = loadProblem(file);
     michi::tools::BenchOptions options;
     options.planners = {"michi::PathSeed", "geometric::RRTConnect"};
