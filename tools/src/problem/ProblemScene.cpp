@@ -274,8 +274,9 @@ namespace michi
                     {
                         problem.scene->add(listed);
                     }
-                    catch (const std::exception &)
+                    catch (const std::exception &refused)
                     {
+                        const std::string why = refused.what();
                         validity::Scene probe;
                         for (std::size_t i = 0; i < listed.size(); ++i)
                         {
@@ -288,7 +289,7 @@ namespace michi
                                 r.fail("scene.obstacles[" + std::to_string(i) + "]", e.what());
                             }
                         }
-                        throw;
+                        r.fail("scene.obstacles", why);  // refused as a list only: still named by the file
                     }
                 }
                 if (const YAML::Node map = scene["map"])
