@@ -41,28 +41,23 @@ class SphereKinematicsOf : public ::testing::TestWithParam<std::string>
 
 namespace
 {
-    /** Largest difference between the float frames and the double ones: the sphere checker's centres come from
-        the float frames, and every sphere radius is grown by 1e-5 m for rounding, so they must stay well inside
-        that (a metre-long arm: a few 1e-7). */
-    double floatFramesError(const SphereKinematics &kinematics, const double *values)
+    /** The pose of link \e l from the kinematics' float frames (what the sphere checker places its spheres with),
+        its largest difference to \e pose (rotation entries and metres). The centres are floats: a few 1e-7 m on a
+        metre-long arm is expected, far inside the 1e-5 m every sphere radius is grown by for rounding. */
+    double poseError(const SphereKinematics &kinematics, const std::vector<FloatFrame> &frames, std::size_t l,
+                     const Eigen::Isometry3d &pose)
     {
-        std::vector<RigidFrame> exact(kinematics.frameCount());
-        std::vector<FloatFrame> fast(kinematics.frameCount());
-        kinematics.frames(values, exact.data());
-        kinematics.framesFloat(values, fast.data());
-        double worst = 0.;
-        for (std::size_t k = 0; k < exact.size(); ++k)
-        {
-            const FloatFrame &f = fast[k];
-            for (int r = 0; r < 4; ++r)
-            {
-                const double e[4] = {r < 3 ? exact[k].r(r, 0) : 0., r < 3 ? exact[k].r(r, 1) : 0.,
-                                     r < 3 ? exact[k].r(r, 2) : 0., r < 3 ? exact[k].t(r) : 0.};
-                worst = std::max({worst, std::abs(f.c0(r) - e[0]), std::abs(f.c1(r) - e[1]), std::abs(f.c2(r) - e[2]),
-                                  std::abs(f.t(r) - e[3])});
-            }
-        }
-        return worst;
+        const FloatFrame &f = frames[static_cast<std::size_t>(kinematics.frameOf(l))];
+        Eigen::Matrix3d r;
+        r.col(0) = f.c0.head<3>().cast<double>().matrix();
+        r.col(1) = f.c1.head<3>().cast<double>().matrix();
+        r.col(2) = f.c2.head<3>().cast<double>().matrix();
+        const RigidFrame &o = kinematics.offsetOf(l);
+        const double rotation = (r * o.r - pose.linear()).cwiseAbs().maxCoeff();
+        const double translation =
+            (r * o.t + f.t.head<3>().cast<double>().matrix() - pose.translation()).cwiseAbs().maxCoeff();
+        return std::max(
+            {rotation, translation, static_cast<double>(std::abs(f.c0(3))), static_cast<double>(std::abs(f.t(3)))});
     }
 }  // namespace
 
@@ -82,7 +77,7 @@ TEST_P(SphereKinematicsOf, SameLinkPosesAsTheRobotModel)
     std::vector<double> values(vars.size(), 0.);
     const std::vector<double> fullTemplate = group->fullConfiguration(values.data());
     SphereKinematics kinematics(model, vars, fullTemplate, links);
-    std::vector<RigidFrame> frames(kinematics.frameCount());
+    std::vector<FloatFrame> frames(kinematics.frameCount());
     std::vector<Eigen::Isometry3d> poses;
     for (int trial = 0; trial < 200; ++trial)
     {
@@ -92,17 +87,10 @@ TEST_P(SphereKinematicsOf, SameLinkPosesAsTheRobotModel)
             values[i] = joint.type == RobotJoint::Type::CONTINUOUS ? rng.uniformReal(-7., 7.)
                                                                    : rng.uniformReal(joint.lower, joint.upper);
         }
-        kinematics.frames(values.data(), frames.data());
-        EXPECT_LT(floatFramesError(kinematics, values.data()), 1e-6);
+        kinematics.framesFloat(values.data(), frames.data());
         model.forwardKinematics(group->fullConfiguration(values.data()).data(), poses);
         for (std::size_t l = 0; l < links.size(); ++l)
-        {
-            const RigidFrame &f = frames[kinematics.frameOf(l)], &o = kinematics.offsetOf(l);
-            const Eigen::Matrix3d r = f.r * o.r;
-            const Eigen::Vector3d t = f.r * o.t + f.t;
-            EXPECT_LT((r - poses[l].linear()).cwiseAbs().maxCoeff(), 1e-12) << model.links()[l].name;
-            EXPECT_LT((t - poses[l].translation()).cwiseAbs().maxCoeff(), 1e-12) << model.links()[l].name;
-        }
+            EXPECT_LT(poseError(kinematics, frames, l, poses[l]), 1e-6) << model.links()[l].name;
     }
 }
 
@@ -144,7 +132,7 @@ TEST(SphereKinematics, GeneralAxesPrismaticAndHeldJoints)
         links.push_back(static_cast<int>(l));
     SphereKinematics kinematics(*model, vars, full, links);
     EXPECT_EQ(kinematics.frameCount(), 5u);  // the base and one frame per group joint
-    std::vector<RigidFrame> frames(kinematics.frameCount());
+    std::vector<FloatFrame> frames(kinematics.frameCount());
     std::vector<Eigen::Isometry3d> poses;
     ompl::RNG rng(3);
     for (int trial = 0; trial < 100; ++trial)
@@ -158,15 +146,9 @@ TEST(SphereKinematics, GeneralAxesPrismaticAndHeldJoints)
                                  : rng.uniformReal(-7., 7.));
             full[v] = values.back();
         }
-        kinematics.frames(values.data(), frames.data());
-        EXPECT_LT(floatFramesError(kinematics, values.data()), 1e-6);
+        kinematics.framesFloat(values.data(), frames.data());
         model->forwardKinematics(full.data(), poses);
         for (std::size_t l = 0; l < links.size(); ++l)
-        {
-            const RigidFrame &f = frames[kinematics.frameOf(l)], &o = kinematics.offsetOf(l);
-            EXPECT_LT(((f.r * o.r) - poses[l].linear()).cwiseAbs().maxCoeff(), 1e-12) << model->links()[l].name;
-            EXPECT_LT(((f.r * o.t + f.t) - poses[l].translation()).cwiseAbs().maxCoeff(), 1e-12)
-                << model->links()[l].name;
-        }
+            EXPECT_LT(poseError(kinematics, frames, l, poses[l]), 1e-6) << model->links()[l].name;
     }
 }

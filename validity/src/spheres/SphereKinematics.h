@@ -56,24 +56,21 @@ namespace michi
             {
                 return linkOffset_[i];
             }
-            /** \brief Every frame for group values \e values (frame 0: the robot's base pose, read per call).
-                \e frames holds frameCount() entries. */
-            void frames(const double *values, RigidFrame *frames) const;
-            /** \brief The same frames in floats (the sphere checker's: its centres are floats; the difference to
-                frames() is a few 1e-7 m on a metre-long arm, far below the checker's rounding margin). */
+            /** \brief Every frame for group values \e values (frame 0: the robot's base pose, read per call), in
+                floats (the sphere checker's centres are floats; a metre-long arm's frames are within a few 1e-7 of
+                RobotModel's double forward kinematics). \e frames holds frameCount() entries. */
             void framesFloat(const double *values, FloatFrame *frames) const;
 
         private:
             struct Step
             {
-                int parent;         ///< frame the joint hangs from
-                RigidFrame offset;  ///< joint origin in that frame
+                int parent;  ///< frame the joint hangs from
                 Eigen::Vector3d axis;
                 bool prismatic;
                 int value;     ///< group index of its value
                 double zSign;  ///< axis +z: 1, -z: -1, other: 0 (general rotation)
-                // for framesFloat: offset.r(i, j) in every lane at [3 j + i], offset.t(i) in every lane, and the
-                // axis in the parent's frame (offset.r * axis, a prismatic joint's direction)
+                // the joint origin in the parent frame: its rotation's (i, j) in every lane at [3 j + i], its
+                // translation's i in every lane, and the axis in the parent's frame (a prismatic joint's direction)
                 Eigen::Array4f rotation[9];
                 Eigen::Array4f translation[3];
                 Eigen::Vector3f slide;
