@@ -4,7 +4,8 @@
 // and bad files are rejected with their name; the ablation (use_learning = 0) learns nothing; the learning roadmap
 // reduces the planning work (counted, not timed) on a repeated scene change and after clear(); a change confined to a
 // region keeps what was proved elsewhere; edge probes refute a blocked motion without its motion check; a search weight
-// above 1 expands fewer vertices; a full working roadmap kept from earlier queries starts afresh once per query.
+// above 1 expands fewer vertices; a full working roadmap kept from earlier queries starts afresh once per query, and
+// one that a failed query filled is dropped before the next query.
 #include "support/TestScenes.h"
 
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
@@ -180,7 +181,8 @@ TEST(DualRoadmap, FullKeptRoadmapStartsAfreshOnceInsteadOfFailing)
     door.pose.translation() = Eigen::Vector3d(5., gapY < 5. ? 2.5 : 7.5, 0.);
     f.setup.scene->add(door);
     f.query({1., 5., 0.}, {9., 5., 0.});
-    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION) << "the other gap needs samples the full roadmap has no room for";
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION)
+        << "the other gap needs samples the full roadmap has no room for";
     EXPECT_EQ(f.planner->workingRestarts(), 1u);
     auto second = f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
     EXPECT_TRUE(second->check());
@@ -197,6 +199,35 @@ TEST(DualRoadmap, FullKeptRoadmapStartsAfreshOnceInsteadOfFailing)
     f.query({1., 5., 0.}, {9., 5., 0.});
     EXPECT_NE(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
     EXPECT_LE(f.planner->workingRestarts(), 3u);
+}
+
+TEST(DualRoadmap, RoadmapFilledByAFailedQueryIsDroppedBeforeTheNextQuery)
+{
+    ompl::RNG::setSeed(13);
+    Fixture f;
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    const unsigned int full = 300;
+    f.planner->setMaxWorkingVertices(full);
+    validity::Obstacle lower;
+    lower.name = "lower door";
+    lower.shape = validity::Shape::box({0.4, 1.2, 1.});
+    lower.pose.translation() = Eigen::Vector3d(5., 2.5, 0.);
+    validity::Obstacle upper = lower;
+    upper.name = "upper door";
+    upper.pose.translation() = Eigen::Vector3d(5., 7.5, 0.);
+    f.setup.scene->add(lower);
+    f.setup.scene->add(upper);
+    f.query({1., 5., 0.}, {9., 5., 0.});
+    ASSERT_NE(f.solve(), ob::PlannerStatus::EXACT_SOLUTION) << "both gaps closed";
+    ASSERT_GE(f.planner->workingVertexCount(), full) << "the failed query filled the roadmap";
+    // the doors open again: the next query starts from the learning roadmap near it, not from the thousands of
+    // vertices the failed query left (each search would expand them)
+    ASSERT_TRUE(f.setup.scene->remove("lower door"));
+    ASSERT_TRUE(f.setup.scene->remove("upper door"));
+    f.query({1., 5., 0.}, {9., 5., 0.});
+    ASSERT_EQ(f.solve(), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_LT(f.planner->workingVertexCount(), full / 2);
+    EXPECT_TRUE(f.pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>()->check());
 }
 
 TEST(DualRoadmap, AblationLearnsNothing)
@@ -424,7 +455,7 @@ namespace
     {
     public:
         LengthCountingValidator(const ob::SpaceInformationPtr &si, ob::MotionValidatorPtr inner)
-          : ob::MotionValidator(si), inner_(std::move(inner))
+            : ob::MotionValidator(si), inner_(std::move(inner))
         {
         }
         bool checkMotion(const ob::State *a, const ob::State *b) const override

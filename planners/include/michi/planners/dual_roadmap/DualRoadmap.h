@@ -428,13 +428,14 @@ namespace michi
             unsigned int maxLearningEdges_{50000};
             unsigned int maxWorkingVertices_{2000};
             std::size_t restarts_{0};
+            bool refill_{false};
             bool restartWhenFull_{true};
             double unknownPenalty_{1.5};
             double refutedPenalty_{10.};
             double searchWeight_{1.};
             unsigned int edgeProbes_{3};
             unsigned int recheckDepth_{4};
-            ompl::base::State *probe_{nullptr};  ///< refutedByProbes()' state (made in setup())
+            ompl::base::State *probe_{nullptr};          ///< refutedByProbes()' state (made in setup())
             std::array<ompl::base::State *, 4> part_{};  ///< checkEdgeMotion()'s states (made in setup())
         };
     }  // namespace planners
