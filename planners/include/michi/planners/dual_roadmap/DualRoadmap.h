@@ -217,8 +217,9 @@ namespace michi
             {
                 return maxWorkingVertices_;
             }
-            /** \brief Start a full working roadmap kept from earlier queries afresh, once per query (default);
-                false: the query fails as on a roadmap it filled itself (the ablation of this rule). */
+            /** \brief Start a full working roadmap kept from earlier queries afresh, once per query, and drop one
+                that a failed query filled before the next query (default); false: the query fails as on a roadmap
+                it filled itself, and the roadmap is kept (the ablation of these rules). */
             void setRestartWhenFull(bool restart)
             {
                 restartWhenFull_ = restart;
