@@ -536,7 +536,7 @@ namespace michi
             }
             // A query that filled the roadmap and still failed (a door or walker closing the only passage) leaves
             // thousands of vertices behind; kept, they made every later search expand a thousand of them (the
-            // walkers' passage: median latency 0.69 -> 0.45 ms over 4 seeds x 25 episodes when dropped). The next
+            // walkers' passage: median latency 0.69 -> 0.39-0.50 ms over 4 seeds x 25 episodes when dropped). The next
             // query starts afresh, seeded from the learning roadmap near it.
             if (refill_)
             {
