@@ -306,8 +306,10 @@ namespace michi
             ++work_.searches;
             const std::size_t n = static_cast<std::size_t>(nodeCount_) + queries_.size();
             // Stamps instead of clearing: an entry counts only when stamped in this search, so a search costs what it
-            // touches, not the size of the lattice. A wrapped stamp (0) forces one real clear.
-            if (g_.size() < n || ++searchStamp_ == 0)
+            // touches, not the size of the lattice; the top bit marks it expanded. A wrapped stamp forces one real
+            // clear.
+            constexpr std::uint32_t EXPANDED = 0x80000000u;
+            if (g_.size() < n || ++searchStamp_ == EXPANDED)
             {
                 // room for a few more query vertices, so that new queries on the kept lattice keep the pages
                 g_.assign(n + 64, 0.f);
@@ -323,7 +325,11 @@ namespace michi
             auto relax = [&](Vertex u, Vertex w, double cost)
             {
                 const float ng = static_cast<float>(g_[u] + cost);
-                if (stamp_[w] == searchStamp_ && !(ng < g_[w]))
+                const std::uint32_t seen = stamp_[w];
+                // An expanded node is not opened again (weighted A* without re-expansions: the path still costs at
+                // most heuristic_weight times the shortest, Likhachev et al., ARA*, NIPS 2003). Reopening expanded
+                // the nodes near a goal up to 22 times each, five times the nodes it expanded (docs/heading-lattice.md).
+                if (seen == (searchStamp_ | EXPANDED) || (seen == searchStamp_ && !(ng < g_[w])))
                     return;
                 const double h = heuristic(w, ptc, stopped);
                 if (stopped || h == INF)
@@ -356,9 +362,10 @@ namespace michi
                 std::pop_heap(open_.begin(), open_.end(), less);
                 const OpenEntry e = open_.back();
                 open_.pop_back();
-                if (e.g > g_[e.v])
-                    continue;  // a better way to it was found after this entry
+                if (e.g > g_[e.v] || stamp_[e.v] == (searchStamp_ | EXPANDED))
+                    continue;  // a better way to it was found after this entry, or it was expanded
                 const Vertex u = e.v;
+                stamp_[u] = searchStamp_ | EXPANDED;
                 ++work_.expansions;
                 if (!isLattice(u))
                 {
