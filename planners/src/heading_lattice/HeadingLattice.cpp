@@ -6,6 +6,7 @@
 #include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/grid/GridValidityChecker.h>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
@@ -223,11 +224,28 @@ namespace michi
             std::uint8_t &s = nodeState_[id];
             if (s == UNCHECKED || s == STALE)
             {
-                setNodeState(id, scratch_);
                 ++work_.nodeChecks;
                 if (s == STALE)
                     ++work_.nodeRechecks;
-                s = si_->satisfiesBounds(scratch_) && si_->isValid(scratch_) ? VALID : INVALID;
+                if (gridChecker_ != nullptr)
+                {
+                    // what satisfiesBounds() and isValid() of the node's state answer (a heading's yaw is inside
+                    // SO(2)'s bounds), without the state: the 2-D heuristic's free-group tests make most node checks
+                    double x, y;
+                    nodePosition(id, x, y);
+                    // RealVectorStateSpace::satisfiesBounds' tolerance
+                    constexpr double EPS = std::numeric_limits<double>::epsilon();
+                    s = !(x - EPS > xyBounds_[1] || x + EPS < xyBounds_[0] || y - EPS > xyBounds_[3] ||
+                          y + EPS < xyBounds_[2]) &&
+                                gridChecker_->isValidPose(x, y, wrapAngle(geometry_[id % headings_].yaw)) ?
+                            VALID :
+                            INVALID;
+                }
+                else
+                {
+                    setNodeState(id, scratch_);
+                    s = si_->satisfiesBounds(scratch_) && si_->isValid(scratch_) ? VALID : INVALID;
+                }
                 nodeListDirty_ = true;
             }
             return s == VALID;

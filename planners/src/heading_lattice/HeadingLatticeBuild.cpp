@@ -7,6 +7,7 @@
 #include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/grid/GridValidityChecker.h>
 
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/util/Time.h>
@@ -151,6 +152,8 @@ namespace michi
                     }
             euclidWeight_ = shift > turnCost_ ? turnCost_ / shift : 1.;
 
+            gridChecker_ = dynamic_cast<const validity::GridValidityChecker *>(si_->getStateValidityChecker().get());
+            xyBounds_ = {b.low[0], b.high[0], b.low[1], b.high[1]};
             nodeState_.assign(nodeCount_, UNCHECKED);
             edgeState_.assign(nodeCount_, 0);
             groupFree_.assign(groupCount_, 0);

@@ -7,8 +7,17 @@
 #include <ompl/geometric/PathGeometric.h>
 
 #include <cstdint>
+#include <array>
 #include <string>
 #include <vector>
+
+namespace michi
+{
+    namespace validity
+    {
+        class GridValidityChecker;
+    }
+}  // namespace michi
 
 namespace michi
 {
@@ -320,6 +329,10 @@ namespace michi
             };
             std::vector<OpenEntry> open_;
             ompl::base::State *scratch_{nullptr};
+            /** \brief The space's checker when it is michi's grid checker (else null): nodeValid() asks it about the
+                node's pose directly, without making an OMPL state, with the same answer. */
+            const validity::GridValidityChecker *gridChecker_{nullptr};
+            std::array<double, 4> xyBounds_{};  ///< the space's x and y bounds (low x, high x, low y, high y)
             std::vector<DirectEdge> direct_;
             mutable std::vector<ompl::base::State *> exportStates_;
             mutable std::vector<Node> nodeList_;
