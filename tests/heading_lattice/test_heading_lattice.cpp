@@ -1,6 +1,7 @@
 // michi::planners::HeadingLattice (paper 003) on problems/se2_corridor.yaml: it finds the path that turns in place
 // at the corner, the same path every time, keeps its graph across queries and rebuilds it when the scene changes;
-// a disk of the robot's circumradius cannot pass the same corridor.
+// a disk of the robot's circumradius cannot pass the same corridor; on the grid checker its direct node checks answer
+// as the space information does.
 #include <michi/planners/heading_lattice/HeadingLattice.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/tools/bench/PathCertificate.h>
@@ -308,4 +309,47 @@ TEST(HeadingLattice, ClosedDoorUpdatesOnlyTheLatticeAroundIt)
     // is directed at the start, the lattice knows fewer checks before the door closes: 33201)
     EXPECT_LE(10 * forgotten, rebuild);
     EXPECT_LE(10 * rechecked, rebuild);
+}
+
+TEST(HeadingLattice, GridNodeChecksAnswerAsTheSpaceInformation)
+{
+    // On michi's grid checker a node check asks the checker about the node's pose directly (no OMPL state); behind
+    // a checker that only forwards isValid() the lattice takes the generic way. Both must see the same free and
+    // blocked nodes: the same path, node checks and expansions on 64room's query 0.
+    struct Forwarding : ob::StateValidityChecker
+    {
+        Forwarding(const ob::SpaceInformationPtr &si, ob::StateValidityCheckerPtr inner)
+            : ob::StateValidityChecker(si), inner_(std::move(inner))
+        {
+        }
+        bool isValid(const ob::State *state) const override
+        {
+            return inner_->isValid(state);
+        }
+        ob::StateValidityCheckerPtr inner_;
+    };
+    const auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/movingai_64room.yaml");
+    michi::tools::ContextOptions options;
+    options.checker = "grid";
+    std::vector<std::vector<double>> paths[2];
+    HeadingLattice::WorkCounters work[2];
+    for (int forwarded = 0; forwarded < 2; ++forwarded)
+    {
+        auto ctx = michi::tools::makePlanningContext(problem, options);
+        ASSERT_TRUE(ctx.grid);
+        const auto si = ctx.setup->getSpaceInformation();
+        if (forwarded == 1)
+            si->setStateValidityChecker(std::make_shared<Forwarding>(si, ctx.grid));
+        auto planner = std::make_shared<HeadingLattice>(si);
+        planner->params().setParam("cell_size", "0.05");
+        planner->params().setParam("heuristic_weight", "1.2");
+        paths[forwarded] = solvePath(ctx, planner, 60.);
+        work[forwarded] = planner->work();
+    }
+    ASSERT_FALSE(paths[0].empty());
+    EXPECT_EQ(paths[0], paths[1]);
+    EXPECT_GT(work[0].nodeChecks, 1000u);
+    EXPECT_EQ(work[0].nodeChecks, work[1].nodeChecks);
+    EXPECT_EQ(work[0].expansions, work[1].expansions);
+    EXPECT_EQ(work[0].edgeChecks, work[1].edgeChecks);
 }

@@ -24,7 +24,7 @@ namespace
         michi::tools::PlanningContext ctx;
 
         explicit Fixture(const std::string &file)
-          : problem(michi::tools::loadProblem(file)), ctx(michi::tools::makePlanningContext(problem))
+            : problem(michi::tools::loadProblem(file)), ctx(michi::tools::makePlanningContext(problem))
         {
             ctx.setup->setup();
         }

@@ -235,11 +235,11 @@ namespace michi
                     nodePosition(id, x, y);
                     // RealVectorStateSpace::satisfiesBounds' tolerance
                     constexpr double EPS = std::numeric_limits<double>::epsilon();
-                    s = !(x - EPS > xyBounds_[1] || x + EPS < xyBounds_[0] || y - EPS > xyBounds_[3] ||
-                          y + EPS < xyBounds_[2]) &&
-                                gridChecker_->isValidPose(x, y, wrapAngle(geometry_[id % headings_].yaw)) ?
-                            VALID :
-                            INVALID;
+                    const bool inside = !(x - EPS > xyBounds_[1] || x + EPS < xyBounds_[0] || y - EPS > xyBounds_[3] ||
+                                          y + EPS < xyBounds_[2]);
+                    const bool valid =
+                        inside && gridChecker_->isValidPose(x, y, wrapAngle(geometry_[id % headings_].yaw));
+                    s = valid ? VALID : INVALID;
                 }
                 else
                 {

@@ -328,7 +328,8 @@ namespace michi
                 const std::uint32_t seen = stamp_[w];
                 // An expanded node is not opened again (weighted A* without re-expansions: the path still costs at
                 // most heuristic_weight times the shortest, Likhachev et al., ARA*, NIPS 2003). Reopening expanded
-                // the nodes near a goal up to 22 times each, five times the nodes it expanded (docs/heading-lattice.md).
+                // the nodes near a goal up to 22 times each, five times the nodes it expanded
+                // (docs/heading-lattice.md).
                 if (seen == (searchStamp_ | EXPANDED) || (seen == searchStamp_ && !(ng < g_[w])))
                     return;
                 const double h = heuristic(w, ptc, stopped);
