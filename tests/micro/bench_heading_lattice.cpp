@@ -2,8 +2,9 @@
 // not part of ctest), with a plain timedPlannerTerminationCondition: no termination thread, so no ~1 ms steps of
 // OMPL's Benchmark clock (DESIGN.md) in the figures. Each iteration plans the next query of the problem after
 // clear(), as a `michi bench --queries all` run does; the problem's checker and HeadingLattice's parameters apply.
-//   build/tests/micro/bench_heading_lattice [PROBLEM.yaml] [--benchmark_min_time=3]
-// (default: problems/movingai_64room.yaml; scripts/rooms_map.py OUT writes a held-out map and OUT/rooms.yaml)
+//   build/tests/micro/bench_heading_lattice [PROBLEM.yaml] [--benchmark_filter=Heading]
+// (default: problems/movingai_64room.yaml; scripts/rooms_map.py OUT writes a held-out map and OUT/rooms.yaml). Each
+// planner runs three passes over the queries (a fixed iteration count, so that both are timed on the same set).
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/ExperienceQueries.h>
 
