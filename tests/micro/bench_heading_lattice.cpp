@@ -2,7 +2,7 @@
 // not part of ctest), with a plain timedPlannerTerminationCondition: no termination thread, so no ~1 ms steps of
 // OMPL's Benchmark clock (DESIGN.md) in the figures. Each iteration plans the next query of the problem after
 // clear(), as a `michi bench --queries all` run does; the problem's checker and HeadingLattice's parameters apply.
-//   build/tests/micro/bench_heading_lattice [PROBLEM.yaml] [--benchmark_filter=Heading]
+//   build/tests/micro/bench_heading_lattice [PROBLEM.yaml [CHECKER]] [--benchmark_filter=Heading]
 // (default: problems/movingai_64room.yaml; scripts/rooms_map.py OUT writes a held-out map and OUT/rooms.yaml). Each
 // planner runs three passes over the queries (a fixed iteration count, so that both are timed on the same set).
 #include <michi/tools/bench/PlanningContext.h>
@@ -24,10 +24,18 @@ namespace
         michi::tools::Problem problem;
         michi::tools::PlanningContext ctx;
 
-        explicit Fixture(const std::string &file)
-            : problem(michi::tools::loadProblem(file)), ctx(michi::tools::makePlanningContext(problem))
+        Fixture(const std::string &file, const std::string &checker)
+            : problem(load(file, checker)), ctx(michi::tools::makePlanningContext(problem))
         {
             ctx.setup->setup();
+        }
+
+        static michi::tools::Problem load(const std::string &file, const std::string &checker)
+        {
+            auto problem = michi::tools::loadProblem(file);
+            if (!checker.empty())
+                problem.checker = checker;
+            return problem;
         }
     };
 
@@ -60,7 +68,7 @@ int main(int argc, char **argv)
     benchmark::Initialize(&argc, argv);
     ompl::RNG::setSeed(1);  // once: RRTConnect's time varies with the seed (HeadingLattice is deterministic)
     const std::string file = argc > 1 ? argv[1] : std::string(MICHI_SOURCE_DIR) + "/problems/movingai_64room.yaml";
-    static Fixture fixture(file);
+    static Fixture fixture(file, argc > 2 ? argv[2] : "");
     const auto queries = static_cast<benchmark::IterationCount>(fixture.problem.queries.size());
     for (const std::string planner : {"michi::HeadingLattice", "geometric::RRTConnect"})
         // whole passes over the queries, so every planner is timed on the same set

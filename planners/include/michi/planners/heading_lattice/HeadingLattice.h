@@ -278,10 +278,12 @@ namespace michi
             unsigned int columns_{0}, rows_{0};
             std::uint32_t groupCount_{0};
             std::uint32_t nodeCount_{0};
-            bool reversible_{true};    ///< the space allows driving backwards
-            double turnCost_{0.};      ///< cost of one heading step in place
-            double reach_{0.};         ///< how far the footprint reaches from the robot's origin (for updates)
-            double euclidWeight_{1.};  ///< heuristic weight of the straight-line distance (turns shift nodes)
+            bool reversible_{true};             ///< the space allows driving backwards
+            double turnCost_{0.};               ///< cost of one heading step in place
+            double reach_{0.};                  ///< how far the footprint reaches from the robot's origin (for updates)
+            double euclidWeight_{1.};           ///< heuristic weight of the straight-line distance (turns shift nodes)
+            double shift_{0.};                  ///< the largest shift of a turn edge (build()), for shiftKey_
+            std::array<double, 6> shiftKey_{};  ///< cell size, headings, window and origin shift_ was measured for
             struct HeadingGeometry
             {
                 bool columns;   ///< |cos| >= |sin|: nodes at (x, y + x tan), eq. (1); else (x + y cot, y), eq. (2)
