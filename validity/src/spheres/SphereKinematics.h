@@ -76,6 +76,7 @@ namespace michi
                 Eigen::Vector3f slide;
             };
             const RobotModel &model_;
+            std::size_t dimension_;    ///< group values
             std::vector<Step> steps_;  ///< frame s + 1 is made by step s; parents come first
             std::vector<int> linkFrame_;
             std::vector<RigidFrame> linkOffset_;

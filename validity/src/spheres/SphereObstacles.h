@@ -81,6 +81,17 @@ namespace michi
                 }
                 return grid->bound(p);
             }
+            /** \brief distanceBound(c) > r, without its square root (a state check asks it for every moving body). */
+            bool clears(const Eigen::Vector3f &c, float r) const
+            {
+                const DistanceGrid *grid = grid_.load(std::memory_order_acquire);
+                if (grid == nullptr)
+                {
+                    countQuery();
+                    return false;
+                }
+                return grid->clears(c, r);
+            }
             static constexpr unsigned GRID_AFTER = 4096;
             /** \brief Make the grid now (tests; queries make it themselves). */
             void makeGrid() const;
@@ -133,6 +144,19 @@ namespace michi
                     }
                     // outside the grid: at least the distance to the box that holds every obstacle
                     return (p.cwiseMax(boundLo).cwiseMin(boundHi) - p).norm();
+                }
+                /** bound(p) > r, compared in squares: the cell's distance less r must exceed |p - centre|. */
+                bool clears(const Eigen::Vector3f &p, float r) const
+                {
+                    const Eigen::Vector3f u = (p - lo) * inverse;
+                    if ((u.array() >= 0.f).all() && u.x() < nx && u.y() < ny && u.z() < nz)
+                    {
+                        const int i = static_cast<int>(u.x()), j = static_cast<int>(u.y()), k = static_cast<int>(u.z());
+                        const Eigen::Vector3f centre = lo + cell * Eigen::Vector3f(i + 0.5f, j + 0.5f, k + 0.5f);
+                        const float a = STEP * distance[(static_cast<std::size_t>(k) * ny + j) * nx + i] - r;
+                        return a > 0.f && a * a > (p - centre).squaredNorm();
+                    }
+                    return r < 0.f || (p.cwiseMax(boundLo).cwiseMin(boundHi) - p).squaredNorm() > r * r;
                 }
             };
             void countQuery() const;

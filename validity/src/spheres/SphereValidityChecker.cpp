@@ -22,6 +22,7 @@ namespace michi
         /** Per-thread working arrays of a query. */
         struct SphereValidityChecker::Scratch
         {
+            std::uint64_t owner{0};  ///< id_ of the checker the arrays are sized for (0: none)
             std::vector<FloatFrame> frames;
             std::vector<char> placed;  ///< per body: its spheres are placed for this state
             std::vector<float> x, y, z, r;
@@ -34,6 +35,8 @@ namespace michi
             std::vector<double> values;
             std::vector<char> wantBodies, wantPairs;
             std::vector<double> obstacleDistances, selfDistances;
+            std::vector<float>
+                gathered;  ///< per body of a pair: the spheres near the other body (x, y, z, r blocks), margins
         };
 
         namespace
@@ -53,6 +56,8 @@ namespace michi
             , scene_(std::move(scene))
             , exact_(std::move(exactSelf))
         {
+            static std::atomic<std::uint64_t> checkers{0};
+            id_ = ++checkers;
             // The spheres enclose the links, so their distance to an obstacle is a lower bound of the links' own
             // distance.
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
@@ -96,6 +101,7 @@ namespace michi
                 // needs no per-sphere test.
                 bodyRadius_.push_back(static_cast<float>(r) + 2.f * FLOAT_MARGIN);
                 begin_.push_back(static_cast<int>(radius_.size()));
+                maxBodySpheres_ = std::max(maxBodySpheres_, sp.size());
             }
             for (std::size_t k = 0; k < bodies_->selfCheckPairs().size(); ++k)
             {
@@ -427,13 +433,33 @@ namespace michi
             si_->getStateSpace()->copyToReals(values, state);
         }
 
+        void SphereValidityChecker::prepare(Scratch &s) const
+        {
+            // Sized once per thread and checker, not on every query: a thread's scratch follows the last checker that
+            // used it, known by its id (an address could be a new checker's).
+            s.tableCell.resize(tablePairs_.size());
+            s.tableInside.resize(tablePairs_.size());
+            s.frames.resize(kinematics_->frameCount());
+            const std::size_t n = radius_.size(), nb = bodyLink_.size();
+            s.x.resize(n);
+            s.y.resize(n);
+            s.z.resize(n);
+            s.r.resize(n);
+            s.bodyCentre.resize(nb);
+            s.bodyRadius.resize(nb);
+            s.placed.resize(nb);
+            s.pairNear.resize(spherePairs_.size());
+            s.gathered.resize(12 * maxBodySpheres_);
+            s.owner = id_;
+        }
+
         void SphereValidityChecker::place(const double *values, Scratch &s, bool tableCells) const
         {
             // the self-pair tables' cells first, their words prefetched: on fresh states each is a cache miss, and the
             // loads then overlap the kinematics instead of stalling the pair loop (verify-checker, Panda: 475 -> 385
             // ns)
-            s.tableCell.resize(tablePairs_.size());
-            s.tableInside.resize(tablePairs_.size());
+            if (s.owner != id_)
+                prepare(s);
             for (std::size_t i = 0; tableCells && i < tablePairs_.size(); ++i)
             {
                 const SelfPairTable &table = *(*pairTables_)[static_cast<std::size_t>(tablePairs_[i])];
@@ -443,16 +469,9 @@ namespace michi
             }
             // Joints outside the planned group and fixed joints are folded into the kinematics' offsets: only the
             // group's values are read per query.
-            s.frames.resize(kinematics_->frameCount());
             kinematics_->framesFloat(values, s.frames.data());
-            const std::size_t n = radius_.size(), nb = bodyLink_.size();
-            s.x.resize(n);
-            s.y.resize(n);
-            s.z.resize(n);
-            s.r.resize(n);
-            s.bodyCentre.resize(nb);
-            s.bodyRadius.resize(nb);
-            s.placed.assign(nb, 0);
+            const std::size_t nb = bodyLink_.size();
+            std::fill(s.placed.begin(), s.placed.end(), 0);
             for (std::size_t b = 0; b < nb; ++b)
             {
                 const FloatFrame &f = s.frames[bodyFrame_[b]];
@@ -477,6 +496,72 @@ namespace michi
             Map(s.x.data() + first, count) = f.c0(0) * cx + f.c1(0) * cy + f.c2(0) * cz + f.t(0);
             Map(s.y.data() + first, count) = f.c0(1) * cx + f.c1(1) * cy + f.c2(1) * cz + f.t(1);
             Map(s.z.data() + first, count) = f.c0(2) * cx + f.c1(2) * cy + f.c2(2) * cz + f.t(2);
+        }
+
+        int SphereValidityChecker::spheresNear(const Scratch &s, const float *r, std::size_t body, std::size_t other,
+                                               float *g) const
+        {
+            // the other body's bounding sphere in the frame this body rides on (the rotation's transpose), where the
+            // body's sphere centres are constants: no sphere is placed to be ruled out
+            const FloatFrame &f = s.frames[static_cast<std::size_t>(bodyFrame_[body])];
+            const Eigen::Array4f d =
+                Eigen::Array4f(s.bodyCentre[other].x(), s.bodyCentre[other].y(), s.bodyCentre[other].z(), 0.f) - f.t;
+            const float lx = (f.c0 * d).sum(), ly = (f.c1 * d).sum(), lz = (f.c2 * d).sum();
+            const float reachOther = s.bodyRadius[other];
+            const int first = begin_[body], count = begin_[body + 1] - first;
+            const float *cx = fx_.data() + first, *cy = fy_.data() + first, *cz = fz_.data() + first, *cr = r + first;
+            float *margin = g + 4 * maxBodySpheres_;
+            // one pass over whole SIMD lanes (negative: the sphere reaches into the other's bound), then the
+            // survivors gathered without a branch
+            for (int i = 0; i < count; ++i)
+            {
+                const float dx = cx[i] - lx, dy = cy[i] - ly, dz = cz[i] - lz, reach = cr[i] + reachOther;
+                margin[i] = dx * dx + dy * dy + dz * dz - reach * reach;
+            }
+            int *index = reinterpret_cast<int *>(margin + maxBodySpheres_), n = 0;
+            for (int i = 0; i < count; ++i)
+            {
+                index[n] = i;
+                n += margin[i] < 0.f ? 1 : 0;
+            }
+            // only the survivors are placed in the world, where the two bodies' spheres are compared
+            const std::size_t m = maxBodySpheres_;
+            for (int k = 0; k < n; ++k)
+            {
+                const int i = index[k];
+                g[k] = f.c0(0) * cx[i] + f.c1(0) * cy[i] + f.c2(0) * cz[i] + f.t(0);
+                g[m + k] = f.c0(1) * cx[i] + f.c1(1) * cy[i] + f.c2(1) * cz[i] + f.t(1);
+                g[2 * m + k] = f.c0(2) * cx[i] + f.c1(2) * cy[i] + f.c2(2) * cz[i] + f.t(2);
+                g[3 * m + k] = cr[i];
+            }
+            return n;
+        }
+
+        bool SphereValidityChecker::spheresTouch(Scratch &s, const float *r, std::size_t a, std::size_t b) const
+        {
+            // Two bodies whose bounding spheres overlap usually meet in a small lens: only the spheres of each body
+            // that reach into the other's bounding sphere can touch, and only those pairs are tested (Panda, 24
+            // spheres a link: a few of 24 x 24).
+            const std::size_t m = maxBodySpheres_;
+            float *ga = s.gathered.data(), *gb = ga + 6 * m;
+            const int na = spheresNear(s, r, a, b, ga);
+            if (na == 0)
+                return false;
+            const int nb = spheresNear(s, r, b, a, gb);
+            for (int i = 0; i < na; ++i)
+            {
+                const float xi = ga[i], yi = ga[m + i], zi = ga[2 * m + i], ri = ga[3 * m + i];
+                // No early exit inside: the compiler vectorises this loop into whole SIMD lanes.
+                int any = 0;
+                for (int j = 0; j < nb; ++j)
+                {
+                    const float dx = gb[j] - xi, dy = gb[m + j] - yi, dz = gb[2 * m + j] - zi, rr = gb[3 * m + j] + ri;
+                    any |= dx * dx + dy * dy + dz * dz < rr * rr;
+                }
+                if (any != 0)
+                    return true;
+            }
+            return false;
         }
 
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
@@ -516,7 +601,7 @@ namespace michi
                 if (static_[b])
                     continue;
                 // clear of every obstacle by the snapshot's distance grid: one lookup instead of both phases
-                if (obs.distanceBound(s.bodyCentre[b]) > s.bodyRadius[b])
+                if (obs.clears(s.bodyCentre[b], s.bodyRadius[b]))
                     continue;
                 const int found = obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates.data());
                 if (found == 0)
@@ -570,7 +655,6 @@ namespace michi
                 return true;
             }
             // Bounding spheres of the pairs first, without a branch per pair; most are apart.
-            s.pairNear.resize(spherePairs_.size());
             for (std::size_t i = 0; i < spherePairs_.size(); ++i)
             {
                 const auto &p = selfPairs_[static_cast<std::size_t>(spherePairs_[i])];
@@ -583,30 +667,7 @@ namespace michi
                     continue;
                 const std::size_t k = static_cast<std::size_t>(spherePairs_[i]);
                 const auto &p = selfPairs_[k];
-                placeBody(static_cast<std::size_t>(p.first), s);
-                placeBody(static_cast<std::size_t>(p.second), s);
-                const int fb = begin_[p.second], lb = begin_[p.second + 1];
-                const float *bx = s.x.data(), *by = s.y.data(), *bz = s.z.data();
-                const Eigen::Vector3f &other = s.bodyCentre[p.second];
-                const float otherRadius = s.bodyRadius[p.second];
-                bool hit = false;
-                for (int i = begin_[p.first]; i < begin_[p.first + 1] && !hit; ++i)
-                {
-                    const float xi = bx[i], yi = by[i], zi = bz[i], ri = r[i];
-                    // A sphere that misses the other body's bounding sphere misses all of its spheres.
-                    const float ox = xi - other.x(), oy = yi - other.y(), oz = zi - other.z(), reach = ri + otherRadius;
-                    if (ox * ox + oy * oy + oz * oz >= reach * reach)
-                        continue;
-                    // No early exit inside: the compiler vectorises this loop into whole SIMD lanes.
-                    int any = 0;
-                    for (int j = fb; j < lb; ++j)
-                    {
-                        const float dx = bx[j] - xi, dy = by[j] - yi, dz = bz[j] - zi, rr = r[j] + ri;
-                        any |= dx * dx + dy * dy + dz * dz < rr * rr;
-                    }
-                    hit = any != 0;
-                }
-                if (!hit)
+                if (!spheresTouch(s, r, static_cast<std::size_t>(p.first), static_cast<std::size_t>(p.second)))
                     continue;
                 if (useExact && exact_ && inflation == nullptr)
                 {

@@ -133,8 +133,15 @@ namespace michi
             /** Frames and bodies' bounding spheres for \e values into \e s; no sphere is placed yet. \e tableCells:
                 also the self-pair tables' cells of a state check (a motion piece reads ranges instead). */
             void place(const double *values, Scratch &s, bool tableCells) const;
+            /** Sizes a thread's scratch arrays for this checker. */
+            void prepare(Scratch &s) const;
             /** World centres of body \e b's spheres into \e s (once per state). */
             void placeBody(std::size_t b, Scratch &s) const;
+            /** Spheres of \e body (radii \e r) that reach into the bounding sphere of \e other, placed in the world
+                into \e g (x, y, z, r blocks of maxBodySpheres_, then scratch): their count. */
+            int spheresNear(const Scratch &s, const float *r, std::size_t body, std::size_t other, float *g) const;
+            /** Do bodies \e a and \e b (radii \e r) have two spheres that touch? */
+            bool spheresTouch(Scratch &s, const float *r, std::size_t a, std::size_t b) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *valueSpan,
                           bool useExact, std::string *why) const;
             void makeSelfPairTables();
@@ -146,6 +153,8 @@ namespace michi
             // per robot body (link with spheres): its spheres are [begin_[b], begin_[b + 1])
             std::vector<int> bodyLink_;
             std::vector<int> begin_;
+            std::size_t maxBodySpheres_{0};            ///< spheres of the largest body
+            std::uint64_t id_{0};                      ///< unique among the process's checkers (per-thread scratch)
             std::vector<Eigen::Vector3f> bodyCentre_;  ///< bounding sphere of the body's spheres, link frame
             std::vector<float> bodyRadius_;
             std::vector<float> cx_, cy_, cz_, radius_;  ///< sphere centres in the link frame, padded radii
