@@ -111,6 +111,53 @@ TEST(SelfPairTable, TwoValuesCertifiedAgainstTheirDistance)
     EXPECT_GT(table.freeFraction(), 0.9);
 }
 
+// A motion's piece reads every cell its spans touch: a span read as free is free at every value inside it, with either
+// value wrapping round (a continuous joint, across the seam too) or both limited; and a span over the contact is not.
+TEST(SelfPairTable, TwoValueSpansAreFreeEverywhereInside)
+{
+    // contact in a disc of radius 0.15 around (0.2, 2.95), just short of the seam of the second value: a span that
+    // starts below -pi reaches it only by wrapping round
+    auto distance = [](const double *at)
+    {
+        return std::hypot(at[0] - 0.2, std::remainder(at[1] - 2.95, 2. * M_PI)) - 0.15;
+    };
+    for (const std::vector<char> &wrap : {std::vector<char>{0, 1}, std::vector<char>{1, 0}, std::vector<char>{0, 0}})
+    {
+        const double lo0 = wrap[0] ? -M_PI : -2., hi0 = wrap[0] ? M_PI : 2.;
+        const SelfPairTable table({0, 1}, {lo0, -M_PI}, {hi0, M_PI}, wrap, {1., 1.}, 64, distance);
+        ompl::RNG rng(21);
+        int free = 0, refused = 0;
+        for (int i = 0; i < 8000; ++i)
+        {
+            // half of the values near the seam, beside the disc
+            const double v[2] = {rng.uniformReal(lo0, hi0),
+                                 i % 2 == 0 ? rng.uniformReal(-M_PI, M_PI) : rng.uniformReal(-M_PI, -M_PI + 0.3)};
+            const float span[2] = {static_cast<float>(rng.uniformReal(0., 0.3)),
+                                   static_cast<float>(rng.uniformReal(0., 0.3))};
+            if (!table.freeOver(v, span))
+            {
+                ++refused;
+                continue;
+            }
+            ++free;
+            for (int a = -4; a <= 4; ++a)
+                for (int b = -4; b <= 4; ++b)
+                {
+                    const double at[2] = {v[0] + span[0] * a / 4., v[1] + span[1] * b / 4.};
+                    if (!wrap[0] && (at[0] < lo0 || at[0] > hi0))
+                        continue;
+                    ASSERT_GT(distance(at), 0.) << "span around (" << v[0] << ", " << v[1] << ")";
+                }
+        }
+        // the disc and its margin are a small part of the box: most spans are free, those over the disc are not
+        EXPECT_GT(free, 8000 * 0.6);
+        EXPECT_GT(refused, 0);
+        const double onDisc[2] = {0.2, 2.95};
+        const float small[2] = {0.01f, 0.01f};
+        EXPECT_FALSE(table.freeOver(onDisc, small));
+    }
+}
+
 TEST(SelfPairTable, PandaWristTablesAgreeWithFcl)
 {
     const auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/panda_table_pick.yaml");

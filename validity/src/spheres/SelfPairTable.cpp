@@ -127,17 +127,31 @@ namespace michi
                 return false;
             // Indices may run past the ends of a continuous joint's range: they wrap. Each row's run of cells is
             // read as whole 64-bit words under a mask, so a motion's wide span costs a few words per row, not one
-            // read per cell.
+            // read per cell. Integer remainders only where a joint wraps: a motion's piece reads a dozen rows or more,
+            // and two divisions per row were a tenth of RRTConnect's solve with spheres on the Panda (no wrapping
+            // joint there).
+            auto wrapped = [](int i, int n)
+            {
+                const int r = i % n;
+                return r < 0 ? r + n : r;
+            };
             for (int j = j0; j <= j1; ++j)
             {
-                const std::size_t row =
-                    static_cast<std::size_t>(((j % n_[1]) + n_[1]) % n_[1]) * static_cast<std::size_t>(n_[0]);
+                const int jw = wrap_[1] ? wrapped(j, n_[1]) : j;
+                const std::size_t row = static_cast<std::size_t>(jw) * static_cast<std::size_t>(n_[0]);
+                if (!wrap_[0])
+                {
+                    // range() clamped i0..i1 into the row
+                    if (!allSet(row + static_cast<std::size_t>(i0), static_cast<std::size_t>(i1 - i0 + 1)))
+                        return false;
+                    continue;
+                }
                 for (int i = i0; i <= i1;)
                 {
-                    const int wrapped = ((i % n_[0]) + n_[0]) % n_[0];
+                    const int iw = wrapped(i, n_[0]);
                     // the run from this cell to the last wanted one or the end of the row, whichever comes first
-                    const int run = std::min(i1 - i, n_[0] - 1 - wrapped) + 1;
-                    if (!allSet(row + static_cast<std::size_t>(wrapped), static_cast<std::size_t>(run)))
+                    const int run = std::min(i1 - i, n_[0] - 1 - iw) + 1;
+                    if (!allSet(row + static_cast<std::size_t>(iw), static_cast<std::size_t>(run)))
                         return false;
                     i += run;
                 }

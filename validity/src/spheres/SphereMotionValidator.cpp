@@ -38,7 +38,7 @@ namespace michi
             certified = 0.;
             const auto &space = si_->getStateSpace();
             thread_local std::vector<double> a, b, mid;
-            thread_local Eigen::VectorXf delta, whole, grow, span;
+            thread_local Eigen::VectorXf delta, whole, grow, span, wholeBody, growBody;
             space->copyToReals(a, s1);
             space->copyToReals(b, s2);
             const std::size_t dim = a.size();
@@ -58,6 +58,9 @@ namespace michi
             const Eigen::MatrixXf &coefficients = checker_->displacementCoefficients();
             // the sphere displacement over the whole motion; a piece of fraction f moves f of it
             whole.noalias() = coefficients * delta;
+            // each body's largest sphere displacement, once per motion: a piece scales it as it scales the spheres'
+            wholeBody.resize(static_cast<long>(checker_->bodyCount()));
+            checker_->bodyInflations(whole.data(), wholeBody.data());
             ompl::base::State *m = si_->allocState();
             // pieces in order, left first, so the certified prefix is known when one fails
             struct Piece
@@ -87,10 +90,12 @@ namespace michi
                 // From the piece's middle, no point moves more than half the piece's share of the whole displacement:
                 // spheres grown by that hold every pose of the piece, so one check certifies it all. 1e-6 covers float
                 // rounding.
-                grow = whole * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
-                span = delta * static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
+                const float scale = static_cast<float>(0.5 * (p.t1 - p.t0) * (1. + 1e-6));
+                grow = whole * scale;
+                growBody = wholeBody * scale;
+                span = delta * scale;
                 ++checks_;
-                if (checker_->isFreeInflated(mid.data(), grow.data(), span.data()))
+                if (checker_->isFreeInflated(mid.data(), grow.data(), span.data(), growBody.data()))
                 {
                     certified = p.t1;
                     continue;

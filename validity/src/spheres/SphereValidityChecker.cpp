@@ -564,8 +564,20 @@ namespace michi
             return false;
         }
 
+        void SphereValidityChecker::bodyInflations(const float *inflation, float *bodyInflation) const
+        {
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+            {
+                float grow = 0.f;
+                for (int i = begin_[b]; i < begin_[b + 1]; ++i)
+                    grow = std::max(grow, inflation[i]);
+                bodyInflation[b] = grow;
+            }
+        }
+
         bool SphereValidityChecker::collides(Scratch &s, const double *values, const float *inflation,
-                                             const float *valueSpan, bool useExact, std::string *why) const
+                                             const float *valueSpan, const float *bodyInflation, bool useExact,
+                                             std::string *why) const
         {
             const std::size_t nb = bodyLink_.size();
             const float *r = radius_.data();
@@ -574,13 +586,14 @@ namespace michi
                 for (std::size_t i = 0; i < radius_.size(); ++i)
                     s.r[i] = radius_[i] + inflation[i];
                 r = s.r.data();
-                for (std::size_t b = 0; b < nb; ++b)
+                if (bodyInflation == nullptr)
                 {
-                    float grow = 0.f;
-                    for (int i = begin_[b]; i < begin_[b + 1]; ++i)
-                        grow = std::max(grow, inflation[i]);
-                    s.bodyRadius[b] = bodyRadius_[b] + grow;
+                    // a chain of maxima per body (not vectorised): a motion validator passes them instead
+                    bodyInflations(inflation, s.bodyRadius.data());
+                    bodyInflation = s.bodyRadius.data();
                 }
+                for (std::size_t b = 0; b < nb; ++b)
+                    s.bodyRadius[b] = bodyRadius_[b] + bodyInflation[b];
             }
             else
                 std::copy(bodyRadius_.begin(), bodyRadius_.end(), s.bodyRadius.begin());
@@ -696,18 +709,24 @@ namespace michi
         bool SphereValidityChecker::isFreeInflated(const double *values, const float *inflation,
                                                    const float *valueSpan) const
         {
+            return isFreeInflated(values, inflation, valueSpan, nullptr);
+        }
+
+        bool SphereValidityChecker::isFreeInflated(const double *values, const float *inflation, const float *valueSpan,
+                                                   const float *bodyInflation) const
+        {
             // Per thread: planners and benchmarks query from several threads, and the scratch arrays are reused without
             // allocation.
             thread_local Scratch s;
             place(values, s, valueSpan == nullptr);
-            return !collides(s, values, inflation, valueSpan, exactStates_, nullptr);
+            return !collides(s, values, inflation, valueSpan, bodyInflation, exactStates_, nullptr);
         }
 
         bool SphereValidityChecker::spheresFree(const double *values) const
         {
             thread_local Scratch s;
             place(values, s, true);
-            return !collides(s, values, nullptr, nullptr, false, nullptr);
+            return !collides(s, values, nullptr, nullptr, nullptr, false, nullptr);
         }
 
         std::string SphereValidityChecker::describeCollision(const double *values) const
@@ -715,7 +734,7 @@ namespace michi
             Scratch s;
             place(values, s, true);
             std::string why;
-            collides(s, values, nullptr, nullptr, exactStates_, &why);
+            collides(s, values, nullptr, nullptr, nullptr, exactStates_, &why);
             return why;
         }
 

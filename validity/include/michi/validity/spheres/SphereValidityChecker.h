@@ -60,6 +60,14 @@ namespace michi
                 nothing touches while each sphere moves by up to its inflation. With an inflation, spheres decide
                 every other self pair (no FCL query). */
             bool isFreeInflated(const double *values, const float *inflation, const float *valueSpan) const;
+            /** \brief The same with each body's largest inflation given (\e bodyInflation, bodyCount() values, at least
+                the largest inflation of the body's spheres), as bodyInflations() makes it: a motion validator that
+                scales one inflation piece by piece scales those too instead of having them found for every piece. */
+            bool isFreeInflated(const double *values, const float *inflation, const float *valueSpan,
+                                const float *bodyInflation) const;
+            /** \brief The largest of \e inflation (sphereCount() values) over each body's spheres, into
+                \e bodyInflation (bodyCount() values). */
+            void bodyInflations(const float *inflation, float *bodyInflation) const;
             /** \brief The spheres (and self-pair tables) alone, without asking FCL: true means free for the
                 spheres, hence for the real geometry; false may be a state whose real geometry is free (a grasp:
                 the hand's spheres stand out of its surface). */
@@ -143,7 +151,7 @@ namespace michi
             /** Do bodies \e a and \e b (radii \e r) have two spheres that touch? */
             bool spheresTouch(Scratch &s, const float *r, std::size_t a, std::size_t b) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *valueSpan,
-                          bool useExact, std::string *why) const;
+                          const float *bodyInflation, bool useExact, std::string *why) const;
             void makeSelfPairTables();
             const SphereObstacles &obstacles() const;
 
