@@ -87,6 +87,17 @@ namespace michi
             }
         }
 
+        namespace
+        {
+            /** floor() as an int, inline: the baseline x86-64 build has no rounding instruction, so std::floor is a
+               call, and a motion's piece asks for four per table. \e x is finite and within a few table widths of 0. */
+            inline int floorInt(double x)
+            {
+                const int i = static_cast<int>(x);
+                return x < static_cast<double>(i) ? i - 1 : i;
+            }
+        }  // namespace
+
         bool SelfPairTable::range(int d, double v, double s, int &first, int &last) const
         {
             if (!std::isfinite(v) || !std::isfinite(s))
@@ -101,8 +112,8 @@ namespace michi
             const double a = (v - s - lo_[d]) / h_[d], b = (v + s - lo_[d]) / h_[d];
             if (!wrap_[d] && (a < -1e-9 || b > n_[d] + 1e-9))
                 return false;  // outside the joint's range: not certified
-            first = static_cast<int>(std::floor(a));
-            last = static_cast<int>(std::floor(b));
+            first = floorInt(a);
+            last = floorInt(b);
             if (wrap_[d])
             {
                 // A span of a whole turn or more touches every cell: read them all once.
@@ -155,20 +166,6 @@ namespace michi
                         return false;
                     i += run;
                 }
-            }
-            return true;
-        }
-
-        bool SelfPairTable::allSet(std::size_t first, std::size_t count) const
-        {
-            while (count > 0)
-            {
-                const std::size_t word = first >> 6, bit = first & 63, take = std::min<std::size_t>(64 - bit, count);
-                const std::uint64_t mask = (take == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << take) - 1)) << bit;
-                if ((bits_[word] & mask) != mask)
-                    return false;
-                first += take;
-                count -= take;
             }
             return true;
         }

@@ -8,6 +8,7 @@
 
 #include <michi/validity/fcl/FclValidityChecker.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -75,8 +76,23 @@ namespace michi
             /** Index range [first, last] of the cells meeting [v - s, v + s] of variable d; false when outside. */
             bool range(int d, double v, double s, int &first, int &last) const;
             bool freeWithin(const double *values, double span0, double span1) const;
-            /** Are the \e count cells from flat index \e first on (one row) all set? */
-            bool allSet(std::size_t first, std::size_t count) const;
+            /** Are the \e count cells from flat index \e first on (one row) all set? Inline: a motion's piece reads a
+                dozen rows or more per table, and each was a call through the library's PLT. */
+            bool allSet(std::size_t first, std::size_t count) const
+            {
+                while (count > 0)
+                {
+                    const std::size_t word = first >> 6, bit = first & 63,
+                                      take = std::min<std::size_t>(64 - bit, count);
+                    const std::uint64_t mask = (take == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << take) - 1))
+                                               << bit;
+                    if ((bits_[word] & mask) != mask)
+                        return false;
+                    first += take;
+                    count -= take;
+                }
+                return true;
+            }
             /** The ranges and cell sizes; bits_ sized, empty. */
             void shape(const std::vector<double> &lo, const std::vector<double> &hi, const std::vector<char> &wrap,
                        const std::vector<double> &closing, int cellsPerVariable);
