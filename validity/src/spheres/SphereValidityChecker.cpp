@@ -35,8 +35,8 @@ namespace michi
             std::vector<double> values;
             std::vector<char> wantBodies, wantPairs;
             std::vector<double> obstacleDistances, selfDistances;
-            std::vector<float>
-                gathered;  ///< per body of a pair: the spheres near the other body (x, y, z, r blocks), margins
+            std::vector<float> gathered;  ///< per body of a pair: its spheres near the other body (x, y, z, r), margins
+            std::vector<int> survivors;   ///< indices of one body's spheres near the other body
         };
 
         namespace
@@ -449,7 +449,8 @@ namespace michi
             s.bodyRadius.resize(nb);
             s.placed.resize(nb);
             s.pairNear.resize(spherePairs_.size());
-            s.gathered.resize(12 * maxBodySpheres_);
+            s.gathered.resize(10 * maxBodySpheres_);
+            s.survivors.resize(maxBodySpheres_);
             s.owner = id_;
         }
 
@@ -498,7 +499,7 @@ namespace michi
             Map(s.z.data() + first, count) = f.c0(2) * cx + f.c1(2) * cy + f.c2(2) * cz + f.t(2);
         }
 
-        int SphereValidityChecker::spheresNear(const Scratch &s, const float *r, std::size_t body, std::size_t other,
+        int SphereValidityChecker::spheresNear(Scratch &s, const float *r, std::size_t body, std::size_t other,
                                                float *g) const
         {
             // the other body's bounding sphere in the frame this body rides on (the rotation's transpose), where the
@@ -518,7 +519,7 @@ namespace michi
                 const float dx = cx[i] - lx, dy = cy[i] - ly, dz = cz[i] - lz, reach = cr[i] + reachOther;
                 margin[i] = dx * dx + dy * dy + dz * dz - reach * reach;
             }
-            int *index = reinterpret_cast<int *>(margin + maxBodySpheres_), n = 0;
+            int *index = s.survivors.data(), n = 0;
             for (int i = 0; i < count; ++i)
             {
                 index[n] = i;
@@ -543,7 +544,7 @@ namespace michi
             // that reach into the other's bounding sphere can touch, and only those pairs are tested (Panda, 24
             // spheres a link: a few of 24 x 24).
             const std::size_t m = maxBodySpheres_;
-            float *ga = s.gathered.data(), *gb = ga + 6 * m;
+            float *ga = s.gathered.data(), *gb = ga + 5 * m;
             const int na = spheresNear(s, r, a, b, ga);
             if (na == 0)
                 return false;

@@ -147,7 +147,7 @@ namespace michi
             void placeBody(std::size_t b, Scratch &s) const;
             /** Spheres of \e body (radii \e r) that reach into the bounding sphere of \e other, placed in the world
                 into \e g (x, y, z, r blocks of maxBodySpheres_, then scratch): their count. */
-            int spheresNear(const Scratch &s, const float *r, std::size_t body, std::size_t other, float *g) const;
+            int spheresNear(Scratch &s, const float *r, std::size_t body, std::size_t other, float *g) const;
             /** Do bodies \e a and \e b (radii \e r) have two spheres that touch? */
             bool spheresTouch(Scratch &s, const float *r, std::size_t a, std::size_t b) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *valueSpan,
