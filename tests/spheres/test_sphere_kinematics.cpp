@@ -35,6 +35,32 @@ TEST(SphereKinematics, SinCosAgreeWithTheCLibrary)
     EXPECT_LT(worst, 4e-16);
 }
 
+// The float kernels the sphere checker's frames use: a float's rounding from the C library's over the joint values of
+// real robots and the quadrant boundaries, and the right quadrant far out (more than 2^31 quarter turns), where a
+// 32-bit quadrant count would wrap.
+TEST(SphereKinematics, FloatSinCosAgreeWithTheCLibrary)
+{
+    std::vector<double> x;
+    for (double v = -20.; v <= 20.; v += 0.000731)
+        x.push_back(v);
+    for (int k = -12; k <= 12; ++k)
+        x.push_back(k * M_PI / 4.);
+    std::vector<float> s(x.size()), c(x.size());
+    fastSinCosFloat(x.data(), static_cast<int>(x.size()), s.data(), c.data());
+    double worst = 0.;
+    for (std::size_t i = 0; i < x.size(); ++i)
+        worst = std::max({worst, std::abs(s[i] - std::sin(x[i])), std::abs(c[i] - std::cos(x[i]))});
+    EXPECT_LT(worst, 2e-7);
+    const double far[4] = {4.1e9, -4.1e9, 1e12 + 0.3, -7.3e11};
+    float fs[4], fc[4];
+    fastSinCosFloat(far, 4, fs, fc);
+    for (int i = 0; i < 4; ++i)
+    {
+        EXPECT_NEAR(fs[i], std::sin(far[i]), 1e-3) << far[i];
+        EXPECT_NEAR(fc[i], std::cos(far[i]), 1e-3) << far[i];
+    }
+}
+
 class SphereKinematicsOf : public ::testing::TestWithParam<std::string>
 {
 };

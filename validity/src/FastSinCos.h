@@ -76,7 +76,9 @@ namespace michi
                 {
                     const double k = (x[first + i] * twoOverPi + shifter) - shifter;
                     rs[i] = static_cast<float>((x[first + i] - k * pio2Hi) - k * pio2Lo);
-                    qs[i] = static_cast<int>(k);
+                    // the quadrant modulo 4 through 64 bits: a continuous joint's value past 2^31 quarter turns stays
+                    // right
+                    qs[i] = static_cast<int>(static_cast<long long>(k) & 3);
                 }
                 for (int i = 0; i < m; ++i)
                 {
