@@ -115,7 +115,8 @@ namespace michi
             const int n = static_cast<int>(dimension_);
             if (n <= CHUNK)
                 fastSinCosFloat(values, n, sines, cosines);
-            // the frame just made stays in registers: a chain's next joint reads it there, not back from memory
+            // the frame just made, passed on by value to the next step when it is that step's parent (a serial arm: every
+            // step), rather than read back from the output array
             FloatFrame last = out[0];
             for (std::size_t k = 0; k < steps_.size(); ++k)
             {
