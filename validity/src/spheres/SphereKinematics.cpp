@@ -115,8 +115,8 @@ namespace michi
             const int n = static_cast<int>(dimension_);
             if (n <= CHUNK)
                 fastSinCosFloat(values, n, sines, cosines);
-            // the frame just made, passed on by value to the next step when it is that step's parent (a serial arm: every
-            // step), rather than read back from the output array
+            // the frame just made, passed on by value to the next step when it is that step's parent (a serial arm:
+            // every step), rather than read back from the output array
             FloatFrame last = out[0];
             for (std::size_t k = 0; k < steps_.size(); ++k)
             {
