@@ -1,6 +1,7 @@
 #include <michi/validity/grid/HeadingTable.h>
 #include <michi/validity/scene/Shape.h>
 
+#include "../FastRound.h"
 #include "../FastSinCos.h"
 
 #include <boost/math/constants/constants.hpp>
@@ -23,19 +24,6 @@ namespace michi
             double cross(const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Vector2d &b)
             {
                 return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-            }
-
-            /** floor and ceil of a value well within int's range, without a call (x86-64's baseline has no
-                rounding instruction, so std::floor is a libm call) */
-            int floorToInt(double x)
-            {
-                const int t = static_cast<int>(x);
-                return t - static_cast<int>(x < t);
-            }
-            int ceilToInt(double x)
-            {
-                const int t = static_cast<int>(x);
-                return t + static_cast<int>(x > t);
             }
 
             /** Convex hull (Andrew's monotone chain), counter-clockwise, no repeated last point. */

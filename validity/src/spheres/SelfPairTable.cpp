@@ -1,5 +1,7 @@
 #include "SelfPairTable.h"
 
+#include "../FastRound.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -87,17 +89,6 @@ namespace michi
             }
         }
 
-        namespace
-        {
-            /** floor() as an int, inline: the baseline x86-64 build has no rounding instruction, so std::floor is a
-               call, and a motion's piece asks for four per table. \e x is finite and within a few table widths of 0. */
-            inline int floorInt(double x)
-            {
-                const int i = static_cast<int>(x);
-                return x < static_cast<double>(i) ? i - 1 : i;
-            }
-        }  // namespace
-
         bool SelfPairTable::range(int d, double v, double s, int &first, int &last) const
         {
             if (!std::isfinite(v) || !std::isfinite(s))
@@ -112,8 +103,8 @@ namespace michi
             const double a = (v - s - lo_[d]) / h_[d], b = (v + s - lo_[d]) / h_[d];
             if (!wrap_[d] && (a < -1e-9 || b > n_[d] + 1e-9))
                 return false;  // outside the joint's range: not certified
-            first = floorInt(a);
-            last = floorInt(b);
+            first = floorToInt(a);
+            last = floorToInt(b);
             if (wrap_[d])
             {
                 // A span of a whole turn or more touches every cell: read them all once.
