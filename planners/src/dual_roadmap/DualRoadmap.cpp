@@ -18,12 +18,6 @@ namespace michi
 {
     namespace planners
     {
-        namespace
-        {
-            // Scenes over which a refutation raises an unknown edge's weight (setRefutedEdgePenalty()).
-            constexpr std::uint64_t REFUTED_MEMORY = 32;
-        }  // namespace
-
         DualRoadmap::DualRoadmap(const ob::SpaceInformationPtr &si) : ob::Planner(si, "DualRoadmap")
         {
             specs_.approximateSolutions = false;
@@ -178,47 +172,11 @@ namespace michi
             return true;
         }
 
-        bool DualRoadmap::stillProved(std::uint64_t &stamp, const ob::State *a, const ob::State *b) const
+        bool DualRoadmap::renewProof(std::uint64_t &stamp, const ob::State *a, const ob::State *b) const
         {
             // carried over when no change since touched it; else forgotten, so it is not asked again
-            if (stamp != 0 && stamp != epoch_)
-                stamp = unaffectedSince(stamp, a, b) ? epoch_ : 0;
+            stamp = unaffectedSince(stamp, a, b) ? epoch_ : 0;
             return stamp == epoch_;
-        }
-
-        bool DualRoadmap::recentlyRefuted(std::uint64_t refutedIn) const
-        {
-            return refutedIn != 0 && epoch_ - refutedIn < REFUTED_MEMORY;
-        }
-
-        bool DualRoadmap::knownValid(Vertex v)
-        {
-            auto &p = graph_[v];
-            return stillProved(p.validIn, p.state, p.state);
-        }
-
-        bool DualRoadmap::knownInvalid(Vertex v)
-        {
-            auto &p = graph_[v];
-            return stillProved(p.invalidIn, p.state, p.state);
-        }
-
-        bool DualRoadmap::knownValidEdge(Edge e)
-        {
-            auto &stamp = graph_.edge(e).validIn;
-            if (stamp == epoch_ || stamp == 0)  // the common cases, without a call (the search's inner loop)
-                return stamp != 0;
-            const auto &ends = graph_.ends(e);
-            return stillProved(stamp, graph_[ends.first].state, graph_[ends.second].state);
-        }
-
-        bool DualRoadmap::knownInvalidEdge(Edge e)
-        {
-            auto &stamp = graph_.edge(e).invalidIn;
-            if (stamp == epoch_ || stamp == 0)
-                return stamp != 0;
-            const auto &ends = graph_.ends(e);
-            return stillProved(stamp, graph_[ends.first].state, graph_[ends.second].state);
         }
 
         void DualRoadmap::setSceneChangeCounter(std::function<std::uint64_t()> counter)

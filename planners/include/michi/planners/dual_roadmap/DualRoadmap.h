@@ -346,13 +346,49 @@ namespace michi
             bool unaffectedSince(std::uint64_t since, const ompl::base::State *a, const ompl::base::State *b) const;
             /** A proof (\e stamp: the epoch it was made in) of the state or motion a-b, renewed to this epoch
                 when no scene change since touched it, else forgotten; true when it holds now. */
-            bool stillProved(std::uint64_t &stamp, const ompl::base::State *a, const ompl::base::State *b) const;
+            bool stillProved(std::uint64_t &stamp, const ompl::base::State *a, const ompl::base::State *b) const
+            {
+                // The common cases without a call: made in this scene, or never (the search asks for every arc it
+                // relaxes, and an out-of-line call through the library's PLT was a sizeable part of its loop).
+                if (stamp == epoch_ || stamp == 0)
+                    return stamp != 0;
+                return renewProof(stamp, a, b);
+            }
+            /** stillProved() for a proof made in an earlier scene. */
+            bool renewProof(std::uint64_t &stamp, const ompl::base::State *a, const ompl::base::State *b) const;
+            /** \brief Scenes over which a refutation raises an unknown edge's weight (setRefutedEdgePenalty()). */
+            static constexpr std::uint64_t REFUTED_MEMORY = 32;
             /** \brief A refutation made in epoch \e refutedIn (0: none) is recent (setRefutedEdgePenalty()). */
-            bool recentlyRefuted(std::uint64_t refutedIn) const;
-            bool knownValid(Vertex v);
-            bool knownInvalid(Vertex v);
-            bool knownValidEdge(Edge e);
-            bool knownInvalidEdge(Edge e);
+            bool recentlyRefuted(std::uint64_t refutedIn) const
+            {
+                return refutedIn != 0 && epoch_ - refutedIn < REFUTED_MEMORY;
+            }
+            bool knownValid(Vertex v)
+            {
+                auto &p = graph_[v];
+                return stillProved(p.validIn, p.state, p.state);
+            }
+            bool knownInvalid(Vertex v)
+            {
+                auto &p = graph_[v];
+                return stillProved(p.invalidIn, p.state, p.state);
+            }
+            /** stillProved() for a record of edge \e e: its ends' states are read only when it must be renewed. */
+            bool edgeRecordHolds(std::uint64_t &stamp, Edge e)
+            {
+                if (stamp == epoch_ || stamp == 0)
+                    return stamp != 0;
+                const auto &ends = graph_.ends(e);
+                return renewProof(stamp, graph_[ends.first].state, graph_[ends.second].state);
+            }
+            bool knownValidEdge(Edge e)
+            {
+                return edgeRecordHolds(graph_.edge(e).validIn, e);
+            }
+            bool knownInvalidEdge(Edge e)
+            {
+                return edgeRecordHolds(graph_.edge(e).invalidIn, e);
+            }
             /** \brief Motion \e a -> \e b valid in this scene, from the roadmap's records or checked (and recorded
                 as an edge: a proved shortcut is a local path like any other). */
             bool motionValid(Vertex a, Vertex b);
