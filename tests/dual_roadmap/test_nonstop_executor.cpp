@@ -592,6 +592,64 @@ TEST(NonStopExecutor, RetimingFallsBackToReplanningWhenNoTimingIsFree)
     EXPECT_EQ(h.exec->statistics().retimings, 0u);
 }
 
+namespace
+{
+    /** The robot at full speed on y = 2 is already inside the predicted region of a disc (radius 0.3) that comes up
+        from below at x0 + 0.5 with \e vy m/s, 1.5 m below the path now: braking (0.25 m) would leave it standing in
+        the disc's way. A second disc stands on the path 5 m ahead, so no timing of the path gets past every predicted
+        interference (retime() fails) and a Geo. change must stop or cross. Geo. changes every 0.1 s over \e n steps;
+        false at the first step that puts the robot into a disc. */
+    ::testing::AssertionResult inTheWayOfACrosser(Harness &h, double vy, int n)
+    {
+        const double x0 = h.underWay();
+        h.world.crossers.push_back({x0 + 0.5, 0.5 - vy * h.world.now, vy, 0.3});
+        h.world.boxes.push_back({x0 - 0.2, x0 + 0.8, 0.2, 3.5});
+        h.world.crossers.push_back({x0 + 5., 2., 0., 0.3});
+        h.world.boxes.push_back({x0 + 4.7, x0 + 5.3, 1.7, 2.3});
+        for (int i = 0; i < n; ++i)
+        {
+            if (i % 10 == 0)
+                h.exec->geoChange();
+            h.steps(1);
+            if (!h.world.freeAt(h.exec->configuration(), h.world.now))
+                return ::testing::AssertionFailure()
+                       << "inside a disc at t " << h.world.now << ", x " << h.exec->configuration()[0] - x0 << " m on";
+        }
+        return ::testing::AssertionSuccess();
+    }
+}  // namespace
+
+TEST(NonStopExecutor, RetimingCrossesAnObstaclesWayInsteadOfStoppingInIt)
+{
+    auto h = retimingHarness(true);
+    // the disc reaches the path in 3 s; at full speed the robot is out of its region in under a second
+    ASSERT_TRUE(inTheWayOfACrosser(h, 0.5, 600));
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::REPLANNING));
+    EXPECT_FALSE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::STOPPING));
+    EXPECT_EQ(h.exec->statistics().retimings, 0u) << "no timing gets past the standing disc";
+    // it stops for the planner short of the standing disc, having crossed the first one's way
+    EXPECT_EQ(h.exec->execState(), Exec::STOPPED);
+    EXPECT_GT(h.exec->configuration()[0], 3.);
+}
+
+TEST(NonStopExecutor, WithoutRetimingTheRobotStopsInTheObstaclesWay)
+{
+    // the same scene without the time-scale adaptation: it brakes at once and the disc runs into it
+    auto h = retimingHarness(false);
+    EXPECT_FALSE(inTheWayOfACrosser(h, 0.5, 400));
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::STOPPING));
+}
+
+TEST(NonStopExecutor, RetimingDoesNotCrossWhereTheObstacleComesFirst)
+{
+    // a disc fast enough (3 m/s) to reach the path before the robot is across: crossing is not free in time, so
+    // the robot brakes (and a disc that fast reaches it either way)
+    auto h = retimingHarness(true);
+    inTheWayOfACrosser(h, 3., 1);
+    EXPECT_TRUE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::STOPPING));
+    EXPECT_FALSE(h.saw(Exec::UPDATE_PROBLEM, Sig::GEO_CHANGE, Exec::REPLANNING));
+}
+
 TEST(NonStopExecutor, StopAndReplanBrakesFirstAndPlansOnceStanding)
 {
     Harness h(0., 0., false, 0.,

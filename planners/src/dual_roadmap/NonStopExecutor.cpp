@@ -260,6 +260,7 @@ namespace michi
             for (std::size_t i = 1; i < path_.size(); ++i)
                 arc_[i] = arc_[i - 1] + hooks_.distance(path_[i - 1], path_[i]);
             s_ = 0.;
+            crossUntil_ = -1.;
             if (!path_.empty())
                 current_ = path_.front();
             clearTiming();  // a new path, a new timing
@@ -364,6 +365,28 @@ namespace michi
                         transition(ExecState::STOPPING, Signal::GEO_CHANGE);
                         return;
                     }
+                    // Braking from full speed needs brakingDistance(), and stopMargin keeps the stop short of the
+                    // interference: the robot can run on for room before it must start to brake, which is the time the
+                    // planner gets.
+                    const double room = hit - settings_.stopMargin - brakingDistance();
+                    if (room <= EPS)
+                    {
+                        // A stop here would leave the robot in (or at) an obstacle's predicted region, in its way: a
+                        // crossing at full speed that is free in time goes first.
+                        const double after = crossing();
+                        if (std::isinf(after))
+                        {
+                            transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                            return;
+                        }
+                        if (after > EPS)
+                        {
+                            stopArc_ = crossUntil_ + after;
+                            transition(ExecState::REPLANNING, Signal::GEO_CHANGE);
+                            sendQuery(at(stopArc_), stopArc_);
+                            return;
+                        }
+                    }
                     // Paper 002, Fig. 3: small interference is first handled by deforming the path, without calling the
                     // roadmap.
                     if (hooks_.deform)
@@ -377,13 +400,10 @@ namespace michi
                             return;
                         }
                     }
-                    // replan from the point where a safe stop would begin, and keep moving until there
-                    // Braking from full speed needs brakingDistance(), and stopMargin keeps the stop short of the
-                    // interference: the robot can run on for room before it must start to brake, which is the time the
-                    // planner gets.
-                    const double room = hit - settings_.stopMargin - brakingDistance();
+                    crossUntil_ = -1.;
                     if (room > EPS)
                     {
+                        // replan from the point where a safe stop would begin, and keep moving until there
                         stopArc_ = s_ + room;
                         transition(ExecState::REPLANNING, Signal::GEO_CHANGE);
                         sendQuery(at(stopArc_), stopArc_);
@@ -412,10 +432,34 @@ namespace michi
                         transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
                         return;
                     }
-                    // The obstacle may have come closer while planning: the stop point only ever moves nearer.
+                    // The obstacle may have come closer while planning: the stop point only ever moves nearer,
+                    // unless a stop now would leave the robot in an obstacle's way and a crossing is free in time
+                    // (the stop point moves to after the crossing, and the query with it).
                     if (exec_ == ExecState::REPLANNING)
-                        stopArc_ =
-                            std::min(stopArc_, s_ + std::max(0., hit - settings_.stopMargin - brakingDistance()));
+                    {
+                        const double room = hit - settings_.stopMargin - brakingDistance();
+                        const double after = room <= EPS && settings_.nonStop ? crossing() : -1.;
+                        if (std::isinf(after))
+                        {
+                            // the crossing leads onto a free path: the query is not needed any more
+                            cancelQuery();
+                            transitions_.push_back(Transition{exec_, Signal::CANCELLED, exec_});
+                            transition(ExecState::EXECUTE, Signal::GEO_CHANGE);
+                            return;
+                        }
+                        if (after > EPS)
+                        {
+                            stopArc_ = crossUntil_ + after;
+                            // a query from inside the crossing would be answered with a path joined there
+                            if (planStartArc_ < crossUntil_ - EPS)
+                                sendQuery(at(stopArc_), stopArc_);
+                        }
+                        else if (room < stopArc_ - s_ - EPS)
+                        {
+                            stopArc_ = s_ + std::max(0., room);
+                            crossUntil_ = -1.;
+                        }
+                    }
                     if (exec_ == ExecState::STOPPED && activeQuery_ == 0)
                         sendQuery(current_, s_);
                     return;
@@ -488,7 +532,19 @@ namespace michi
                 candidate.push_back(reply.path[0]);
             ++stats_.pathsFound;
             // The planner saw the world as it was when the query was sent; the obstacles may have moved since.
-            if (!std::isinf(hooks_.firstInterference(candidate)))
+            double hit = hooks_.firstInterference(candidate);
+            double crossEnd = -1.;
+            if (!std::isinf(hit) && exec_ == ExecState::REPLANNING && crossUntil_ > s_ + EPS &&
+                planStartArc_ >= crossUntil_ - EPS)
+            {
+                // The robot is crossing a predicted region, a motion checked in time (crossing()) that the new path
+                // keeps: the new path must be free from where the crossing ends.
+                ConfigurationPath rest = segment(crossUntil_, planStartArc_);
+                rest.insert(rest.end(), reply.path.begin() + 1, reply.path.end());
+                hit = hooks_.firstInterference(rest);
+                crossEnd = crossUntil_ - s_;
+            }
+            if (!std::isinf(hit))
             {
                 // the world moved on while planning: ask again
                 transitions_.push_back(Transition{exec_, Signal::PATH_FOUND, exec_});
@@ -499,6 +555,7 @@ namespace michi
                 return;
             }
             setPath(std::move(candidate));
+            crossUntil_ = crossEnd;  // the crossing goes on along the new path (it starts at the robot)
             transition(ExecState::EXECUTE, Signal::PATH_FOUND);
         }
 
@@ -530,8 +587,10 @@ namespace michi
             }
             // Paper 002: keep moving while replanning unless the robot comes closer than the safety distance or
             // reaches the point where braking must begin.
+            // A crossing (crossing()) was checked in time against the obstacles' motion: braking in it
+            // because one is near would stop the robot in its way.
             if (exec_ == ExecState::REPLANNING &&
-                (s_ >= stopArc_ - EPS || hooks_.clearance(current_) < settings_.safetyDistance))
+                (s_ >= stopArc_ - EPS || (s_ >= crossUntil_ && hooks_.clearance(current_) < settings_.safetyDistance)))
                 transition(ExecState::STOPPING, Signal::STEP);
             if (exec_ == ExecState::STOPPING && velocity_ <= 0.)
             {
@@ -624,6 +683,37 @@ namespace michi
                 }
             }
             return false;
+        }
+
+        double NonStopExecutor::crossing()
+        {
+            crossUntil_ = -1.;
+            if (!settings_.retiming || !hooks_.freeInTime)
+                return -1.;
+            const double step = settings_.retimingStep;
+            const int samples = std::max(1, static_cast<int>(std::ceil(settings_.retimingHorizon / step - 1e-9)));
+            ConfigurationPath configurations{current_};
+            std::vector<double> times{0.};
+            double s = s_, v = velocity_;
+            for (int i = 1; i <= samples && s < pathLength() - EPS; ++i)
+            {
+                advance(ExecState::EXECUTE, s, v, step, settings_.speed, false);
+                configurations.push_back(at(s));
+                times.push_back(step * i);
+                // Out of every predicted region once a stop fits before the next interference: the crossing ends here
+                // and the planner gets until that stop, as after any Geo. change.
+                const double room = hooks_.firstInterference(segment(s, pathLength())) - settings_.stopMargin -
+                                    v * v / (2. * settings_.deceleration);
+                if (room > EPS)
+                {
+                    if (!hooks_.freeInTime(configurations, times))
+                        return -1.;
+                    crossUntil_ = s;
+                    clearTiming();
+                    return std::isinf(room) ? room : std::min(room, pathLength() - s);
+                }
+            }
+            return -1.;
         }
 
         bool NonStopExecutor::track(const Configuration &measured, double tolerance)

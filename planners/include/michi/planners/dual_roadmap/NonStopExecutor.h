@@ -78,7 +78,10 @@ namespace michi
                 meets an obstacle's predicted region, first look for a timing of the same path that misses the
                 obstacles in time (full speed, 3/4, 1/2, 1/4 of it, or a wait of 0.5, 1 or 2 s, checked every
                 retimingStep seconds) and takes the robot past every predicted interference within retimingHorizon
-                seconds, before deforming or replanning. */
+                seconds, before deforming or replanning. With it, a robot that would have to brake inside an
+                obstacle's predicted region (already in the way of an obstacle that has not come yet) first looks
+                for a crossing: the path at full speed up to where a stop fits before the next interference, free of
+                the obstacles in time; it replans from there instead of standing in the obstacle's way. */
             bool retiming{false};
             double retimingHorizon{2.};
             double retimingStep{0.1};
@@ -252,6 +255,12 @@ namespace michi
             /** \brief Time-scale adaptation: a speed cap or a wait under which the rest of the path is free in time
                 (NonStopSettings::retiming); false when none is or it is off. */
             bool retime();
+            /** \brief Retiming of a stop: the robot is in (or at) an obstacle's predicted region, where braking
+                would leave it standing in the obstacle's way. When the path at full speed, within retimingHorizon
+                seconds, leaves every predicted region with room to stop before the next and is free of the obstacles
+                in time on the way, crossUntil_ becomes the arc where that crossing ends and the room (path length
+                after it, +infinity when the rest of the path is free) is returned; otherwise -1. */
+            double crossing();
             /** \brief Back to full speed, no wait. */
             void clearTiming()
             {
@@ -282,6 +291,7 @@ namespace michi
             std::vector<double> arc_;  ///< cumulative arc length of path_
             double s_{0.};             ///< robot's arc position on path_
             double stopArc_{0.};       ///< REPLANNING: where the safe stop begins
+            double crossUntil_{-1.};   ///< crossing a predicted region at full speed up to this arc (crossing())
             double planStartArc_{0.};  ///< arc of path_ the outstanding query plans from
             double speedCap_{0.};      ///< retiming: cruise speed on the current path
             double holdUntil_{-1.};    ///< retiming: simulated time until which the robot stands
