@@ -26,6 +26,14 @@ namespace michi
                      {{"use_learning", "0"}},
                      Method::Reuse::DUAL,
                      false},
+                    // paper 002's narrowing to the dominant degrees of freedom (two directions), measured against
+                    // "dual" in the same run; not the default (docs/dual-roadmap.md: no gain shown)
+                    {"dual-dominant",
+                     "michi::DualRoadmap (dominant DOF)",
+                     "michi::DualRoadmap",
+                     {{"dominant_dofs", "2"}},
+                     Method::Reuse::DUAL,
+                     false},
                     // the executor's ablations, with DualRoadmap planning: no time-scale adaptation; and stop and
                     // replan (no planning while moving, hence no deformation or retiming either)
                     {"dual-no-retiming",

@@ -1,5 +1,7 @@
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
 
+#include "DominantDirections.h"
+
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/geometric/PathGeometric.h>
@@ -53,6 +55,8 @@ namespace michi
                                        "0:1:15");
             declareParam<unsigned int>("recheck_depth", this, &DualRoadmap::setRecheckDepth,
                                        &DualRoadmap::getRecheckDepth, "0:1:10");
+            declareParam<unsigned int>("dominant_dofs", this, &DualRoadmap::setDominantDofs,
+                                       &DualRoadmap::getDominantDofs, "0:1:10");
 
             // Benchmark reads progress properties from its own thread while solve() runs: hence the atomic copy of the
             // count.
@@ -556,6 +560,8 @@ namespace michi
             ob::State *sample = si_->allocState();
             std::vector<Vertex> path;
             bool solved = false;
+            bool dominantFound = false;  // findDominantDirections() for this query, at its first batch
+            dominant_.resize(0, 0);
             while (!ptc && !solved)
             {
                 // more goal states while the goal region has them
@@ -627,9 +633,19 @@ namespace michi
                 // expand: a batch of uniform valid samples, connected lazily
                 // A batch rather than one sample per round: each round repeats the A* search over the whole roadmap,
                 // which would otherwise dominate once the roadmap is large.
+                if (dominantDofs_ > 0 && !dominantFound && !goalVertices_.empty())
+                {
+                    dominantFound = true;
+                    findDominantDirections(starts.front(), graph_[goalVertices_.front()].state);
+                }
                 for (unsigned int i = 0; i < batchSize_ && !ptc; ++i)
                 {
-                    sampler_->sampleUniform(sample);
+                    // with dominant directions, every other sample narrowed to them (the rest keep the search
+                    // complete)
+                    if (dominant_.cols() > 0 && i % 2 == 0)
+                        sampleDominant(sample);
+                    else
+                        sampler_->sampleUniform(sample);
                     ++work_.samples;
                     ++work_.stateChecks;
                     if (!si_->isValid(sample))
@@ -656,6 +672,69 @@ namespace michi
                 result->append(graph_[v].state);
             pdef_->addSolutionPath(result, false, 0., getName());
             return ob::PlannerStatus::EXACT_SOLUTION;
+        }
+
+        void DualRoadmap::findDominantDirections(const ob::State *start, const ob::State *goal)
+        {
+            dominant_.resize(0, 0);
+            const auto &space = si_->getStateSpace();
+            const unsigned int dim = space->getDimension();
+            // Enough experience to tell directions apart: a few local paths per direction.
+            if (!useLearning_ || learnEdges_.size() < 4 * static_cast<std::size_t>(dominantDofs_) ||
+                dominantDofs_ >= dim)
+                return;
+            // The learning roadmap's local paths nearest the query: its dominant motions there (paper 002: the
+            // dominant DOF of the change, here of the query's region).
+            std::vector<double> key(learnStates_.size());
+            for (std::size_t i = 0; i < learnStates_.size(); ++i)
+                key[i] = std::min(si_->distance(learnStates_[i], start), si_->distance(learnStates_[i], goal));
+            std::vector<std::size_t> order(learnEdges_.size());
+            std::iota(order.begin(), order.end(), std::size_t(0));
+            const std::size_t used = std::min<std::size_t>(order.size(), 200);
+            std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(used), order.end(),
+                              [&](std::size_t a, std::size_t b)
+                              {
+                                  const double ka = std::min(key[learnEdges_[a].first], key[learnEdges_[a].second]);
+                                  const double kb = std::min(key[learnEdges_[b].first], key[learnEdges_[b].second]);
+                                  return ka < kb || (ka == kb && a < b);
+                              });
+            std::vector<double> a, b;
+            space->copyToReals(a, learnStates_[0]);
+            const Eigen::Index n = static_cast<Eigen::Index>(a.size());
+            Eigen::MatrixXd motions(static_cast<Eigen::Index>(used), n), states(2 * static_cast<Eigen::Index>(used), n);
+            for (std::size_t r = 0; r < used; ++r)
+            {
+                space->copyToReals(a, learnStates_[learnEdges_[order[r]].first]);
+                space->copyToReals(b, learnStates_[learnEdges_[order[r]].second]);
+                const auto row = static_cast<Eigen::Index>(r);
+                for (Eigen::Index j = 0; j < n; ++j)
+                {
+                    motions(row, j) = b[static_cast<std::size_t>(j)] - a[static_cast<std::size_t>(j)];
+                    states(2 * row, j) = a[static_cast<std::size_t>(j)];
+                    states(2 * row + 1, j) = b[static_cast<std::size_t>(j)];
+                }
+            }
+            dominant_ = dominantDirections(motions, states, dominantDofs_);
+            space->copyToReals(dominantFrom_, start);
+            space->copyToReals(dominantTo_, goal);
+        }
+
+        void DualRoadmap::sampleDominant(ob::State *state)
+        {
+            // a point of the start-goal line, then Gaussian steps along the dominant directions only
+            if (!rng_)
+                rng_ = std::make_unique<ompl::RNG>();
+            const double u = rng_->uniform01();
+            Eigen::VectorXd x(dominant_.rows());
+            for (Eigen::Index j = 0; j < x.size(); ++j)
+            {
+                const auto k = static_cast<std::size_t>(j);
+                x[j] = dominantFrom_[k] + u * (dominantTo_[k] - dominantFrom_[k]);
+            }
+            for (Eigen::Index c = 0; c < dominant_.cols(); ++c)
+                x += rng_->gaussian01() * dominant_.col(c);
+            si_->getStateSpace()->copyFromReals(state, std::vector<double>(x.data(), x.data() + x.size()));
+            si_->enforceBounds(state);
         }
 
         void DualRoadmap::getPlannerData(ob::PlannerData &data) const

@@ -8,6 +8,8 @@
 
 #include <michi/planners/dual_roadmap/RoadmapSearch.h>
 
+#include <Eigen/Core>
+
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -119,7 +121,7 @@ namespace michi
             {
                 std::uint64_t stateChecks{0};   ///< isValid() calls (seeding, lazy vertex checks, edge probes, samples)
                 std::uint64_t motionChecks{0};  ///< checkMotion() calls (seeding, lazy edge checks)
-                std::uint64_t samples{0};       ///< uniform samples drawn to expand the roadmap
+                std::uint64_t samples{0};       ///< samples drawn to expand the roadmap (uniform or dominant_dofs)
                 std::uint64_t searches{0};      ///< A* searches
                 std::uint64_t expansions{0};    ///< vertices the searches expanded
             };
@@ -307,6 +309,19 @@ namespace michi
                 return recheckDepth_;
             }
 
+            /** \brief Paper 002's narrowing of the search to the dominant degrees of freedom: when a query must
+                sample, half of each batch is drawn near the start-goal line along the \e n principal directions of
+                the learning roadmap's local paths nearest the query (each as far as those paths' states spread
+                along it), not in the other directions; the other half stays uniform. 0 (default): uniform only. */
+            void setDominantDofs(unsigned int n)
+            {
+                dominantDofs_ = n;
+            }
+            unsigned int getDominantDofs() const
+            {
+                return dominantDofs_;
+            }
+
         private:
             // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
             // at once, without touching the roadmap.
@@ -331,6 +346,11 @@ namespace michi
             using Edge = Graph::Edge;
 
             void freeWorking();
+            /** \brief The dominant directions (setDominantDofs) for a query from \e start to \e goal, from the
+                learning roadmap's local paths nearest them: dominant_ (reals x directions); empty when too few. */
+            void findDominantDirections(const ompl::base::State *start, const ompl::base::State *goal);
+            /** \brief A state near the start-goal line (dominantLine_) along the dominant directions. */
+            void sampleDominant(ompl::base::State *state);
             /** \brief Put the learning edges nearest \e near (the query's states) into the empty working roadmap. */
             void seedWorking(const std::vector<const ompl::base::State *> &near,
                              const ompl::base::PlannerTerminationCondition &ptc);
@@ -456,6 +476,11 @@ namespace michi
             std::atomic<std::size_t> learningEdgeCountAtomic_{0};  ///< for the progress property (other thread)
 
             bool useLearning_{true};
+            unsigned int dominantDofs_{0};
+            Eigen::MatrixXd dominant_;                       ///< this query's dominant directions (columns), if any
+            std::vector<double> dominantFrom_, dominantTo_;  ///< the query's start and goal as reals
+            /** made at the first narrowed sample: with dominant_dofs 0 every random sequence stays as it was */
+            std::unique_ptr<ompl::RNG> rng_;
             unsigned int seedEdges_{50};
             unsigned int k_{10};
             double rangeFraction_{0.3};
