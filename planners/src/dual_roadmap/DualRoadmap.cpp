@@ -232,13 +232,28 @@ namespace michi
             // clutter, out of the graph.
             const double range = rangeFraction_ * si_->getMaximumExtent();
             std::vector<Vertex> neighbours;
-            // k + 1: v is already in nn_ and is its own nearest neighbour.
-            nn_->nearestK(v, k_ + 1, neighbours);
-            for (Vertex n : neighbours)
+            // OMPL's GNAT breaks ties in distance by the address of its element (its queue holds pairs of distance and
+            // pointer), so which of several equally near vertices it returned, and in what order, followed where the
+            // process had allocated memory: runs of one seed differed between builds and under other malloc settings
+            // (docs/dual-roadmap.md). The neighbours are ordered by distance and vertex id instead, and asked for
+            // again, more of them, while a tie spans the k-th distance (copies of one state tie in numbers).
+            thread_local std::vector<std::pair<double, Vertex>> near;
+            for (std::size_t ask = k_ + 5;; ask *= 2)
             {
-                if (n == v)
-                    continue;
-                const double d = si_->distance(graph_[v].state, graph_[n].state);
+                nn_->nearestK(v, ask, neighbours);
+                near.clear();
+                for (Vertex n : neighbours)
+                    if (n != v)  // v is already in nn_ and is its own nearest neighbour
+                        near.emplace_back(si_->distance(graph_[v].state, graph_[n].state), n);
+                std::sort(near.begin(), near.end());
+                // every vertex as near as the k-th is among those returned: all were, or a farther one was
+                if (neighbours.size() < ask || near.size() <= k_ || near.back().first > near[k_ - 1].first)
+                    break;
+            }
+            if (near.size() > k_)
+                near.resize(k_);
+            for (const auto &[d, n] : near)
+            {
                 if (d > range)
                     continue;
                 addEdgeOnce(v, n);  // validity unknown (epochs 0) until a candidate path uses it
