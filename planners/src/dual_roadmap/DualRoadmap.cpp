@@ -247,7 +247,7 @@ namespace michi
                         near.emplace_back(si_->distance(graph_[v].state, graph_[n].state), n);
                 std::sort(near.begin(), near.end());
                 // every vertex as near as the k-th is among those returned: all were, or a farther one was
-                if (neighbours.size() < ask || near.size() <= k_ || near.back().first > near[k_ - 1].first)
+                if (k_ == 0 || neighbours.size() < ask || near.size() <= k_ || near.back().first > near[k_ - 1].first)
                     break;
             }
             if (near.size() > k_)
@@ -740,15 +740,16 @@ namespace michi
             if (!rng_)
                 rng_ = std::make_unique<ompl::RNG>();
             const double u = rng_->uniform01();
-            Eigen::VectorXd x(dominant_.rows());
-            for (Eigen::Index j = 0; j < x.size(); ++j)
-            {
-                const auto k = static_cast<std::size_t>(j);
-                x[j] = dominantFrom_[k] + u * (dominantTo_[k] - dominantFrom_[k]);
-            }
+            dominantSample_.resize(dominantFrom_.size());  // kept: no allocation per sample
+            for (std::size_t j = 0; j < dominantSample_.size(); ++j)
+                dominantSample_[j] = dominantFrom_[j] + u * (dominantTo_[j] - dominantFrom_[j]);
             for (Eigen::Index c = 0; c < dominant_.cols(); ++c)
-                x += rng_->gaussian01() * dominant_.col(c);
-            si_->getStateSpace()->copyFromReals(state, std::vector<double>(x.data(), x.data() + x.size()));
+            {
+                const double step = rng_->gaussian01();
+                for (std::size_t j = 0; j < dominantSample_.size(); ++j)
+                    dominantSample_[j] += step * dominant_(static_cast<Eigen::Index>(j), c);
+            }
+            si_->getStateSpace()->copyFromReals(state, dominantSample_);
             si_->enforceBounds(state);
         }
 

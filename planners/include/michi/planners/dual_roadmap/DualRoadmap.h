@@ -349,7 +349,7 @@ namespace michi
             /** \brief The dominant directions (setDominantDofs) for a query from \e start to \e goal, from the
                 learning roadmap's local paths nearest them: dominant_ (reals x directions); empty when too few. */
             void findDominantDirections(const ompl::base::State *start, const ompl::base::State *goal);
-            /** \brief A state near the start-goal line (dominantLine_) along the dominant directions. */
+            /** \brief A state near the start-goal line (dominantFrom_ to dominantTo_) along the dominant directions. */
             void sampleDominant(ompl::base::State *state);
             /** \brief Put the learning edges nearest \e near (the query's states) into the empty working roadmap. */
             void seedWorking(const std::vector<const ompl::base::State *> &near,
@@ -479,6 +479,7 @@ namespace michi
             unsigned int dominantDofs_{0};
             Eigen::MatrixXd dominant_;                       ///< this query's dominant directions (columns), if any
             std::vector<double> dominantFrom_, dominantTo_;  ///< the query's start and goal as reals
+            std::vector<double> dominantSample_;             ///< sampleDominant()'s reals
             /** made at the first narrowed sample: with dominant_dofs 0 every random sequence stays as it was */
             std::unique_ptr<ompl::RNG> rng_;
             unsigned int seedEdges_{50};
