@@ -64,6 +64,10 @@ namespace michi
                 worldCtx_ = context(world_);
                 movingCtx_ = context(moving_.scene);
                 timedCtx_ = context(timed_.scene);
+                auto staticScene = std::make_shared<validity::Scene>();
+                for (const auto &o : statics)
+                    staticScene->add(o);
+                staticCtx_ = context(staticScene);
                 planner_ = allocatePlanner(method.planner, planCtx_.setup->getSpaceInformation());
                 std::map<std::string, std::string> params = method.params;
                 if (method.reuse == Method::Reuse::DUAL)

@@ -145,9 +145,18 @@ namespace michi
                 };
                 const double lookahead = settings_.lookahead;
                 const auto msi = movingCtx_.setup->getSpaceInformation();
+                const auto ssi = staticCtx_.setup->getSpaceInformation();
                 const double crossDistance = settings_.speed * settings_.crossTime;
-                h.firstInterference = [this, esi, msi, lookahead, crossDistance](const ConfigurationPath &path)
+                h.firstInterference = [this, esi, msi, ssi, lookahead, crossDistance](const ConfigurationPath &path)
                 {
+                    // Inside a predicted region the sensed scene says "blocked" everywhere, so a crossing or an
+                    // escape is checked against the obstacles as they are: the movers (msi) and the static world
+                    // (ssi). The movers alone let a deformed crossing through a bin wall (2026-12-06: one motion
+                    // collision on dynamic_reach_bin, seed 3).
+                    const auto freeNow = [&msi, &ssi](const ob::State *from, const ob::State *to)
+                    {
+                        return msi->checkMotion(from, to) && ssi->checkMotion(from, to);
+                    };
                     const double inf = std::numeric_limits<double>::infinity();
                     if (path.empty())
                         return inf;
@@ -187,7 +196,7 @@ namespace michi
                                 {
                                     esi->getStateSpace()->interpolate(c.get(), b.get(), static_cast<double>(i) / n,
                                                                       x.get());
-                                    if (!msi->checkMotion(y.get(), x.get()))
+                                    if (!freeNow(y.get(), x.get()))
                                         return 0.;
                                     along += len / n;
                                     esi->copyState(y.get(), x.get());
@@ -210,7 +219,7 @@ namespace michi
                         for (std::size_t k = 1; k <= target; ++k)
                         {
                             toState(esi, path[k], b.get());
-                            if (!msi->checkMotion(a.get(), b.get()))
+                            if (!freeNow(a.get(), b.get()))
                                 return 0.;
                             arc += esi->distance(a.get(), b.get());
                             esi->copyState(a.get(), b.get());

@@ -74,6 +74,9 @@ namespace michi
                 SensedWorld moving_;  ///< the movers only, true shapes over escape_horizon (clearance, deformation)
                 SensedWorld timed_;   ///< the movers only, grown, one copy each (retiming's checks in time)
                 PlanningContext planCtx_, planNowCtx_, execCtx_, worldCtx_, movingCtx_, timedCtx_;
+                /** the static obstacles alone: a crossing or an escape is checked against them and moving_ (which
+                    holds the movers only), never against the movers alone */
+                PlanningContext staticCtx_;
                 ompl::base::PlannerPtr planner_;
                 std::vector<std::vector<validity::TimedPose>> trajectories_;
                 std::vector<validity::ScenePtr> yieldScenes_;
