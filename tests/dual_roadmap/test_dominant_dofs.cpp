@@ -4,6 +4,8 @@
 // needs new states in the slab beyond the training region, which uniform samples (each in the slab with a chance of
 // 0.04^4, 2.6e-6) never give, and samples along the dominant directions do (20 seeds tried: every one). Work is
 // counted, never timed.
+#include "support/CountedSolve.h"
+
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
 
 #include <ompl/base/ScopedState.h>
@@ -60,23 +62,10 @@ namespace
             start[1] = x1;
             goal[0] = y0;
             goal[1] = y1;
-            auto pdef = std::make_shared<ob::ProblemDefinition>(si);
-            pdef->setStartAndGoalStates(start, goal);
-            planner->setProblemDefinition(pdef);
-            if (!planner->isSetup())
-                planner->setup();
-            unsigned long count = 0;
-            const auto status = planner->solve(ob::PlannerTerminationCondition(
-                [&]
-                {
-                    return ++count > evaluations;
-                }));
-            if (status == ob::PlannerStatus::EXACT_SOLUTION)
-            {
-                path = *pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
-                valid = path.check();
-            }
-            return status;
+            auto result = michi::test::solveCounted(*planner, start, goal, evaluations);
+            path = result.path;
+            valid = result.valid;
+            return result.status;
         }
 
         /** Short queries in the plane's part below 0.55 on its second axis, before the wall: each solved by its

@@ -1,6 +1,7 @@
 #include "ReplanMethodRun.h"
 
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
+#include <michi/planners/dual_roadmap/HandTaskMap.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 
 #include <ompl/base/ScopedState.h>
@@ -83,6 +84,9 @@ namespace michi
                         {
                             return scene->changeCount();
                         });
+                    // An arm: the task level's hand (used only with task_level 1)
+                    dual->setTaskMap(
+                        planners::handTaskMap(planCtx_.checker->bodies(), planCtx_.setup->getStateSpace()));
                 }
             }
 

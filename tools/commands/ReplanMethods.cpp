@@ -34,6 +34,15 @@ namespace michi
                      {{"dominant_dofs", "2"}},
                      Method::Reuse::DUAL,
                      false},
+                    // paper 002's hierarchical roadmap for arms (the hand's route in task space over the joint-space
+                    // roadmap), measured against "dual" in the same run; on a robot without a hand (SE(2)) it is
+                    // "dual"
+                    {"dual-task-level",
+                     "michi::DualRoadmap (task level)",
+                     "michi::DualRoadmap",
+                     {{"task_level", "1"}},
+                     Method::Reuse::DUAL,
+                     false},
                     // the executor's ablations, with DualRoadmap planning: no time-scale adaptation; and stop and
                     // replan (no planning while moving, hence no deformation or retiming either)
                     {"dual-no-retiming",

@@ -1,6 +1,7 @@
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
 
 #include "DominantDirections.h"
+#include "TaskLevel.h"
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
@@ -57,6 +58,9 @@ namespace michi
                                        &DualRoadmap::getRecheckDepth, "0:1:10");
             declareParam<unsigned int>("dominant_dofs", this, &DualRoadmap::setDominantDofs,
                                        &DualRoadmap::getDominantDofs, "0:1:10");
+            declareParam<bool>("task_level", this, &DualRoadmap::setTaskLevel, &DualRoadmap::getTaskLevel, "0,1");
+            declareParam<double>("task_cell", this, &DualRoadmap::setTaskCell, &DualRoadmap::getTaskCell,
+                                 "0.01:0.01:0.5");
 
             // Benchmark reads progress properties from its own thread while solve() runs: hence the atomic copy of the
             // count.
@@ -94,6 +98,9 @@ namespace michi
                 sampler_ = si_->allocStateSampler();
             if (probe_ == nullptr)
                 probe_ = si_->allocState();
+            if (taskLevel_ && !taskMap_)
+                OMPL_WARN("%s: task_level is on but no task map is installed (setTaskMap): samples stay uniform",
+                          getName().c_str());
             for (auto &st : part_)
                 if (st == nullptr)
                     st = si_->allocState();
@@ -111,6 +118,7 @@ namespace michi
             goalVertices_.clear();
             queryHistory_.clear();
             learnedWorkingEdges_ = 0;
+            vertexHand_.clear();
             // vertex ids are used again from 0: no cached heuristic may be taken for a new vertex
             heuristicGoals_.clear();
             ++goalSet_;
@@ -490,6 +498,7 @@ namespace michi
             }
 
             work_ = Work{};
+            invalidHands_.clear();
             if (sceneChanged())
             {
                 // the change joins the history (its region, or "everything"); records older than the history are
@@ -653,7 +662,12 @@ namespace michi
                     dominantFound = true;
                     findDominantDirections(starts.front(), graph_[goalVertices_.front()].state);
                 }
-                for (unsigned int i = 0; i < batchSize_ && !ptc; ++i)
+                // with the task level, half of the batch along the hand's route (the rest keeps the search
+                // complete)
+                const bool alongTask = taskLevel_ && taskMap_ && !goalVertices_.empty();
+                if (alongTask)
+                    expandAlongTaskRoute(starts.front(), graph_[goalVertices_.front()].state, ptc);
+                for (unsigned int i = alongTask ? batchSize_ / 2 : 0; i < batchSize_ && !ptc; ++i)
                 {
                     // with dominant directions, every other sample narrowed to them (the rest keep the search
                     // complete)
@@ -664,7 +678,15 @@ namespace michi
                     ++work_.samples;
                     ++work_.stateChecks;
                     if (!si_->isValid(sample))
+                    {
+                        if (alongTask)
+                        {
+                            Eigen::Vector3d hand;
+                            taskMap_(sample, hand, nullptr);
+                            invalidHands_.push_back(hand);
+                        }
                         continue;
+                    }
                     const Vertex v = addWorkingVertex(si_->cloneState(sample), -1);
                     graph_[v].validIn = epoch_;
                     connectLazily(v);

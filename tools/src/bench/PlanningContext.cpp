@@ -5,6 +5,7 @@
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/tools/problem/TurnMoveTurnBodies.h>
 #include <michi/tools/bench/PlannerRegistry.h>
+#include <michi/planners/dual_roadmap/HandTaskMap.h>
 #include <michi/tools/problem/ProblemJMap.h>
 #include <michi/validity/fcl/ConservativeMotionValidator.h>
 #include <michi/validity/jmap/JMapMotionValidator.h>
@@ -420,6 +421,10 @@ namespace michi
                 spec.params[kv.first] = kv.second;
             ob::PlannerPtr planner = allocatePlanner(name, si);  // std::invalid_argument for an unknown name
             applyPlannerParams(*planner, spec, problem.file);
+            // DualRoadmap's task level needs the arm's hand, which a planner made from si alone cannot know
+            if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner))
+                if (auto bodies = planners::checkerBodies(si->getStateValidityChecker()))
+                    dual->setTaskMap(planners::handTaskMap(bodies, si->getStateSpace()));
             return planner;
         }
     }  // namespace tools

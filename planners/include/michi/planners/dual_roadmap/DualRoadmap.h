@@ -26,6 +26,8 @@ namespace michi
 {
     namespace planners
     {
+        class TaskLevel;
+
         /**
            @anchor michiDualRoadmap
            @par Short description
@@ -322,6 +324,38 @@ namespace michi
                 return dominantDofs_;
             }
 
+            /** \brief The hand (end effector) of a state, for the task level (setTaskLevel()): its position and,
+                when \e jacobian is not null, its 3 x n Jacobian, d position / d reals (StateSpace::copyToReals
+                order). An arm's owner installs it (michi replan: the last body of the robot group, RobotModel's
+                Jacobian); without one the task level does nothing. */
+            using TaskMap =
+                std::function<void(const ompl::base::State *state, Eigen::Vector3d &hand, Eigen::MatrixXd *jacobian)>;
+            void setTaskMap(TaskMap map);
+            /** \brief Paper 002's hierarchical roadmap for arms: when a query must sample, a quarter of each batch
+                is drawn from each end of the query along the hand's way through the task space (TaskLevel: a grid
+                of hand positions where the cells the working roadmap's states were found invalid in cost more), each
+                waypoint realised as a joint state by Jacobian-transpose micro-motions from the previous one (no
+                inverse); the other half stays uniform. Needs setTaskMap(). false (default): uniform only. */
+            void setTaskLevel(bool on)
+            {
+                taskLevel_ = on;
+            }
+            bool getTaskLevel() const
+            {
+                return taskLevel_;
+            }
+            /** \brief Side of the task level's cells, in metres of hand position. */
+            void setTaskCell(double cell)
+            {
+                if (!(cell > 0.))
+                    throw ompl::Exception("DualRoadmap: task_cell must be positive");
+                taskCell_ = cell;
+            }
+            double getTaskCell() const
+            {
+                return taskCell_;
+            }
+
         private:
             // Validity in a scene is recorded as the scene's epoch (epoch_): a scene change makes every record stale
             // at once, without touching the roadmap.
@@ -351,6 +385,14 @@ namespace michi
             void findDominantDirections(const ompl::base::State *start, const ompl::base::State *goal);
             /** \brief A state near the start-goal line (dominantFrom_ to dominantTo_) along the dominant directions. */
             void sampleDominant(ompl::base::State *state);
+            /** \brief The hand of vertex \e v (the task map's, cached: a vertex's state never changes). */
+            const Eigen::Vector3d &handOf(Vertex v);
+            /** \brief The task level's part of an expansion batch (setTaskLevel()): the hand's route from \e start
+                to \e goal over the cells, realised from both ends as joint states added to the working roadmap. */
+            void expandAlongTaskRoute(const ompl::base::State *start, const ompl::base::State *goal,
+                                      const ompl::base::PlannerTerminationCondition &ptc);
+            /** \brief From \e q (reals), Jacobian-transpose steps that bring the hand to \e target. */
+            void moveHandTowards(std::vector<double> &q, const Eigen::Vector3d &target);
             /** \brief Put the learning edges nearest \e near (the query's states) into the empty working roadmap. */
             void seedWorking(const std::vector<const ompl::base::State *> &near,
                              const ompl::base::PlannerTerminationCondition &ptc);
@@ -482,6 +524,12 @@ namespace michi
             std::vector<double> dominantSample_;             ///< sampleDominant()'s reals
             /** made at the first narrowed sample: with dominant_dofs 0 every random sequence stays as it was */
             std::unique_ptr<ompl::RNG> rng_;
+            TaskMap taskMap_;
+            bool taskLevel_{false};
+            double taskCell_{0.05};
+            std::unique_ptr<TaskLevel> task_;            ///< made at the first task-level batch
+            std::vector<Eigen::Vector3d> vertexHand_;    ///< handOf()'s cache (NaN: not computed yet)
+            std::vector<Eigen::Vector3d> invalidHands_;  ///< hands of this query's invalid samples
             unsigned int seedEdges_{50};
             unsigned int k_{10};
             double rangeFraction_{0.3};
