@@ -167,6 +167,27 @@ TEST(TaskLevel, MarksOutsideTheGridAndNaNsAreIgnored)
     EXPECT_TRUE(route.empty());
 }
 
+TEST(TaskLevel, RoundMarksLastOneRoundAndCountWithTheKeptOnes)
+{
+    TaskLevel level;
+    level.begin(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 0.1, 0.);
+    const Eigen::Vector3d p(0.55, 0.55, 0.55);
+    level.mark(p, false);
+    EXPECT_TRUE(level.blocked(p));
+    level.beginRound();
+    level.markRound(p, true);
+    EXPECT_FALSE(level.blocked(p)) << "one valid state of this round against one kept invalid mark";
+    level.markRound(p, false);
+    EXPECT_TRUE(level.blocked(p));
+    level.beginRound();
+    EXPECT_TRUE(level.blocked(p)) << "the kept mark stays";
+    level.markRound(p, true);
+    level.markRound(p, true);
+    EXPECT_FALSE(level.blocked(p));
+    level.begin(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 0.1, 0.);
+    EXPECT_FALSE(level.blocked(p)) << "begin() forgets every mark";
+}
+
 TEST(DualRoadmapTaskLevel, TheHandsRouteGoesRoundABlockInItsWay)
 {
     ompl::RNG::setSeed(7);

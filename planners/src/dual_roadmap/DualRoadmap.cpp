@@ -498,7 +498,7 @@ namespace michi
             }
 
             work_ = Work{};
-            invalidHands_.clear();
+            taskBegun_ = false;  // the task level's grid belongs to one query
             if (sceneChanged())
             {
                 // the change joins the history (its region, or "everything"); records older than the history are
@@ -683,7 +683,7 @@ namespace michi
                         {
                             Eigen::Vector3d hand;
                             taskMap_(sample, hand, nullptr);
-                            invalidHands_.push_back(hand);
+                            task_->mark(hand, false);
                         }
                         continue;
                     }

@@ -76,19 +76,23 @@ namespace michi
             Eigen::Vector3d from, to;
             taskMap_(start, from, nullptr);
             taskMap_(goal, to, nullptr);
-            // The upper level learns where the hand cannot go in this scene from the lower level's records: the
-            // working roadmap's states proved valid or invalid in this scene and this query's invalid samples.
-            task_->begin(from, to, taskCell_, 0.3);
+            // The upper level learns where the hand cannot go in this scene from the lower level's records: this
+            // query's invalid samples (marked as they are drawn, kept for the query) and the working roadmap's
+            // states proved valid or invalid in this scene (read afresh every round: validatePath() changes them).
+            if (!taskBegun_)
+            {
+                task_->begin(from, to, taskCell_, 0.3);
+                taskBegun_ = true;
+            }
+            task_->beginRound();
             for (Vertex v = 0; v < graph_.vertexCount(); ++v)
             {
                 const auto &p = graph_[v];
                 if (p.validIn == epoch_)
-                    task_->mark(handOf(v), true);
+                    task_->markRound(handOf(v), true);
                 else if (p.invalidIn == epoch_)
-                    task_->mark(handOf(v), false);
+                    task_->markRound(handOf(v), false);
             }
-            for (const auto &hand : invalidHands_)
-                task_->mark(hand, false);
             std::vector<Eigen::Vector3d> route;
             // crossing a cell where the arm was found blocked costs as much as going 50 cells round it: nearly
             // impassable, yet a route exists while any cell is open
@@ -124,7 +128,7 @@ namespace michi
                     {
                         Eigen::Vector3d hand;
                         taskMap_(state, hand, nullptr);
-                        invalidHands_.push_back(hand);
+                        task_->mark(hand, false);
                         si_->freeState(state);
                         continue;
                     }

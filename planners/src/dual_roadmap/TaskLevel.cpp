@@ -20,6 +20,8 @@ namespace michi
                 // no hand (a NaN from the task map): no grid, and route() finds nothing
                 valid_.clear();
                 invalid_.clear();
+                roundValid_.clear();
+                roundInvalid_.clear();
                 return;
             }
             const Eigen::Vector3d lo = from.cwiseMin(to).array() - margin;
@@ -37,6 +39,8 @@ namespace michi
             }
             valid_.assign(total, 0);
             invalid_.assign(total, 0);
+            roundValid_.assign(total, 0);
+            roundInvalid_.assign(total, 0);
         }
 
         long TaskLevel::cellOf(const Eigen::Vector3d &p) const
@@ -59,20 +63,37 @@ namespace michi
             return origin_ + cell_ * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
         }
 
+        void TaskLevel::count(std::vector<std::uint16_t> &counts, long cell)
+        {
+            if (cell < 0)
+                return;
+            auto &n = counts[static_cast<std::size_t>(cell)];
+            if (n < std::numeric_limits<std::uint16_t>::max())
+                ++n;
+        }
+
         void TaskLevel::mark(const Eigen::Vector3d &hand, bool valid)
         {
-            const long c = cellOf(hand);
-            if (c < 0)
-                return;
-            auto &count = valid ? valid_[static_cast<std::size_t>(c)] : invalid_[static_cast<std::size_t>(c)];
-            if (count < std::numeric_limits<std::uint16_t>::max())
-                ++count;
+            if (!valid_.empty())
+                count(valid ? valid_ : invalid_, cellOf(hand));
+        }
+
+        void TaskLevel::beginRound()
+        {
+            std::fill(roundValid_.begin(), roundValid_.end(), 0);
+            std::fill(roundInvalid_.begin(), roundInvalid_.end(), 0);
+        }
+
+        void TaskLevel::markRound(const Eigen::Vector3d &hand, bool valid)
+        {
+            if (!valid_.empty())
+                count(valid ? roundValid_ : roundInvalid_, cellOf(hand));
         }
 
         bool TaskLevel::blocked(const Eigen::Vector3d &p) const
         {
-            const long c = cellOf(p);
-            return c >= 0 && invalid_[static_cast<std::size_t>(c)] > valid_[static_cast<std::size_t>(c)];
+            const long c = valid_.empty() ? -1 : cellOf(p);
+            return c >= 0 && blockedCell(static_cast<std::size_t>(c));
         }
 
         bool TaskLevel::route(double blockedCost, std::vector<Eigen::Vector3d> &waypoints)
@@ -119,7 +140,7 @@ namespace michi
                             // a step into a blocked cell costs more, never less, than its length: the straight
                             // distance stays an admissible heuristic
                             const double step = cell_ * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk)) *
-                                                (invalid_[sw] > valid_[sw] ? blockedCost : 1.);
+                                                (blockedCell(sw) ? blockedCost : 1.);
                             const double g = g_[static_cast<std::size_t>(u)] + step;
                             if (g >= g_[sw])
                                 continue;

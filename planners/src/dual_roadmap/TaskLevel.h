@@ -23,11 +23,17 @@ namespace michi
                 in cells of \e cell (at most about 32^3 of them: larger cells when the box is large); earlier marks
                 are forgotten. An end that is not finite leaves no grid (route() is then false). */
             void begin(const Eigen::Vector3d &from, const Eigen::Vector3d &to, double cell, double margin);
-            /** \brief A joint state whose hand is at \e hand was found \e valid (or invalid) in this scene. Marks
-                outside the grid are ignored. */
+            /** \brief A joint state whose hand is at \e hand was found \e valid (or invalid) in this scene; kept
+                until the next begin(). Marks outside the grid are ignored. */
             void mark(const Eigen::Vector3d &hand, bool valid);
+            /** \brief Forget the marks of the last round (markRound()), keep mark()'s. */
+            void beginRound();
+            /** \brief As mark(), until the next beginRound(): for records that the caller reads afresh every round
+                (a roadmap's vertices, whose records change between rounds). */
+            void markRound(const Eigen::Vector3d &hand, bool valid);
             /** \brief The hand's way from the begin()'s \e from to its \e to over the cells (26 neighbours, each
-                step its length, times \e blockedCost in a cell whose invalid marks outnumber its valid ones), as
+                step its length, times \e blockedCost in a cell whose invalid marks outnumber its valid ones, both
+                kinds of mark counted), as
                 the centres of the cells passed, \e from first and \e to last. False (and \e waypoints empty) when
                 there is no grid. */
             bool route(double blockedCost, std::vector<Eigen::Vector3d> &waypoints);
@@ -41,12 +47,17 @@ namespace michi
 
         private:
             long cellOf(const Eigen::Vector3d &p) const;
+            static void count(std::vector<std::uint16_t> &counts, long cell);
+            bool blockedCell(std::size_t c) const
+            {
+                return invalid_[c] + roundInvalid_[c] > valid_[c] + roundValid_[c];
+            }
             Eigen::Vector3d centre(long c) const;
 
             Eigen::Vector3d origin_{Eigen::Vector3d::Zero()}, from_, to_;
             double cell_{0.};
             int n_[3]{0, 0, 0};
-            std::vector<std::uint16_t> valid_, invalid_;
+            std::vector<std::uint16_t> valid_, invalid_, roundValid_, roundInvalid_;
             // the search's buffers, kept between routes
             std::vector<double> g_;
             std::vector<long> pred_;

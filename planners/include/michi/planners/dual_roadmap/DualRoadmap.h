@@ -527,9 +527,9 @@ namespace michi
             TaskMap taskMap_;
             bool taskLevel_{false};
             double taskCell_{0.05};
-            std::unique_ptr<TaskLevel> task_;            ///< made at the first task-level batch
-            std::vector<Eigen::Vector3d> vertexHand_;    ///< handOf()'s cache (NaN: not computed yet)
-            std::vector<Eigen::Vector3d> invalidHands_;  ///< hands of this query's invalid samples
+            std::unique_ptr<TaskLevel> task_;          ///< made at the first task-level batch
+            std::vector<Eigen::Vector3d> vertexHand_;  ///< handOf()'s cache (NaN: not computed yet)
+            bool taskBegun_{false};                    ///< task_ holds this query's grid
             unsigned int seedEdges_{50};
             unsigned int k_{10};
             double rangeFraction_{0.3};
