@@ -101,6 +101,8 @@ namespace michi
             waypoints.clear();
             if (valid_.empty())
                 return false;
+            // below 1 a blocked cell would be cheaper than its length and the straight distance no longer admissible
+            blockedCost = std::max(1., blockedCost);
             const long start = cellOf(from_), goal = cellOf(to_);
             // begin() made the box hold both ends; a NaN hand is the only way out
             if (start < 0 || goal < 0)

@@ -32,10 +32,9 @@ namespace michi
                 (a roadmap's vertices, whose records change between rounds). */
             void markRound(const Eigen::Vector3d &hand, bool valid);
             /** \brief The hand's way from the begin()'s \e from to its \e to over the cells (26 neighbours, each
-                step its length, times \e blockedCost in a cell whose invalid marks outnumber its valid ones, both
-                kinds of mark counted), as
-                the centres of the cells passed, \e from first and \e to last. False (and \e waypoints empty) when
-                there is no grid. */
+                step its length, times \e blockedCost (at least 1) in a cell whose invalid marks outnumber its valid
+                ones, both kinds of mark counted), as the centres of the cells passed, \e from first and \e to last.
+                False (and \e waypoints empty) when there is no grid. */
             bool route(double blockedCost, std::vector<Eigen::Vector3d> &waypoints);
             /** \brief Cells of the current grid (for tests). */
             std::size_t cellCount() const
