@@ -326,8 +326,8 @@ namespace michi
 
             /** \brief The hand (end effector) of a state, for the task level (setTaskLevel()): its position and,
                 when \e jacobian is not null, its 3 x n Jacobian, d position / d reals (StateSpace::copyToReals
-                order). An arm's owner installs it (michi replan: the last body of the robot group, RobotModel's
-                Jacobian); without one the task level does nothing. */
+                order). An arm's owner installs it (handTaskMap(): the last body of the robot group, RobotModel's
+                Jacobian; `michi bench` and `michi replan` do so); without one the task level does nothing. */
             using TaskMap =
                 std::function<void(const ompl::base::State *state, Eigen::Vector3d &hand, Eigen::MatrixXd *jacobian)>;
             void setTaskMap(TaskMap map);
