@@ -73,14 +73,15 @@ namespace michi
                 task_ = std::make_unique<TaskLevel>();
             if (!rng_)
                 rng_ = std::make_unique<ompl::RNG>();
-            Eigen::Vector3d from, to;
-            taskMap_(start, from, nullptr);
-            taskMap_(goal, to, nullptr);
             // The upper level learns where the hand cannot go in this scene from the lower level's records: this
             // query's invalid samples (marked as they are drawn, kept for the query) and the working roadmap's
             // states proved valid or invalid in this scene (read afresh every round: validatePath() changes them).
             if (!taskBegun_)
             {
+                // the query's ends' hands, once per query (its start and first goal do not change)
+                Eigen::Vector3d from, to;
+                taskMap_(start, from, nullptr);
+                taskMap_(goal, to, nullptr);
                 task_->begin(from, to, taskCell_, 0.3);
                 taskBegun_ = true;
             }
