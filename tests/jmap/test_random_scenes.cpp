@@ -11,6 +11,7 @@
 #include <michi/tools/problem/RandomPlanarScene.h>
 
 #include <gtest/gtest.h>
+#include <ompl/base/ScopedState.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -131,6 +132,34 @@ TEST(RandomPlanarScene, KeepsTheTemplateAndGetsAValidQuery)
     EXPECT_EQ(hand.problem.queries[0].start.size(), 3u);
     EXPECT_NO_THROW(tools::makePlanningContext(hand.problem));
     EXPECT_THROW(tools::randomPlanarScene(tools::loadProblem(problemFile("se2_corridor")), 1), tools::ProblemError);
+}
+
+TEST(RandomPlanarScene, StartAndGoalHoldForEveryCheckerTheTemplatePlansWith)
+{
+    // planar_2link runs ConcentricCircle and RRTConnect on the J-map, whose conservative margin refuses some states
+    // FCL calls free: scenes 101-103 drew such a start before the scene's checkers were asked too
+    const tools::Problem arm = tools::loadProblem(problemFile("planar_2link"));
+    ASSERT_TRUE(std::any_of(arm.planners.begin(), arm.planners.end(),
+                            [](const tools::PlannerSpec &spec)
+                            {
+                                return spec.checker == "jmap";
+                            }));
+    for (std::uint_fast32_t seed : {101u, 102u, 103u})
+    {
+        const tools::Problem p = tools::randomPlanarScene(arm, seed).problem;
+        const auto &q = p.queries.at(0);
+        tools::ContextOptions options;
+        options.checker = "jmap";
+        const tools::PlanningContext ctx = tools::makePlanningContext(p, options);
+        const auto si = ctx.setup->getSpaceInformation();
+        ompl::base::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
+        start = q.start;
+        goal = q.goal;
+        EXPECT_TRUE(si->isValid(start.get())) << "scene " << seed << ": the J-map refuses the start";
+        EXPECT_TRUE(si->isValid(goal.get())) << "scene " << seed << ": the J-map refuses the goal";
+        // and linked under the J-map's own motion validator, not only under FCL's
+        EXPECT_TRUE(tools::gridReachable(si, q.start, q.goal, 0.05)) << "scene " << seed;
+    }
 }
 
 TEST(RandomScenesCommand, WritesScenesThatLoadAndPassTheJMapCheck)

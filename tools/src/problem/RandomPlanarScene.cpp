@@ -5,6 +5,7 @@
 #include <michi/tools/problem/GridReachability.h>
 #include <michi/tools/bench/PlanningContext.h>
 
+#include <ompl/base/ScopedState.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
@@ -12,6 +13,8 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace michi
 {
@@ -125,16 +128,38 @@ namespace michi
             // The template's experience queries belong to its own scene; they would not hold in this one.
             scene.experience = ExperienceQueries{};
 
-            // start and goal: uniform states in the joint limits that FCL calls valid; for two joints, also linked
-            // by the grid search with the problem's motion validator
+            // start and goal: uniform states in the joint limits that FCL calls valid, and valid for every checker
+            // the template plans with (the problem's and each planner's own: planar_2link runs ConcentricCircle and
+            // RRTConnect on the J-map, whose margin refuses some states FCL calls free; before, 6 of the 50 scenes
+            // of seeds 101-150 gave those planners an invalid start or goal); for two joints, also linked by the grid
+            // search with the problem's motion validator under each of those checkers
             auto si = std::make_shared<ompl::base::SpaceInformation>(makeStateSpace(scene));
             validity::FclValidityChecker checker(si, scene.bodies(), scene.scene);
             const std::size_t dim = scene.dimension();
             const bool linked = dim == 2 && options.reachabilityStep > 0. &&
                                 dynamic_cast<const ompl::base::RealVectorStateSpace *>(si->getStateSpace().get());
-            std::unique_ptr<GridComponents> grid;
-            PlanningContext ctx;  // keeps the grid's space information alive
-            std::vector<int> startComponents;
+            std::vector<std::string> checkers{scene.checker};
+            for (const auto &spec : scene.planners)
+                if (!spec.checker.empty() &&
+                    std::find(checkers.begin(), checkers.end(), spec.checker) == checkers.end())
+                    checkers.push_back(spec.checker);
+            // per checker: a context (made at the first start FCL accepts; its query is only a placeholder) and,
+            // for two joints, its grid of components and the start's
+            struct Gate
+            {
+                PlanningContext ctx;
+                std::unique_ptr<GridComponents> grid;
+                std::vector<int> startComponents;
+            };
+            std::vector<Gate> gates;
+            const bool gated = linked || checkers.size() > 1 || checkers.front() != "fcl";
+            auto validFor = [](const Gate &gate, const std::vector<double> &q)
+            {
+                ompl::base::ScopedState<> state(gate.ctx.setup->getStateSpace());
+                state.getSpace()->copyFromReals(state.get(), q);
+                state.getSpace()->enforceBounds(state.get());
+                return gate.ctx.setup->getSpaceInformation()->isValid(state.get());
+            };
             int samples = 0;
             auto draw = [&](const char *what)
             {
@@ -149,8 +174,9 @@ namespace michi
                 }
                 return q;
             };
-            // a start that attaches to the grid, then a goal in one of its components; a start whose components
-            // give no goal in GOALS_PER_START valid, distant candidates (a small pocket) is replaced
+            // a start that every checker accepts and that attaches to each grid, then a goal in one of its
+            // components in every grid; a start whose components give no goal in GOALS_PER_START valid, distant
+            // candidates (a small pocket) is replaced
             const int GOALS_PER_START = 200;
             Query query;
             for (bool found = false; !found;)
@@ -158,19 +184,29 @@ namespace michi
                 query.start = draw("valid start");
                 if (!checker.isValidConfiguration(query.start.data()))
                     continue;
-                if (linked)
+                if (gated && gates.empty())
                 {
-                    if (!grid)
+                    scene.queries = {Query{query.start, query.start, {}}};
+                    for (const auto &name : checkers)
                     {
-                        scene.queries = {Query{query.start, query.start}};
-                        ctx = makePlanningContext(scene);
-                        grid = std::make_unique<GridComponents>(ctx.setup->getSpaceInformation(),
-                                                                options.reachabilityStep);
+                        ContextOptions contextOptions;
+                        contextOptions.checker = name;
+                        gates.push_back(Gate{makePlanningContext(scene, contextOptions), nullptr, {}});
+                        if (linked)
+                            gates.back().grid = std::make_unique<GridComponents>(
+                                gates.back().ctx.setup->getSpaceInformation(), options.reachabilityStep);
                     }
-                    startComponents = grid->attach(query.start);
-                    if (startComponents.empty())
-                        continue;
                 }
+                bool accepted = true;
+                for (auto &gate : gates)
+                {
+                    accepted = validFor(gate, query.start) &&
+                               (!linked || !(gate.startComponents = gate.grid->attach(query.start)).empty());
+                    if (!accepted)
+                        break;
+                }
+                if (!accepted)
+                    continue;
                 for (int candidates = 0; !found && (!linked || candidates < GOALS_PER_START);)
                 {
                     query.goal = draw(linked ? "valid goal linked to the start" : "valid goal");
@@ -179,15 +215,21 @@ namespace michi
                         d += (query.goal[i] - query.start[i]) * (query.goal[i] - query.start[i]);
                     if (std::sqrt(d) < options.minQueryDistance || !checker.isValidConfiguration(query.goal.data()))
                         continue;
+                    bool valid = true;
+                    for (const auto &gate : gates)
+                        valid = valid && validFor(gate, query.goal);
+                    if (!valid)
+                        continue;
                     ++candidates;
-                    if (!linked)
-                        found = true;
-                    else
+                    found = true;
+                    for (const auto &gate : gates)
                     {
-                        const auto goalComponents = grid->attach(query.goal);
-                        found =
-                            std::find_first_of(goalComponents.begin(), goalComponents.end(), startComponents.begin(),
-                                               startComponents.end()) != goalComponents.end();
+                        if (!linked || !found)
+                            break;
+                        const auto goalComponents = gate.grid->attach(query.goal);
+                        found = std::find_first_of(goalComponents.begin(), goalComponents.end(),
+                                                   gate.startComponents.begin(),
+                                                   gate.startComponents.end()) != goalComponents.end();
                     }
                 }
             }

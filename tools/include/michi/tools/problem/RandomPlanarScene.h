@@ -67,9 +67,11 @@ namespace michi
         /** \brief A random planar scene for the arm of \e arm: the template's robot, planners, benchmark and
             collision settings; as scene, \e options.polygons random star-shaped polygons (randomPolygons(), centres
             within \e extent of the base of the arm, \e keepClear kept free around it) extruded over [zMin, zMax];
-            one query whose start and goal are random states that the FCL checker calls valid, at least
-            \e minQueryDistance apart and, for a two-joint group, linked through the grid of GridComponents (so a
-            path exists); for more joints they are not proved connected. Everything comes from one local ompl::RNG
+            one query whose start and goal are random states that the FCL checker calls valid and so does every
+            checker the template plans with (collision.checker and the planners' own, e.g. planar_2link's jmap), at
+            least \e minQueryDistance apart and, for a two-joint group, linked through the grid of GridComponents
+            under each of those checkers (so a path exists for every planner); for more joints they are not proved
+            connected. Everything comes from one local ompl::RNG
             seeded with \e seed (the polygons first, so they equal randomPolygons(seed, ...)). The scene is named
             scene_<seed>. Throws ProblemError (key "robot") unless \e arm is an arm whose every movable
             joint rotates about z, and std::runtime_error when no start or goal is found. */
