@@ -147,14 +147,18 @@ namespace michi
             // for two joints, its grid of components and the start's
             struct Gate
             {
+                std::string checker;
                 PlanningContext ctx;
                 std::unique_ptr<GridComponents> grid;
                 std::vector<int> startComponents;
             };
             std::vector<Gate> gates;
             const bool gated = linked || checkers.size() > 1 || checkers.front() != "fcl";
+            // FCL's own answer is already known (checker above): only the other checkers are asked
             auto validFor = [](const Gate &gate, const std::vector<double> &q)
             {
+                if (gate.checker == "fcl")
+                    return true;
                 ompl::base::ScopedState<> state(gate.ctx.setup->getStateSpace());
                 state.getSpace()->copyFromReals(state.get(), q);
                 state.getSpace()->enforceBounds(state.get());
@@ -191,7 +195,7 @@ namespace michi
                     {
                         ContextOptions contextOptions;
                         contextOptions.checker = name;
-                        gates.push_back(Gate{makePlanningContext(scene, contextOptions), nullptr, {}});
+                        gates.push_back(Gate{name, makePlanningContext(scene, contextOptions), nullptr, {}});
                         if (linked)
                             gates.back().grid = std::make_unique<GridComponents>(
                                 gates.back().ctx.setup->getSpaceInformation(), options.reachabilityStep);
