@@ -151,6 +151,7 @@ namespace michi
                 PlanningContext ctx;
                 std::unique_ptr<GridComponents> grid;
                 std::vector<int> startComponents;
+                std::unique_ptr<ompl::base::ScopedState<>> scratch;  ///< validFor()'s state, made once per gate
             };
             std::vector<Gate> gates;
             const bool gated = linked || checkers.size() > 1 || checkers.front() != "fcl";
@@ -159,10 +160,10 @@ namespace michi
             {
                 if (gate.checker == "fcl")
                     return true;
-                ompl::base::ScopedState<> state(gate.ctx.setup->getStateSpace());
-                state.getSpace()->copyFromReals(state.get(), q);
-                state.getSpace()->enforceBounds(state.get());
-                return gate.ctx.setup->getSpaceInformation()->isValid(state.get());
+                ompl::base::State *state = gate.scratch->get();
+                gate.scratch->getSpace()->copyFromReals(state, q);
+                gate.scratch->getSpace()->enforceBounds(state);
+                return gate.ctx.setup->getSpaceInformation()->isValid(state);
             };
             int samples = 0;
             auto draw = [&](const char *what)
@@ -195,7 +196,9 @@ namespace michi
                     {
                         ContextOptions contextOptions;
                         contextOptions.checker = name;
-                        gates.push_back(Gate{name, makePlanningContext(scene, contextOptions), nullptr, {}});
+                        gates.push_back(Gate{name, makePlanningContext(scene, contextOptions), nullptr, {}, nullptr});
+                        gates.back().scratch =
+                            std::make_unique<ompl::base::ScopedState<>>(gates.back().ctx.setup->getStateSpace());
                         if (linked)
                             gates.back().grid = std::make_unique<GridComponents>(
                                 gates.back().ctx.setup->getSpaceInformation(), options.reachabilityStep);
