@@ -105,6 +105,57 @@ TEST(HeadingLattice, CrossesOneCellDoorsOnTheGridChecker)
     EXPECT_GT(lengths[0], 15.);  // the scenario's grid path is 16-20 m
 }
 
+TEST(HeadingLattice, AutomaticCellSizeFollowsTheMapsCells)
+{
+    // cell_size 0 (the default): half a map cell on a map scene, not below the robot's reach, at most 0.25 m; the
+    // setting reads back as 0 and the spacing used as effectiveCellSize(), once solve() has built the lattice.
+    const auto spacing = [](const std::string &file, const std::string &checker)
+    {
+        const auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/" + file);
+        michi::tools::ContextOptions options;
+        options.checker = checker;
+        auto ctx = michi::tools::makePlanningContext(problem, options);
+        auto planner = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
+        EXPECT_EQ(planner->getCellSize(), 0.);
+        ctx.setup->setPlanner(planner);
+        ctx.setup->solve(ob::timedPlannerTerminationCondition(0.));  // builds the lattice, then stops
+        EXPECT_EQ(planner->getCellSize(), 0.);
+        return planner->effectiveCellSize();
+    };
+    // 64room: 0.1 m cells, a 0.036 m reach: 0.05 m, on either checker (the scene carries the map's cell)
+    EXPECT_DOUBLE_EQ(spacing("movingai_64room.yaml", "grid"), 0.05);
+    EXPECT_DOUBLE_EQ(spacing("movingai_64room.yaml", "fcl"), 0.05);
+    // ros_office (0.05 m cells, a 0.36 m reach) and se2_rooms (0.05 m, 0.825 m): robots larger than the cap, 0.25 m;
+    // se2_corridor: polygons, no map: 0.25 m
+    EXPECT_DOUBLE_EQ(spacing("ros_office.yaml", "fcl"), 0.25);
+    EXPECT_DOUBLE_EQ(spacing("se2_rooms.yaml", "grid"), 0.25);
+    EXPECT_DOUBLE_EQ(spacing("se2_corridor.yaml", "fcl"), 0.25);
+
+    const auto problem = michi::tools::loadProblem(CORRIDOR);
+    auto ctx = michi::tools::makePlanningContext(problem);
+    HeadingLattice planner(ctx.setup->getSpaceInformation());
+    EXPECT_THROW(planner.setCellSize(-0.1), ompl::Exception);
+    planner.params().setParam("cell_size", "0.1");
+    EXPECT_DOUBLE_EQ(planner.getCellSize(), 0.1);
+    EXPECT_DOUBLE_EQ(planner.effectiveCellSize(), 0.1);
+}
+
+TEST(HeadingLattice, DefaultsCrossAMapsOneCellDoors)
+{
+    // With every setting at its default but the weight, the lattice finds 64room's query 0 through its one-cell
+    // doors (with the paper's 0.25 m most doors fall between two rows of nodes); FCL finds no collision on the path.
+    const auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/movingai_64room.yaml");
+    michi::tools::ContextOptions options;
+    options.checker = "grid";
+    auto ctx = michi::tools::makePlanningContext(problem, options);
+    auto planner = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
+    planner->params().setParam("heuristic_weight", "1.2");
+    const auto path = solvePath(ctx, planner, 60.);
+    ASSERT_GE(path.size(), 3u);
+    const auto certificate = michi::tools::certifyPath(ctx.setup->getSolutionPath(), *ctx.checker);
+    EXPECT_TRUE(certificate.certified) << certificate.reason;
+}
+
 TEST(HeadingLattice, KeepsTheGraphAcrossQueriesAndRebuildsWhenTheSceneChanges)
 {
     const auto problem = michi::tools::loadProblem(CORRIDOR);

@@ -38,7 +38,7 @@ namespace michi
             specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
 
             declareParam<double>("cell_size", this, &HeadingLattice::setCellSize, &HeadingLattice::getCellSize,
-                                 "0.01:0.01:2.");
+                                 "0.:0.01:2.");
             declareParam<double>("angle_step", this, &HeadingLattice::setAngleStep, &HeadingLattice::getAngleStep,
                                  "0.05:0.01:1.58");
             declareParam<double>("connection_cells", this, &HeadingLattice::setConnectionCells,
@@ -54,9 +54,10 @@ namespace michi
 
         void HeadingLattice::setCellSize(double size)
         {
-            if (!(size > 0.) || !std::isfinite(size))
-                throw ompl::Exception(getName(), "cell_size must be positive");
-            cellSize_ = size;
+            if (!(size >= 0.) || !std::isfinite(size))
+                throw ompl::Exception(getName(), "cell_size must be positive, or 0 for automatic");
+            cellSizeSetting_ = size;
+            cellSize_ = size > 0. ? size : 0.25;  // the automatic choice is made by build()
         }
 
         void HeadingLattice::setAngleStep(double step)
@@ -170,7 +171,8 @@ namespace michi
                 key.scene = fcl->scene().get();
             const auto *se2 = si_->getStateSpace()->as<ob::SE2StateSpace>();
             const auto &b = se2->getBounds();
-            key.settings = {cellSize_, angleStep_, b.low[0], b.low[1], b.high[0], b.high[1]};
+            // the setting, not the spacing it resolved to: the same checker and scene resolve to the same spacing
+            key.settings = {cellSizeSetting_, angleStep_, b.low[0], b.low[1], b.high[0], b.high[1]};
             if (const auto *tmt = dynamic_cast<const state_spaces::TurnMoveTurnStateSpace *>(se2))
             {
                 key.settings.push_back(tmt->getTurnWeight());

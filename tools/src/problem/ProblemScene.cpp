@@ -140,6 +140,7 @@ namespace michi
                     }
                     problem.grid.mapResolution = resolution;  // grid checker cells aligned with the map's
                     problem.grid.origin = origin;
+                    problem.scene->setGridCellSize(resolution);
                     info.present = true;
                     info.bounds = {{origin.x(), origin.x() + map.width * resolution, origin.y(),
                                     origin.y() + map.height * resolution}};
@@ -317,6 +318,7 @@ namespace michi
                         {
                             r.fail(key + ".ros", e.what());
                         }
+                        problem.scene->setGridCellSize(ros.resolution);  // turned or not, gaps are whole cells wide
                         // A rotated map's cells do not line up with the x-y axes: the grid checker then keeps cells of
                         // its own.
                         if (ros.yaw == 0.)
@@ -355,6 +357,7 @@ namespace michi
                         }
                         problem.grid.mapResolution = resolution;  // grid checker cells aligned with the map's
                         problem.grid.origin = origin;
+                        problem.scene->setGridCellSize(resolution);
                     }
                 }
                 if (const YAML::Node moveit = scene["moveit"])

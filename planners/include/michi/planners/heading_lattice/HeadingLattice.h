@@ -79,9 +79,20 @@ namespace michi
                 start and goal states and their connections. */
             void getPlannerData(ompl::base::PlannerData &data) const override;
 
-            /** \brief Spacing of the nodes along x and y (metres, > 0). */
+            /** \brief Spacing of the nodes along x and y (metres, > 0), or 0 (the default): automatic, chosen when the
+                lattice is built. On a scene read from an occupancy grid (validity::Scene::gridCellSize() r > 0, through
+                michi's FCL or grid checker) half a map cell, so that a door one cell wide has a row of nodes through
+                its middle, but not below the robot's reach R (where the robot spans several cells, finer rows only
+                multiply the nodes) nor above the paper's 0.25 m: min(0.25, max(r / 2, R)); elsewhere 0.25 m. */
             void setCellSize(double size);
+            /** \brief The setting: 0 for automatic (see effectiveCellSize()). */
             double getCellSize() const
+            {
+                return cellSizeSetting_;
+            }
+            /** \brief The spacing the lattice uses: the setting, or the automatic choice once the lattice is built
+                (0.25 before). */
+            double effectiveCellSize() const
             {
                 return cellSize_;
             }
@@ -268,7 +279,11 @@ namespace michi
                 return queries_[v - nodeCount_];
             }
 
-            double cellSize_{0.25};
+            /** \brief Automatic spacing for this space information's checker and scene (setCellSize(0)). */
+            double automaticCellSize() const;
+
+            double cellSizeSetting_{0.};             ///< what setCellSize() was given; 0: automatic
+            double cellSize_{0.25};                  ///< the spacing in use (build() resolves the automatic one)
             double angleStep_{0.39269908169872414};  // pi / 8
             double connectionCells_{2.};
             double heuristicWeight_{1.};

@@ -75,6 +75,19 @@ namespace michi
                 return changeCount_.load();
             }
 
+            /** \brief Metres per cell of the occupancy grid (PGM, MovingAI or ROS map) the static obstacles were read
+                from; 0 when they were not read from one. Gaps in such a scene are whole cells wide, so a planner
+                that lays its own lattice over the scene can size it by this (HeadingLattice's automatic cell size). */
+            double gridCellSize() const
+            {
+                return gridCellSize_;
+            }
+            /** \brief Set by the loader of a map (not a change of the obstacles: changeCount() stays). */
+            void setGridCellSize(double metres)
+            {
+                gridCellSize_ = metres;
+            }
+
             /** \brief The obstacles' shadows on the x-y plane, united (for 2-D methods and pictures). */
             MultiPolygon2 polygons2d() const;
             /** \brief Axis-aligned bounds of all obstacles (min, max); zero box when empty. */
@@ -109,6 +122,7 @@ namespace michi
             fcl::DynamicAABBTreeCollisionManagerd manager_;
             std::atomic<std::uint64_t> changeCount_{0};
             double time_{0.};
+            double gridCellSize_{0.};
         };
 
         using ScenePtr = std::shared_ptr<Scene>;
