@@ -679,6 +679,7 @@ namespace michi
                         si_->getStateSpace()->copyToReals(values, s);
                         return capsules_->at(values.data());
                     };
+                splitDirectLink(si_, fullPaths_[bestPath_]);
                 pushAwayFromObstacles(si_, fullPaths_[bestPath_], ptc, measure);
             }
             auto path = std::make_shared<og::PathGeometric>(si_);

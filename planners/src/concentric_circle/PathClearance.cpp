@@ -169,6 +169,40 @@ namespace michi
             return worst;
         }
 
+        std::size_t splitDirectLink(const ob::SpaceInformationPtr &si, std::vector<ob::State *> &states, double piece)
+        {
+            if (states.size() != 2)
+                return 0;
+            // 0.05 of the extent: on 30 held-out random scenes (michi random-scenes --seed 201) the direct links'
+            // clearance averaged along them rose by 2-96 % (docs/concentric-circle.md); 0.25 left most links
+            // whole, 0.025 gained no more than 0.05
+            const double step = piece * si->getMaximumExtent();
+            const double length = si->distance(states[0], states[1]);
+            const auto n = static_cast<std::size_t>(std::ceil(length / step));
+            if (!(step > 0.) || n < 2)
+                return 0;
+            std::vector<ob::State *> split{states[0]};
+            for (std::size_t k = 1; k < n; ++k)
+            {
+                split.push_back(si->allocState());
+                si->getStateSpace()->interpolate(states[0], states[1], static_cast<double>(k) / n, split.back());
+            }
+            split.push_back(states[1]);
+            // The pieces of a valid motion are valid for an exact or conservative motion validator, but not
+            // necessarily for a sampling one (other samples): checked, so the path stays valid motion by motion.
+            bool valid = true;
+            for (std::size_t j = 1; valid && j < split.size(); ++j)
+                valid = si->isValid(split[j]) && si->checkMotion(split[j - 1], split[j]);
+            if (!valid)
+            {
+                for (std::size_t j = 1; j + 1 < split.size(); ++j)
+                    si->freeState(split[j]);
+                return 0;
+            }
+            states = std::move(split);
+            return n - 1;
+        }
+
         int pushAwayFromObstacles(const ob::SpaceInformationPtr &si, std::vector<ob::State *> &states,
                                   const ob::PlannerTerminationCondition &ptc, const ClearanceFunction &clearance,
                                   int sweeps, double step)

@@ -61,6 +61,14 @@ namespace michi
             std::vector<Eigen::Vector2d> boxLo_, boxHi_;  ///< each edge's bounding box
         };
 
+        /** \brief When \e states is a single motion (the search linked start and goal directly, as it does when they
+            see each other), it is cut into equal pieces of at most \e piece times the space's maximum extent, so
+            that pushAwayFromObstacles() has interior states to move: a direct link bends away from the obstacles
+            it passes instead of staying where it is. The pieces are checked (states and motions) and the path is
+            left whole if one fails. Returns the number of states added. */
+        std::size_t splitDirectLink(const ompl::base::SpaceInformationPtr &si, std::vector<ompl::base::State *> &states,
+                                    double piece = 0.05);
+
         /** \brief A clearance to push along: the state's clearance in some measure (larger is safer). */
         using ClearanceFunction = std::function<double(const ompl::base::State *)>;
 
