@@ -129,8 +129,9 @@ namespace michi
                 pose's own cell occupied or a blocked entry (collides), then, for a band entry (invalid, not
                 blocked), its sub-entry in the BandTable (when buildBand() made one: free or colliding at every pose
                 of the sub-entry); only a pose none of them decides is tested exactly. With exactFirst() the table
-                word and the band are skipped: a pose the block and cell summaries leave open is tested exactly.
-                False outside the grid. */
+                word and the band are skipped: a pose the block and cell summaries leave open is tested exactly (on
+                a map whose cell summary outgrows the caches, one the block summaries leave open). False outside
+                the grid. */
             bool freeOnGrid(double x, double y, double yaw) const
             {
                 const double fx = (x - grid_.origin.x()) * inverseResolution_;
@@ -173,6 +174,8 @@ namespace michi
                     if (!band_.empty())
                         __builtin_prefetch(band_.record(word));
                 }
+                if (exactBeforeCells_)  // a large map: the exact test's coarse rows stay cached, the cells do not
+                    return footprintFree(x, y, yaw, 0.);
                 // valid at every heading, or occupied while the footprint holds the origin: the cell decides
                 const std::uint64_t cellValid = cells_[2 * c];
                 const std::uint64_t cellBlocked = cells_[2 * c + 1] & originMask_;
@@ -360,6 +363,10 @@ namespace michi
                 (superShift_ 0: none) */
             static constexpr int SUPER_SHIFT = 2;
             static constexpr std::size_t SUPER_MIN_BYTES = 16 * 1024;
+            /** \brief With exactFirst() on the coarse rows, the exact test comes before the cell summary where the
+                summary is larger than this (chooseExactFirst()). */
+            static constexpr std::size_t CELLS_CACHED_BYTES = 256 * 1024;
+            bool exactBeforeCells_{false};
             int superShift_{0};
             std::size_t supersPerRow_{0};
             std::vector<std::uint64_t> supers_;
