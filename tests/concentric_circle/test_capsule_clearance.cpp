@@ -38,6 +38,20 @@ namespace
         return ctx;
     }
 
+    /** ConcentricCircle asked for clearance (the problem's objective, as michi bench --objective clearance sets
+        it) on \e ctx's problem; its solution path. */
+    std::shared_ptr<planners::ConcentricCircle> solveForClearance(tools::PlanningContext &ctx)
+    {
+        const auto si = ctx.setup->getSpaceInformation();
+        auto pdef = ctx.setup->getProblemDefinition();
+        pdef->setOptimizationObjective(std::make_shared<ob::MaximizeMinClearanceObjective>(si));
+        auto planner = std::make_shared<planners::ConcentricCircle>(si);
+        planner->setProblemDefinition(pdef);
+        planner->setup();
+        EXPECT_EQ(planner->solve(ob::timedPlannerTerminationCondition(10.)), ob::PlannerStatus::EXACT_SOLUTION);
+        return planner;
+    }
+
     /** OMPL's PathGeometric::clearance() (the mean of the checker's clearance over the waypoints; the column
         OMPL's Benchmark records and michi bench reports) */
     double waypointClearance(const ob::SpaceInformationPtr &si, const std::vector<ob::State *> &states)
@@ -94,11 +108,8 @@ TEST(CapsuleClearance, ThePushRaisesTheChosenPathsClearance)
     auto ctx = context("planar_2link", "jmap");
     const auto si = ctx.setup->getSpaceInformation();
     auto pdef = ctx.setup->getProblemDefinition();
-    pdef->setOptimizationObjective(std::make_shared<ob::MaximizeMinClearanceObjective>(si));
-    auto planner = std::make_shared<planners::ConcentricCircle>(si);
-    planner->setProblemDefinition(pdef);
-    planner->setup();
-    ASSERT_EQ(planner->solve(ob::timedPlannerTerminationCondition(10.)), ob::PlannerStatus::EXACT_SOLUTION);
+    const auto planner = solveForClearance(ctx);
+    ASSERT_TRUE(pdef->hasExactSolution());
     auto &chosen = *pdef->getSolutionPath()->as<og::PathGeometric>();
     // The search's path before the push: the lifted points of the chosen path of the last stage.
     const auto &stage = planner->stages().back();
@@ -160,11 +171,8 @@ TEST(CapsuleClearance, ADirectLinkIsCutAndBentAwayFromTheObstacles)
     std::vector<ob::State *> direct{si->cloneState(pdef->getStartState(0)), si->allocState()};
     si->copyState(direct[1], pdef->getGoal()->as<ob::GoalState>()->getState());
     ASSERT_TRUE(si->checkMotion(direct[0], direct[1]));  // the scene still has a direct link
-    pdef->setOptimizationObjective(std::make_shared<ob::MaximizeMinClearanceObjective>(si));
-    auto planner = std::make_shared<planners::ConcentricCircle>(si);
-    planner->setProblemDefinition(pdef);
-    planner->setup();
-    ASSERT_EQ(planner->solve(ob::timedPlannerTerminationCondition(10.)), ob::PlannerStatus::EXACT_SOLUTION);
+    solveForClearance(ctx);
+    ASSERT_TRUE(pdef->hasExactSolution());
     auto &chosen = *pdef->getSolutionPath()->as<og::PathGeometric>();
     ASSERT_GT(chosen.getStateCount(), 2u);
     for (std::size_t i = 1; i < chosen.getStateCount(); ++i)
