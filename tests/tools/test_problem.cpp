@@ -349,3 +349,34 @@ TEST_F(ProblemFiles, MimicJointsFollowTheirJointAndAreNeverPlanned)
         EXPECT_NE(what.find("mimic"), std::string::npos) << i << ": " << what;
     }
 }
+
+TEST_F(ProblemFiles, PlannersOmplCrashesWithAreRefusedWithTheReason)
+{
+    // FMT* with the clearance objective segfaults in OMPL 1.5.2's destructor; LBTRRT aborts on the turn-move-turn
+    // space. Both are refused when the planner is made, naming the file and the key; other pairs still work.
+    auto p = michi::tools::loadProblem(problem());
+    p.benchmark.objective = "clearance";
+    auto ctx = michi::tools::makePlanningContext(p);
+    const auto si = ctx.setup->getSpaceInformation();
+    for (const char *name : {"geometric::FMT", "geometric::BFMT"})
+        try
+        {
+            michi::tools::makePlanner(p, name, si);
+            ADD_FAILURE() << name << " with the clearance objective was accepted";
+        }
+        catch (const michi::tools::ProblemError &e)
+        {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(p.file), std::string::npos) << what;
+            EXPECT_NE(what.find("benchmark.objective"), std::string::npos) << what;
+        }
+    EXPECT_NE(michi::tools::makePlanner(p, "geometric::RRTstar", si), nullptr);
+    p.benchmark.objective = "length";
+    EXPECT_NE(michi::tools::makePlanner(p, "geometric::FMT", si), nullptr);
+    EXPECT_NE(michi::tools::makePlanner(p, "geometric::LBTRRT", si), nullptr);  // a joint space: fine
+
+    const auto corridor = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/se2_corridor.yaml");
+    auto se2 = michi::tools::makePlanningContext(corridor);
+    EXPECT_THROW(michi::tools::makePlanner(corridor, "geometric::LBTRRT", se2.setup->getSpaceInformation()),
+                 michi::tools::ProblemError);
+}

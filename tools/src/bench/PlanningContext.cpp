@@ -409,6 +409,28 @@ namespace michi
             }
         }
 
+        void refuseKnownCrashes(const Problem &problem, const std::string &name, const ob::SpaceInformation &si)
+        {
+            // Pairs with which Debian's OMPL 1.5.2 takes the process down, refused before any run starts.
+            // FMT* and BFMT* do dynamic programming over their sampled graph, for a path cost that adds up along the
+            // path; with MaximizeMinClearanceObjective they find no path, and FMT's destructor then frees one of
+            // its motions twice (valgrind: FMT::freeMemory; a segfault on planar_2link), BFMT ran 35-47 s past a
+            // 0.5 s limit on se2_corridor.
+            if (problem.benchmark.objective == "clearance" && (name == "geometric::FMT" || name == "geometric::BFMT"))
+                throw ProblemError(problem.file, "benchmark.objective",
+                                   name +
+                                       " cannot optimise clearance (OMPL 1.5.2's FMT* and BFMT* assume a path cost "
+                                       "that adds up along the path, and crash on this one): use the length "
+                                       "objective, or RRT*, BIT* or another optimizing planner for clearance");
+            // LBTRRT's lower-bound graph aborts on an assertion (DynamicSSSP::addEdge) with the turn-move-turn
+            // distance, on every bundled turn_move_turn problem
+            if (name == "geometric::LBTRRT" &&
+                dynamic_cast<const state_spaces::TurnMoveTurnStateSpace *>(si.getStateSpace().get()) != nullptr)
+                throw ProblemError(problem.file, "robot.motion",
+                                   "geometric::LBTRRT aborts on the turn_move_turn state space (an assertion in "
+                                   "OMPL 1.5.2's DynamicSSSP): use motion: free, or another planner");
+        }
+
         ob::PlannerPtr makePlanner(const Problem &problem, const std::string &name, const ob::SpaceInformationPtr &si,
                                    const std::map<std::string, std::string> &extra)
         {
@@ -420,6 +442,7 @@ namespace michi
             for (const auto &kv : extra)
                 spec.params[kv.first] = kv.second;
             ob::PlannerPtr planner = allocatePlanner(name, si);  // std::invalid_argument for an unknown name
+            refuseKnownCrashes(problem, name, *si);
             applyPlannerParams(*planner, spec, problem.file);
             // DualRoadmap's task level needs the arm's hand, which a planner made from si alone cannot know
             if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner))

@@ -86,10 +86,16 @@ namespace michi
             Values outside the parameter's declared range are rejected too. */
         void applyPlannerParams(ompl::base::Planner &planner, const PlannerSpec &spec, const std::string &file);
 
+        /** \brief Throws ProblemError (naming the key) for a planner that OMPL 1.5.2 crashes with on this problem:
+            geometric::FMT and geometric::BFMT with the clearance objective, geometric::LBTRRT on the
+            turn_move_turn state space. */
+        void refuseKnownCrashes(const Problem &problem, const std::string &name,
+                                const ompl::base::SpaceInformation &si);
+
         /** \brief The one way `plan`, `bench` and the method commands make a planner: the registry's allocator for
             \e name on \e si, then the parameters the problem's `planners:` entry of that name gives it, then
             \e extra (a command line's --set). Throws std::invalid_argument for an unknown name and ProblemError
-            for a bad parameter. */
+            for a bad parameter or a pair refuseKnownCrashes() names. */
         ompl::base::PlannerPtr makePlanner(const Problem &problem, const std::string &name,
                                            const ompl::base::SpaceInformationPtr &si,
                                            const std::map<std::string, std::string> &extra = {});
