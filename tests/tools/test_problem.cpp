@@ -146,6 +146,8 @@ TEST_F(ProblemFiles, ErrorsNameFileAndKey)
         {"robot: {urdf: arm.urdf}\nstart: [0, 0]\n", "goal"},
         {"robot: {urdf: arm.urdf, group: arm}\nstart: [0, 0]\ngoal: [1, 1]\n", "robot.group"},
         {"robot: {urdf: arm.urdf, groups: {arm: [j9]}}\nstart: [0, 0]\ngoal: [1, 1]\n", "robot.groups.arm[0]"},
+        {"robot: {urdf: arm.urdf, groups: {arm: [j1, j1]}, group: arm}\nstart: [0, 0]\ngoal: [1, 1]\n",
+         "robot.groups.arm[1]"},
         {"robot: {urdf: arm.urdf}\nscene: {obstacles: [{name: a}]}\nstart: [0, 0]\ngoal: [1, 1]\n",
          "scene.obstacles[0]"},
         {"robot: {urdf: arm.urdf}\nscene: {obstacles: [{box: [1, -1, 1]}]}\nstart: [0, 0]\ngoal: [1, 1]\n",

@@ -1,5 +1,6 @@
 #include "ProblemYaml.h"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -49,6 +50,11 @@ namespace michi
                         {
                             const std::string joint = r.text(kv.second[i], key + "[" + std::to_string(i) + "]");
                             checkJoint(joint, key + "[" + std::to_string(i) + "]");
+                            // a joint listed twice would be two variables of one joint: states whose two copies
+                            // disagree, written to paths under one name
+                            const auto &listed = problem.groups[g];
+                            if (std::find(listed.begin(), listed.end(), joint) != listed.end())
+                                r.fail(key + "[" + std::to_string(i) + "]", "joint '" + joint + "' is listed twice");
                             problem.groups[g].push_back(joint);
                         }
                     }
