@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 #include <sys/wait.h>
 
@@ -81,6 +82,20 @@ TEST(ReplanCli, BadInputIsRejectedAndWritesNothing)
     EXPECT_NE(run.exitCode, 0);
     EXPECT_NE(run.output.find("extras.replan.sense_periodd"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(out));
+
+    // values that would hang a run (a deformation point every nanometre) or leave the shapes' range
+    for (const auto &[line, key] : std::vector<std::pair<std::string, std::string>>{
+             {"    deformation_spacing: 1e-9\n", "extras.replan.deformation_spacing"},
+             {"    margin: 1e9\n", "extras.replan.margin"}})
+    {
+        std::string extreme = source;
+        const auto at = extreme.find("    margin:");
+        extreme.replace(at, extreme.find('\n', at) - at + 1, line);
+        run = runMichi("replan " + dir.write("extreme.yaml", extreme) + " --episodes 1 --out " + out);
+        EXPECT_NE(run.exitCode, 0) << line;
+        EXPECT_NE(run.output.find(key), std::string::npos) << run.output;
+        EXPECT_FALSE(fs::exists(out));
+    }
 
     run = runMichi("replan " + michi::test::sourcePath("problems/dynamic_mobile_passage.yaml") +
                    " --methods dual,nonsense --episodes 1 --out " + out);

@@ -137,6 +137,13 @@ namespace michi
                     fail(file, "extras.replan.frames", "expected a whole number of frames in 0..10000");
                 if (s.planningTime > 3600.)
                     fail(file, "extras.replan.planning_time", "expected at most 3600 seconds");
+                // bounded work and memory: a deformation puts a point every spacing along the path (1e-9 filled
+                // gigabytes and never finished)
+                if (s.deform.spacing < 1e-3)
+                    fail(file, "extras.replan.deformation_spacing", "expected at least 0.001 (the space's distance)");
+                // the movers are grown by the margin, and shapes stay within 1e6 m (Shape's limit)
+                if (s.margin > 1e3)
+                    fail(file, "extras.replan.margin", "expected at most 1000 m");
                 return s;
             }
 
