@@ -244,6 +244,18 @@ TEST_F(ProblemFiles, BadUrdfNamesTheUrdf)
     EXPECT_NE(what.find("bad.urdf"), std::string::npos) << what;
 }
 
+TEST_F(ProblemFiles, AJointThatCannotMoveInTheGroupNamesTheUrdf)
+{
+    std::string urdf = ARM_URDF;
+    urdf.replace(urdf.find("lower=\"-2\" upper=\"2\""), 20, "lower=\"1\" upper=\"1\"");
+    write("stuck.urdf", urdf);
+    const std::string what = error(write("s.yaml", "robot: {urdf: stuck.urdf}\nstart: [0, 1]\ngoal: [1, 1]\n"));
+    EXPECT_NE(what.find("s.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("robot.group"), std::string::npos) << what;
+    EXPECT_NE(what.find("stuck.urdf"), std::string::npos) << what;
+    EXPECT_NE(what.find("j2"), std::string::npos) << what;
+}
+
 TEST_F(ProblemFiles, CollidingStartNamesWhatCollides)
 {
     // j1 = pi/2 puts link l1 through the wall at (0, 0.7)? no: l1 reaches 0.5; the elbow link reaches 0.9

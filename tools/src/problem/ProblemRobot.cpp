@@ -99,6 +99,14 @@ namespace michi
                 // checkers' kinematics nor the motion validators' displacement bounds follow them.
                 for (int v : problem.groupVariables)
                 {
+                    // equal limits are valid URDF (a joint that cannot move) but leave the planning space no interval
+                    const auto &limited = model.variableJoint(static_cast<std::size_t>(v));
+                    if (limited.type != validity::RobotJoint::Type::CONTINUOUS && !(limited.lower < limited.upper))
+                        r.fail("robot.group",
+                               "group '" + problem.group + "' plans joint '" + limited.name + "', whose limits in " +
+                                   urdf + " leave it no motion (lower = upper = " + std::to_string(limited.lower) +
+                                   "): give it a value in robot.fixed_joints or leave it out of the "
+                                   "group");
                     const validity::RobotJoint *mimic = model.mimicTiedTo(static_cast<std::size_t>(v));
                     if (mimic == nullptr)
                         continue;
