@@ -163,4 +163,8 @@ TEST_F(RosMaps, BadMapFilesNameTheFileAndKey)
     EXPECT_NE(what.find("scene.map"), std::string::npos) << what;
     what = error(problem(good, "{ros: none.yaml}"));
     EXPECT_NE(what.find("scene.map.ros"), std::string::npos) << what;
+    // a wall height of 0 is the problem file's key, not the map's
+    what = error(problem(good, "{ros: m.yaml, height: 0}"));
+    EXPECT_NE(what.find("scene.map.height"), std::string::npos) << what;
+    EXPECT_NE(what.find("p.yaml"), std::string::npos) << what;
 }

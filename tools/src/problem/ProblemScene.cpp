@@ -302,6 +302,8 @@ namespace michi
                     if (static_cast<bool>(map["pgm"]) == static_cast<bool>(map["ros"]))
                         r.fail(key, "expected exactly one of pgm (an image) and ros (a ROS map_server YAML file)");
                     const double height = r.number(map, "height", key, 1.);
+                    if (!(height > 0.))
+                        r.fail(key + ".height", "expected a positive number (metres)");
                     if (map["ros"])
                     {
                         // the map file gives the image, resolution, origin and thresholds
