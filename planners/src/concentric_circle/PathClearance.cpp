@@ -174,7 +174,7 @@ namespace michi
             if (states.size() != 2)
                 return 0;
             // 0.05 of the extent: on 30 held-out random scenes (michi random-scenes --seed 201) the direct links'
-            // clearance averaged along them rose by 2-96 % (docs/concentric-circle.md); 0.25 left most links
+            // clearance averaged along them rose by 1-96 % (docs/concentric-circle.md); 0.25 left most links
             // whole, 0.025 gained no more than 0.05
             const double step = piece * si->getMaximumExtent();
             const double length = si->distance(states[0], states[1]);

@@ -86,22 +86,23 @@ namespace michi
             return boxes;
         }
 
+        double HeadingLattice::fclReach() const
+        {
+            // no point of the robot moves farther than pi R in a turn by pi (the robot's displacement bound)
+            const auto *fcl = dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get());
+            if (fcl == nullptr || !fcl->bodies())
+                return 0.;
+            const double from[3] = {0., 0., 0.}, to[3] = {0., 0., PI};
+            return fcl->bodies()->displacementBound(from, to) / PI;
+        }
+
         double HeadingLattice::automaticCellSize() const
         {
             // The map's cell and the robot's reach, from whichever of michi's checkers the space information has.
-            double mapCell = 0., reach = 0.;
+            double mapCell = 0., reach = fclReach();
             const auto *checker = si_->getStateValidityChecker().get();
             if (const auto *fcl = dynamic_cast<const validity::FclValidityChecker *>(checker))
-            {
-                if (fcl->scene())
-                    mapCell = fcl->scene()->gridCellSize();
-                if (fcl->bodies())
-                {
-                    // no point of the robot moves farther than pi R in a turn by pi
-                    const double from[3] = {0., 0., 0.}, to[3] = {0., 0., PI};
-                    reach = fcl->bodies()->displacementBound(from, to) / PI;
-                }
-            }
+                mapCell = fcl->scene() ? fcl->scene()->gridCellSize() : 0.;
             else if (const auto *grid = dynamic_cast<const validity::GridValidityChecker *>(checker))
             {
                 if (grid->scene())
@@ -162,16 +163,11 @@ namespace michi
                 turnCost_ = si_->distance(scratch_, other);
                 si_->freeState(other);
             }
-            // how far the footprint reaches from the robot's origin: a turn by pi moves no point farther than
-            // pi times that (the robot's displacement bound); without one, any change resets everything
-            reach_ = std::hypot(b.high[0] - b.low[0], b.high[1] - b.low[1]);
-            if (const auto *fcl =
-                    dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get()))
-                if (fcl->bodies())
-                {
-                    const double from[3] = {0., 0., 0.}, to[3] = {0., 0., PI};
-                    reach_ = fcl->bodies()->displacementBound(from, to) / PI;
-                }
+            // how far the footprint reaches from the robot's origin; without FCL's bodies, any change resets
+            // everything
+            reach_ = fclReach();
+            if (!(reach_ > 0.))
+                reach_ = std::hypot(b.high[0] - b.low[0], b.high[1] - b.low[1]);
             // the straight-line heuristic is a lower bound as long as a turn edge (which shifts the position by
             // up to a cell between the headings' lattice points) costs at least the shift
             // (the same for the same cell size, headings and window: kept across clear(), which OMPL's Benchmark

@@ -279,6 +279,8 @@ namespace michi
                 return queries_[v - nodeCount_];
             }
 
+            /** \brief The robot's reach (circumradius about its origin) from the FCL checker's bodies; 0 without. */
+            double fclReach() const;
             /** \brief Automatic spacing for this space information's checker and scene (setCellSize(0)). */
             double automaticCellSize() const;
 
