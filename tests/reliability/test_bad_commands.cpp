@@ -281,3 +281,46 @@ TEST_F(BadCommands, InputsThatWereAcceptedAsIfTheyMeantSomething)
         "path-seed-library " + (dir_ / "p/planar_2link.yaml").string() + " --out " + (dir_ / "lib.seeds").string(),
         "no training queries", dir_ / "lib.seeds");
 }
+
+TEST_F(BadCommands, SettingsThatHungOrBlamedTheWrongKey)
+{
+    // Found by the bad-input sweep of 2026-12-07 (docs/reliability.md). One motion check cannot be interrupted, so
+    // a setting that made it test billions of states hung `michi plan` far past --time.
+    const fs::path corridor = dir_ / "p/se2_corridor.yaml";
+    const std::string corridorText = slurp(corridor);
+    spit(corridor, std::regex_replace(corridorText, std::regex("\nrobot:\n"),
+                                      "\ncollision: {motion_validator: discrete, valid_segment_fraction: 1.0e-12}\n"
+                                      "robot:\n"));
+    expectCleanError("plan " + corridor.string() + PLAN + (dir_ / "o").string(), "collision.valid_segment_fraction",
+                     dir_ / "o");
+    spit(corridor, std::regex_replace(corridorText, std::regex("motion: turn_move_turn"),
+                                      "motion: {model: turn_move_turn, turn_weight: 1.0e12}"));
+    expectCleanError("plan " + corridor.string() + PLAN + (dir_ / "o").string(), "robot.motion.turn_weight",
+                     dir_ / "o");
+    spit(corridor, corridorText);
+    // an unknown planner on the command line is a usage error (exit 2), named by its flag, not the problem's key
+    const CommandRun run =
+        runMichi("bench " + corridor.string() + " --planners geometric::Foo --runs 1 --out " + (dir_ / "o").string());
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_NE(lastLine(run.output).find("--planners: unknown planner 'geometric::Foo'"), std::string::npos)
+        << run.output;
+    EXPECT_FALSE(fs::exists(dir_ / "o"));
+    // the dual-arm planner is checked when the file is read (it was found unknown after the work-space maps)
+    const fs::path dualArm = dir_ / "p/dual_arm.yaml";
+    spit(dualArm,
+         std::regex_replace(slurp(dualArm), std::regex("planner: geometric::RRTstar"), "planner: geometric::Foo"));
+    expectCleanError("dualarm " + dualArm.string() + " --out " + (dir_ / "o").string(), "dual_arm.planning.planner",
+                     dir_ / "o");
+    // DualRoadmap's settings under extras.replan are named there, not under planners
+    const fs::path passage = dir_ / "p/dynamic_mobile_passage.yaml";
+    spit(passage, std::regex_replace(slurp(passage), std::regex("dual_roadmap_params: \\{edge_probes"),
+                                     "dual_roadmap_params: {edge_probs"));
+    expectCleanError("replan " + passage.string() + " --episodes 1 --methods dual --out " + (dir_ / "o").string(),
+                     "extras.replan.dual_roadmap_params.edge_probs", dir_ / "o");
+    // a tiny lattice angle step is blamed on itself, not on cell_size
+    expectCleanError("lattice " + corridor.string() + " --angle-steps 1e-9 --out " + (dir_ / "o").string(),
+                     "raise angle_step", dir_ / "o");
+    // nor are the first setting's pictures left behind when a later one fails
+    expectCleanError("lattice " + corridor.string() + " --cell-sizes 0.25,1e-7 --out " + (dir_ / "o").string(),
+                     "raise cell_size", dir_ / "o");
+}

@@ -249,9 +249,11 @@ TEST(BadInputs, ConservativeMotionsEndWhenGeometryIsFarFromItsJoint)
 
 TEST(BadInputs, MeshScaleAndMapThresholdThatWouldEmptyTheGeometryAreRejected)
 {
-    // a zero scale flattens a mesh into a plane or a point; a negative one mirrors it and stays allowed
+    // a zero scale flattens a mesh into a plane or a point (and 1e-300 as good as: FCL's queries on such numbers ran
+    // for seconds); a negative one mirrors it and stays allowed, as do files in micrometres
     const std::string stl = test::sourcePath("problems/meshes/ring.stl");
-    for (const Eigen::Vector3d &scale : {Eigen::Vector3d(0., 1., 1.), Eigen::Vector3d(1., 1., std::nan(""))})
+    for (const Eigen::Vector3d &scale :
+         {Eigen::Vector3d(0., 1., 1.), Eigen::Vector3d(1., 1., std::nan("")), Eigen::Vector3d(1e-300, 1e-300, 1e-300)})
     {
         const std::string message = errorOf(
             [&]
@@ -261,6 +263,7 @@ TEST(BadInputs, MeshScaleAndMapThresholdThatWouldEmptyTheGeometryAreRejected)
         EXPECT_NE(message.find("mesh scale"), std::string::npos) << scale.transpose() << ": " << message;
     }
     EXPECT_NO_THROW(validity::Shape::meshFromFile(stl, Eigen::Vector3d(-1., 1., 1.)));
+    EXPECT_NO_THROW(validity::Shape::meshFromFile(stl, Eigen::Vector3d(1e-6, 1e-6, 1e-6)));
     // a threshold of 0 marks no pixel occupied, above 1 every one
     const std::string pgm = test::sourcePath("problems/maps/se2_corridor.pgm");
     for (double threshold : {0., -1., 1.5})

@@ -394,3 +394,31 @@ TEST_F(ProblemFiles, PlannersOmplCrashesWithAreRefusedWithTheReason)
     EXPECT_THROW(michi::tools::makePlanner(corridor, "geometric::LBTRRT", se2.setup->getSpaceInformation()),
                  michi::tools::ProblemError);
 }
+
+TEST_F(ProblemFiles, MotionChecksThatWouldNeverEndAreRefusedNamingTheKey)
+{
+    // A motion check cannot be interrupted (planners read their termination condition between checks): settings under
+    // which one motion tests billions of states hung `michi plan` past its time limit. Each is refused, naming the key.
+    const auto refusedUnder = [&](const std::string &file, const std::string &key)
+    {
+        const std::string what = error(file);
+        EXPECT_NE(what.find(key), std::string::npos) << what;
+        EXPECT_NE(what.find("states"), std::string::npos) << what;
+    };
+    refusedUnder(problem("collision: {motion_validator: discrete, valid_segment_fraction: 1.0e-9}\n"),
+                 "collision.valid_segment_fraction");
+    const std::string se2 = "robot:\n  type: se2\n  footprint: [[-0.2, -0.1], [0.2, -0.1], [0.2, 0.1], [-0.2, 0.1]]\n";
+    refusedUnder(write("far.yaml", se2 + "  bounds: {x: [-1.0e6, 1.0e6], y: [-1.0e6, 1.0e6]}\n"
+                                         "start: [0, 0, 0]\ngoal: [1, 1, 0]\ncollision: {max_step: 0.0001}\n"),
+                 "collision.max_step");
+    refusedUnder(write("turn.yaml", se2 + "  bounds: {x: [0, 10], y: [0, 10]}\n"
+                                          "  motion: {model: turn_move_turn, turn_weight: 1.0e12}\n"
+                                          "start: [1, 1, 0]\ngoal: [2, 2, 0]\n"),
+                 "robot.motion.turn_weight");
+    // fine settings still load: the arm at the smallest max_step (0.1 mm) is about 60,000 states for its widest motion
+    EXPECT_NO_THROW(
+        michi::tools::makePlanningContext(michi::tools::loadProblem(problem("collision: {max_step: 0.0001}\n"))));
+    EXPECT_NO_THROW(michi::tools::makePlanningContext(michi::tools::loadProblem(write(
+        "tmt.yaml", se2 + "  bounds: {x: [0, 10], y: [0, 10]}\n  motion: {model: turn_move_turn, turn_weight: 5}\n"
+                          "start: [1, 1, 0]\ngoal: [2, 2, 0]\n"))));
+}

@@ -235,6 +235,40 @@ TEST(ConservativeMotionValidator, SettingsKeepThinObstaclesCaught)
     EXPECT_TRUE(validator.checkMotion(state(setup.si, {1.95}).get(), state(setup.si, {1.15}).get()));
 }
 
+TEST(ConservativeMotionValidator, WorkPerMotionIsBoundedForRobotsWithManyBodies)
+{
+    // A 200-link chain of 0.3 mm spheres 1 mm apart: about 20,000 self pairs, each a distance query at every step of
+    // the walk, and a curling motion whose walk needs about a thousand steps. Before the budget a 1,000-link chain
+    // took minutes per motion (the bad-input sweep of docs/reliability.md); now the walk stops after its share of
+    // the query budget and reports the motion invalid (conservative, never a motion passed unchecked).
+    const int links = 200;
+    std::string urdf = "<robot name=\"chain\"><link name=\"l0\"/>";
+    for (int i = 1; i <= links; ++i)
+        urdf += "<link name=\"l" + std::to_string(i) +
+                "\"><collision><geometry><sphere radius=\"0.0003\"/></geometry></collision></link>"
+                "<joint name=\"j" +
+                std::to_string(i) + "\" type=\"revolute\"><parent link=\"l" + std::to_string(i - 1) +
+                "\"/><child link=\"l" + std::to_string(i) +
+                "\"/><origin xyz=\"0.001 0 0\"/><axis xyz=\"0 0 1\"/>"
+                "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>";
+    urdf += "</robot>";
+    const auto setup = test::robotSetup(validity::RobotModel::fromUrdfString(urdf, "<chain urdf>", "."),
+                                        std::make_shared<validity::Scene>());
+    const std::vector<double> straight(links, 0.), curled(links, 0.03);  // 6 rad of curl: the ends stay apart
+    const auto s1 = state(setup.si, straight), s2 = state(setup.si, curled);
+    ASSERT_TRUE(setup.si->isValid(s1.get()));
+    ASSERT_TRUE(setup.si->isValid(s2.get()));
+    ConservativeMotionValidator validator(setup.si, setup.checker);
+    const std::uint64_t before = setup.checker->queryCount();
+    EXPECT_FALSE(validator.checkMotion(s1.get(), s2.get()));
+    // one collision query per step; every step also queries each moving body and self pair
+    const double perStep = static_cast<double>(setup.bodies->selfCheckPairs().size() + setup.bodies->bodies().size());
+    EXPECT_LE(static_cast<double>(setup.checker->queryCount() - before), 5e6 / perStep + 2.);
+    // a short motion of the same chain still walks to its end and passes
+    const std::vector<double> bent(links, 0.0002);
+    EXPECT_TRUE(validator.checkMotion(s1.get(), state(setup.si, bent).get()));
+}
+
 TEST(WorkspaceMotionValidator, ChecksEveryMaxStepOfDisplacement)
 {
     // on random motions of a 3-link arm, no point of a link's cylinder axis moves more than max_step between two

@@ -117,6 +117,16 @@ namespace michi
                     options.queries = args.queries;
                     options.outDir = args.out;
                     options.planners = splitComma("--planners", args.planners);
+                    // A name on the command line is the user's flag, not the problem file's: a usage error (exit 2)
+                    // before anything is loaded into a benchmark.
+                    for (const auto &name : options.planners)
+                        if (!isTestPlanner(name) && plannerAllocators().count(name) == 0)
+                        {
+                            std::string known;
+                            for (const auto &n : plannerNames())
+                                known += " " + n;
+                            throw UsageError("--planners: unknown planner '" + name + "' (known:" + known + ")");
+                        }
                     options.runs = args.runs.value_or(0);        // 0: the problem's benchmark.runs
                     options.timeLimit = args.time.value_or(0.);  // 0: the problem's benchmark.time_limit
                     options.query = args.query.value_or(0);

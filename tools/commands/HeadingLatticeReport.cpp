@@ -298,7 +298,10 @@ namespace michi
             for (double c : options.cellSizes)
                 if (!(c > 0.))
                     throw std::invalid_argument("--cell-sizes: " + num(c) + " is not positive");
-            boost::filesystem::create_directories(options.outDir);
+            // staged output: nothing in DIR unless every setting ran (a later setting that fails left the first
+            // one's pictures behind)
+            StagedDirectory stage(options.outDir);
+            const std::string outDir = stage.path("").string();
             std::vector<Row> rows;
             bool drawn = !options.pictures;
             bool paged = !options.html;  // the replay page shows the first solved configuration's path
@@ -350,14 +353,13 @@ namespace michi
                         path = pathValues(*solution->as<ompl::geometric::PathGeometric>());
                         if (!drawn)
                         {
-                            writePictures(problem, *planner, path, options.outDir, cell);
+                            writePictures(problem, *planner, path, outDir, cell);
                             drawn = true;
                         }
                         if (!paged)
                         {
-                            writeReplayPage(
-                                problem, {PlotPath{"michi::HeadingLattice", path}},
-                                (boost::filesystem::path(options.outDir) / (problem.name + ".html")).string());
+                            writeReplayPage(problem, {PlotPath{"michi::HeadingLattice", path}},
+                                            stage.path(problem.name + ".html").string());
                             paged = true;
                         }
                     }
@@ -405,7 +407,8 @@ namespace michi
                    << (r.reused ? "" : " (rebuilt)") << " | " << r.checks2 << " | " << (r.solved ? "yes" : "no")
                    << " / " << (r.solved2 ? "yes" : "no") << " | "
                    << (r.solved ? num(r.length, "%.3f") : std::string("-")) << " |\n";
-            writeAtomically(md.str(), (boost::filesystem::path(options.outDir) / "lattice.md").string());
+            writeAtomically(md.str(), stage.path("lattice.md").string());
+            stage.commit();
             return md.str();
         }
     }  // namespace tools

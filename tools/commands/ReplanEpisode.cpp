@@ -70,11 +70,17 @@ namespace michi
                     staticScene->add(o);
                 staticCtx_ = context(staticScene);
                 planner_ = allocatePlanner(method.planner, planCtx_.setup->getSpaceInformation());
-                std::map<std::string, std::string> params = method.params;
+                applyPlannerParams(*planner_, PlannerSpec{method.planner, method.params, {}}, problem.file);
+                // the method's own settings win over extras.replan.dual_roadmap_params (named as such in errors)
                 if (method.reuse == Method::Reuse::DUAL)
+                {
+                    std::map<std::string, std::string> extra;
                     for (const auto &kv : settings.dualParams)
-                        params.insert(kv);
-                applyPlannerParams(*planner_, PlannerSpec{method.planner, params, {}}, problem.file);
+                        if (method.params.count(kv.first) == 0)
+                            extra.insert(kv);
+                    applyPlannerParams(*planner_, PlannerSpec{method.planner, extra, {}}, problem.file,
+                                       "extras.replan.dual_roadmap_params");
+                }
                 if (auto dual = std::dynamic_pointer_cast<planners::DualRoadmap>(planner_))
                 {
                     auto scene = planSensed_.scene;

@@ -13,6 +13,7 @@
 #include <ompl/util/Time.h>
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
 #include <limits>
 #include <array>
@@ -129,17 +130,28 @@ namespace michi
             const auto &b = se2->getBounds();
             const auto *tmt = dynamic_cast<const state_spaces::TurnMoveTurnStateSpace *>(se2);
             reversible_ = tmt == nullptr || tmt->getAllowBackward();
-            headings_ = std::max(4u, static_cast<unsigned int>(std::lround(2. * PI / angleStep_)));
             x0_ = b.low[0];
             y0_ = b.low[1];
             if (cellSizeSetting_ <= 0.)
                 cellSize_ = automaticCellSize();
             const double c = cellSize_;
-            columns_ = static_cast<unsigned int>(std::floor((b.high[0] - x0_) / c + 1e-9)) + 1;
-            rows_ = static_cast<unsigned int>(std::floor((b.high[1] - y0_) / c + 1e-9)) + 1;
-            const double ids = static_cast<double>(columns_) * rows_ * headings_;
-            if (ids >= 2e9)
-                throw ompl::Exception(getName(), "the lattice would have more than 2e9 nodes: raise cell_size");
+            // counted in doubles first: a tiny cell_size or angle_step would overflow the integer counts
+            const double headings = std::max(4., std::round(2. * PI / angleStep_));
+            const double columns = std::floor((b.high[0] - x0_) / c + 1e-9) + 1.;
+            const double rows = std::floor((b.high[1] - y0_) / c + 1e-9) + 1.;
+            const double ids = columns * rows * headings;
+            if (!(ids < 2e9))
+            {
+                std::ostringstream what;
+                what << "the lattice would have " << columns << " x " << rows << " cells x " << headings
+                     << " headings, over 2e9 nodes: raise "
+                     << (headings > columns * rows ? "angle_step (now " : "cell_size (now ")
+                     << (headings > columns * rows ? angleStep_ : c) << ")";
+                throw ompl::Exception(getName(), what.str());
+            }
+            headings_ = static_cast<unsigned int>(headings);
+            columns_ = static_cast<unsigned int>(columns);
+            rows_ = static_cast<unsigned int>(rows);
             groupCount_ = columns_ * rows_;
             nodeCount_ = groupCount_ * headings_;
             const unsigned int K = headings_;

@@ -87,6 +87,97 @@ namespace michi
                 if (!collision.empty())
                     throw ProblemError(problem.file, key, "in collision: " + collision);
             }
+
+            /** Most states one motion check may test. OMPL's planners read their termination condition between motion
+                checks, never inside one, so settings that make a single check test billions of states (a
+                max_step of 0.1 mm over kilometres of bounds, a valid_segment_fraction of 1e-12, a turn weight of
+                1e12 m/rad, which stretches every turn's share of the motion) hung `michi plan` past any time limit.
+                A million states is about 1-10 s of FCL checks for one motion; the bundled problems need at most a few
+                thousand. */
+            constexpr double MAX_STATES_PER_MOTION = 1e6;
+
+            std::string shortNumber(double value)
+            {
+                std::ostringstream out;
+                out << std::setprecision(3) << value;
+                return out.str();
+            }
+
+            /** Refuses motion-check settings under which one motion across the space would test more than
+                MAX_STATES_PER_MOTION states, naming the key to change. */
+            void refuseEndlessMotionChecks(const Problem &problem, const PlanningContext &ctx,
+                                           const std::string &motionValidator)
+            {
+                if (problem.validSegmentFraction > 0. && 1. / problem.validSegmentFraction > MAX_STATES_PER_MOTION)
+                    // OMPL splits a motion into distance / (fraction x extent) segments: up to 1 / fraction of them
+                    // (the discrete validator, and PathGeometric::interpolate() for every validator)
+                    throw ProblemError(problem.file, "collision.valid_segment_fraction",
+                                       shortNumber(problem.validSegmentFraction) +
+                                           " splits a motion across the space "
+                                           "into up to " +
+                                           shortNumber(1. / problem.validSegmentFraction) +
+                                           " states to check; at least " + shortNumber(1. / MAX_STATES_PER_MOTION) +
+                                           " (a million states) is allowed");
+                if (motionValidator != "workspace")
+                    return;  // the conservative validator bounds its own walk; the discrete one is covered above
+                // The widest motions: corner to corner of the bounds (SE(2), turning as well) or every joint from
+                // its lower to its upper limit (a continuous joint half a turn), and, for an SE(2) robot, a half turn
+                // on the spot (the turn-move-turn model's turn weight decides what that costs).
+                std::vector<std::pair<std::vector<double>, std::vector<double>>> motions;
+                const double halfTurn = M_PI - 1e-6;
+                if (problem.kind == Problem::Kind::SE2)
+                {
+                    const auto &b = problem.se2Bounds;
+                    motions.push_back({{b[0], b[2], 0.}, {b[1], b[3], halfTurn}});
+                    motions.push_back({{b[0], b[3], 0.}, {b[1], b[2], -halfTurn}});
+                    const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
+                    motions.push_back({{cx, cy, 0.}, {cx, cy, halfTurn}});
+                }
+                else
+                {
+                    std::vector<double> from, to;
+                    for (int v : problem.groupVariables)
+                    {
+                        const auto &j = problem.model->variableJoint(v);
+                        const bool continuous = j.type == validity::RobotJoint::Type::CONTINUOUS;
+                        from.push_back(continuous ? 0. : j.lower);
+                        to.push_back(continuous ? halfTurn : j.upper);
+                    }
+                    motions.push_back({from, to});
+                }
+                double widest = 0., turn = 0.;
+                std::vector<double> bounds;
+                for (std::size_t i = 0; i < motions.size(); ++i)
+                {
+                    ctx.bodies->bodyDisplacementBounds(motions[i].first.data(), motions[i].second.data(), bounds);
+                    for (double d : bounds)
+                    {
+                        widest = std::isnan(d) ? d : std::max(widest, d);
+                        if (problem.kind == Problem::Kind::SE2 && i == 2)
+                            turn = std::max(turn, d);
+                    }
+                }
+                const double states = widest / problem.maxStep;
+                if (!(states <= MAX_STATES_PER_MOTION))
+                {
+                    // the turn weight is to blame when a turn on the spot alone is too much
+                    const bool turnWeight =
+                        problem.se2Motion.turnWeight > 0. && !(turn / problem.maxStep <= MAX_STATES_PER_MOTION);
+                    if (turnWeight)
+                        widest = turn;
+                    throw ProblemError(
+                        problem.file, turnWeight ? "robot.motion.turn_weight" : "collision.max_step",
+                        "one motion would test up to " + shortNumber(states) + " states: the widest motion " +
+                            (turnWeight
+                                 ? "(a half turn, which the turn weight " + shortNumber(problem.se2Motion.turnWeight) +
+                                       " m/rad counts as " + shortNumber(widest) + " m of motion)"
+                                 : "moves the robot up to " + shortNumber(widest) + " m" +
+                                       (problem.kind == Problem::Kind::SE2 ? " (robot.bounds)" : "")) +
+                            " checked every " + shortNumber(problem.maxStep) + " m (collision.max_step); at most " +
+                            shortNumber(MAX_STATES_PER_MOTION) + " are allowed: " +
+                            (turnWeight ? "lower the turn weight" : "raise collision.max_step or narrow the bounds"));
+                }
+            }
         }  // namespace
 
         const std::vector<std::string> &checkerNames()
@@ -258,6 +349,7 @@ namespace michi
             if (problem.validSegmentFraction > 0.)
                 si->setStateValidityCheckingResolution(problem.validSegmentFraction);
             si->setup();  // the space's value locations (copyFromReals) exist only after setup
+            refuseEndlessMotionChecks(problem, ctx, motionValidator);
             // Kept before installChecker() replaces it: the J-map validator hands what the map cannot decide to this
             // FCL-based one.
             ctx.referenceMotions = si->getMotionValidator();
@@ -330,10 +422,14 @@ namespace michi
             return "";
         }
 
-        void applyPlannerParams(ob::Planner &planner, const PlannerSpec &spec, const std::string &file)
+        void applyPlannerParams(ob::Planner &planner, const PlannerSpec &spec, const std::string &file,
+                                const std::string &keyPrefix)
         {
             for (const auto &kv : spec.params)
             {
+                // where the file sets it: under the planner's entry, or under the key the caller names
+                const std::string where =
+                    (keyPrefix.empty() ? "planners." + spec.name + ".params" : keyPrefix) + "." + kv.first;
                 auto &params = planner.params();
                 if (!params.hasParam(kv.first))
                 {
@@ -342,16 +438,15 @@ namespace michi
                     std::ostringstream known;
                     for (std::size_t i = 0; i < names.size(); ++i)
                         known << (i ? ", " : "") << names[i];
-                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                    throw ProblemError(file, where,
                                        "unknown parameter of " + planner.getName() + " (known: " + known.str() + ")");
                 }
                 const std::string range = params[kv.first].getRangeSuggestion();
                 const std::string problem = outsideDeclaredRange(kv.second, range);
                 if (!problem.empty())
-                    throw ProblemError(file, "planners." + spec.name + ".params." + kv.first,
+                    throw ProblemError(file, where,
                                        "value '" + kv.second + "' " + problem + " of " + planner.getName() +
                                            " (declared range " + range + ")");
-                const std::string where = "planners." + spec.name + ".params." + kv.first;
                 // The value as the parameter's type reads it: OMPL converts with a lexical cast that truncates 8.5
                 // for an integer and takes 2 or -1 for a flag, and that cannot read the forms michi's numbers allow
                 // (pi/4, 1e3 for an integer); a number is handed over in plain decimal.

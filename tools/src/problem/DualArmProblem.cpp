@@ -1,5 +1,6 @@
 #include <michi/tools/problem/DualArmProblem.h>
 #include "ProblemYaml.h"
+#include <michi/tools/bench/PlannerRegistry.h>
 
 #include <yaml-cpp/yaml.h>
 
@@ -166,7 +167,13 @@ namespace michi
                 if (p["weight"])
                     spec.weight = r.positive(p["weight"], "dual_arm.planning.weight");
                 if (p["planner"])
+                {
                     spec.planner = r.text(p["planner"], "dual_arm.planning.planner");
+                    // here, not after the work-space maps are computed
+                    if (plannerAllocators().count(spec.planner) == 0)
+                        r.fail("dual_arm.planning.planner",
+                               "unknown planner '" + spec.planner + "' (see michi list-planners)");
+                }
                 if (p["time"])
                     spec.planningTime = r.positive(p["time"], "dual_arm.planning.time");
             }

@@ -35,6 +35,12 @@ namespace michi
                 wantPairs[k] = bounds[pairs[k].first] + bounds[pairs[k].second] > 0.;
 
             const double maxBound = bounds.empty() ? 0. : *std::max_element(bounds.begin(), bounds.end());
+            // Each step costs a distance query per moving body and per moving self pair: the step budget shrinks
+            // with that count, so the work of one motion stays bounded whatever the robot (a 1,000-link chain has
+            // half a million self pairs, and its motions took minutes each).
+            const double perStep = std::max<double>(1., std::count(wantBodies.begin(), wantBodies.end(), 1) +
+                                                            std::count(wantPairs.begin(), wantPairs.end(), 1));
+            const int maxSteps = static_cast<int>(std::min<double>(MAX_WALK_STEPS, MAX_WALK_QUERIES / perStep));
             ompl::base::State *state = si_->allocState();
             std::vector<double> obstacle, self;
             double t = 0., lastGood = 0.;
@@ -78,13 +84,14 @@ namespace michi
                 // bounded work: a step that no longer moves t (geometry far from its joint makes the bounds huge)
                 // or a motion that needs more than MAX_WALK_STEPS checks is reported invalid. That is conservative
                 // (a planner then avoids the motion), never a hang and never a motion passed unchecked.
-                if (!(t + step > t) || ++steps > MAX_WALK_STEPS)
+                if (!(t + step > t) || ++steps > maxSteps)
                 {
                     if (!warnedLongWalk_.exchange(true))
                         OMPL_WARN(
                             "ConservativeMotionValidator: a motion needs more than %d clearance steps (a body "
-                            "moves %g m per unit of motion); such motions are reported invalid",
-                            MAX_WALK_STEPS, maxBound);
+                            "moves %g m per unit of motion; %g distance queries per step); such motions are reported "
+                            "invalid",
+                            maxSteps, maxBound, perStep);
                     valid = false;
                     break;
                 }

@@ -35,7 +35,9 @@ namespace michi
             const double largest = bounds.empty() ? 0. : *std::max_element(bounds.begin(), bounds.end());
             // n equal steps of the motion: no point of any body moves more than maxStep_ between two consecutive
             // checks.
-            return std::max(1u, static_cast<unsigned int>(std::ceil(largest / maxStep_)));
+            // (clamped to what an unsigned int holds: beyond that the cast is undefined; michi's problem files refuse
+            // settings that come anywhere near it)
+            return std::max(1u, static_cast<unsigned int>(std::min(std::ceil(largest / maxStep_), 4e9)));
         }
 
         bool WorkspaceMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const

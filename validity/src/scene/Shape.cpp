@@ -448,14 +448,26 @@ namespace michi
             }
         }  // namespace
 
+        namespace
+        {
+            /** Smallest mesh scale factor accepted (metres per file unit): files in micrometres still load. */
+            constexpr double MIN_MESH_SCALE = 1e-9;
+        }  // namespace
+
         std::shared_ptr<const Shape> Shape::meshFromFile(const std::string &path, const Eigen::Vector3d &scale)
         {
             // A zero scale flattens the mesh into a plane or a point, which collides with nearly nothing: the link or
             // obstacle would silently drop out of checking. A negative one mirrors the mesh (some URDFs do that).
+            // A scale below a nanometre per unit shrinks it as good as to a point too, and FCL's distance queries on
+            // such coordinates (denormal numbers at 1e-300) ran for seconds per call.
             for (int i = 0; i < 3; ++i)
-                if (!std::isfinite(scale[i]) || scale[i] == 0.)
-                    throw std::invalid_argument(path + ": mesh scale " + std::to_string(scale[i]) + " (axis " +
-                                                std::string(1, "xyz"[i]) + ") must be finite and non-zero");
+                if (!std::isfinite(scale[i]) || !(std::abs(scale[i]) >= MIN_MESH_SCALE))
+                {
+                    std::ostringstream what;
+                    what << path << ": mesh scale " << scale[i] << " (axis "
+                         << "xyz"[i] << ") must be finite and at least " << MIN_MESH_SCALE << " in size";
+                    throw std::invalid_argument(what.str());
+                }
             requireInputFile(path);  // a directory or device would give assimp's own confusing message
             // The key holds the file's contents (a hash of them) rather than its modification time, whose clock
             // ticks too coarsely to tell apart two writes in a row; reading the bytes costs little beside parsing

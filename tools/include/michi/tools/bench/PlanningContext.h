@@ -83,8 +83,10 @@ namespace michi
 
         /** \brief Set planner parameters by name; throws ProblemError naming the parameter and the planner's
             known parameters when one is unknown or rejects the value.
-            Values outside the parameter's declared range are rejected too. */
-        void applyPlannerParams(ompl::base::Planner &planner, const PlannerSpec &spec, const std::string &file);
+            Values outside the parameter's declared range are rejected too. Errors name the key
+            planners.NAME.params.PARAM, or \e keyPrefix.PARAM when the parameters come from elsewhere in the file. */
+        void applyPlannerParams(ompl::base::Planner &planner, const PlannerSpec &spec, const std::string &file,
+                                const std::string &keyPrefix = "");
 
         /** \brief Throws ProblemError (naming the key) for a planner that OMPL 1.5.2 crashes with on this problem:
             geometric::FMT and geometric::BFMT with the clearance objective, geometric::LBTRRT on the

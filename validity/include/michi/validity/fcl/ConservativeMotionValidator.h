@@ -41,6 +41,9 @@ namespace michi
             bool walk(const ompl::base::State *s1, const ompl::base::State *s2, double *lastValidTime) const;
             /** Most clearance steps one motion may take; a motion that needs more is reported invalid. */
             static constexpr int MAX_WALK_STEPS = 100000;
+            /** Most distance queries (bodies and self pairs, summed over the steps) one motion may take: bounds the
+                walk of robots with very many bodies, whose every step is expensive. */
+            static constexpr double MAX_WALK_QUERIES = 5e6;
             FclValidityCheckerPtr checker_;
             double minClearanceStep_{1e-3};
             mutable std::atomic<bool> warnedLongWalk_{false};
