@@ -172,6 +172,14 @@ TEST_F(Campaign, BadCampaignFileNamesFileAndKeyAndWritesNothing)
     EXPECT_NE(run.output.find(jmap.string() + ": checkers[1]: checker 'jmap' cannot check"), std::string::npos)
         << run.output;
     EXPECT_FALSE(fs::exists(out / "units"));
+
+    // a tab in a label: `run` took it and `merge` then found the tab-separated plan file broken
+    const fs::path tab = write("tab.yaml", "problems: [" + problemFile("planar_2link") +
+                                               "]\nplanners:\n  - {label: \"a\\tb\", name: geometric::RRTConnect}\n");
+    run = runMichi("campaign run " + tab.string() + " --out " + out.string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find(tab.string() + ": planners[0].label: must not hold"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out / "units"));
 }
 
 TEST_F(Campaign, FourShardsMergeIntoTheUnshardedRunsAndSegfaultsAreFailedRuns)

@@ -320,7 +320,37 @@ TEST_F(BadCommands, SettingsThatHungOrBlamedTheWrongKey)
     // a tiny lattice angle step is blamed on itself, not on cell_size
     expectCleanError("lattice " + corridor.string() + " --angle-steps 1e-9 --out " + (dir_ / "o").string(),
                      "raise angle_step", dir_ / "o");
+    // a map resolution of 1e-300 made a map 1e-297 m wide: OMPL's error without a key (MovingAI), or a plan in it (PGM)
+    for (const char *name : {"movingai_64room.yaml", "se2_corridor_pgm.yaml"})
+    {
+        const fs::path map = dir_ / "p" / name;
+        spit(map, std::regex_replace(slurp(map), std::regex("\n    resolution: [0-9.]+"), "\n    resolution: 1e-300"));
+        expectCleanError("plan " + map.string() + PLAN + (dir_ / "o").string(),
+                         ".resolution: expected a number of metres", dir_ / "o");
+    }
+    // a planner that cannot plan for the robot is refused, not run to "no path"
+    expectCleanError("plan " + (dir_ / "p/planar_2link.yaml").string() +
+                         " --planner michi::HeadingLattice --time 0.3 --out " + (dir_ / "o").string(),
+                     "robot.type", dir_ / "o");
     // nor are the first setting's pictures left behind when a later one fails
     expectCleanError("lattice " + corridor.string() + " --cell-sizes 0.25,1e-7 --out " + (dir_ / "o").string(),
                      "raise cell_size", dir_ / "o");
+}
+
+TEST_F(BadCommands, BinaryFilesAreQuotedAsOnePrintableLine)
+{
+    // a binary file where a MovingAI map is expected: the error quoted its first "line", raw bytes and all
+    std::string bytes;
+    for (int i = 0; i < 4000; ++i)
+        bytes += static_cast<char>((i * 7919 + 13) % 256);
+    const fs::path map = dir_ / "p/maps/movingai/arena.map";
+    spit(map, bytes);
+    const CommandRun run = runMichi("plan " + (dir_ / "p/movingai_arena.yaml").string() + PLAN + (dir_ / "o").string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    const std::string last = lastLine(run.output);
+    EXPECT_NE(last.find("arena.map: header"), std::string::npos) << last;
+    EXPECT_LT(last.size(), 400u) << last;
+    for (const char c : last)
+        EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << "a control byte in: " << last;
+    EXPECT_FALSE(fs::exists(dir_ / "o"));
 }

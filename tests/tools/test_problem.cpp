@@ -422,3 +422,19 @@ TEST_F(ProblemFiles, MotionChecksThatWouldNeverEndAreRefusedNamingTheKey)
         "tmt.yaml", se2 + "  bounds: {x: [0, 10], y: [0, 10]}\n  motion: {model: turn_move_turn, turn_weight: 5}\n"
                           "start: [1, 1, 0]\ngoal: [2, 2, 0]\n"))));
 }
+
+TEST(ProblemErrorText, IsOnePrintableLineWhateverItQuotes)
+{
+    // A message quotes what it read: the first "line" of a binary file reached the terminal as raw bytes.
+    const std::string raw = std::string("map\x01\tline\nnext \xff\xfe caf\xc3\xa9 ") + std::string(5000, 'x');
+    const ProblemError error("f.map", "header", "'" + raw + "': expected the MovingAI header");
+    const std::string what = error.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_EQ(what.find('\t'), std::string::npos) << what;
+    EXPECT_NE(what.find("map\\x01\\x09line\\x0Anext \\xFF\\xFE caf\xc3\xa9 "), std::string::npos) << what;
+    EXPECT_LT(what.size(), 2100u);
+    EXPECT_NE(what.find("more bytes)"), std::string::npos) << what;
+    EXPECT_EQ(error.file(), "f.map");
+    EXPECT_EQ(error.key(), "header");
+    EXPECT_EQ(michi::tools::printableLine("plain text, metres \xc2\xb1 0.1"), "plain text, metres \xc2\xb1 0.1");
+}

@@ -524,6 +524,12 @@ namespace michi
                 throw ProblemError(problem.file, "robot.motion",
                                    "geometric::LBTRRT aborts on the turn_move_turn state space (an assertion in "
                                    "OMPL 1.5.2's DynamicSSSP): use motion: free, or another planner");
+            // Not a crash, but the same kind of mismatch: the lattice is made of (x, y, heading) nodes, and on any
+            // other space its setup() fails, which a benchmark reported as "no path" in every run.
+            if (name == "michi::HeadingLattice" && problem.kind != Problem::Kind::SE2)
+                throw ProblemError(problem.file, "robot.type",
+                                   "michi::HeadingLattice plans for SE(2) robots only (robot.type: se2), not for "
+                                   "an arm's joints");
         }
 
         ob::PlannerPtr makePlanner(const Problem &problem, const std::string &name, const ob::SpaceInformationPtr &si,

@@ -157,9 +157,14 @@ namespace michi
                         r.fail(key, "unknown planner '" + p.name + "' (see michi list-planners)");
                     if (p.label.empty())
                         p.label = p.name;
-                    // the label is a planner name in the log, whose runs are ';'-separated lines
-                    if (p.label.find_first_of(";\n\r") != std::string::npos)
-                        r.fail(key + ".label", "must not hold ';' or a line break");
+                    // the label is a planner name in the log, whose runs are ';'-separated lines, and a field of the
+                    // plan file, whose fields are tab-separated (a tab passed `run` and then failed `merge`)
+                    if (std::any_of(p.label.begin(), p.label.end(),
+                                    [](char c)
+                                    {
+                                        return c == ';' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+                                    }))
+                        r.fail(key + ".label", "must not hold ';', a tab, a line break or another control character");
                     if (!labels.insert(p.label).second)
                         r.fail(key + ".label",
                                "label '" + p.label + "' is used twice (give each configuration its own)");

@@ -11,6 +11,13 @@ namespace michi
     {
         namespace
         {
+            /** A line read from the file, as a message quotes it: the first 80 bytes (a binary file's first "line"
+                can be megabytes long; ProblemError escapes what is not printable). */
+            std::string shortLine(const std::string &line)
+            {
+                return line.size() <= 80 ? line : line.substr(0, 80) + "...";
+            }
+
             /** getline without the '\r' of CRLF files. */
             bool readLine(std::istream &in, std::string &line)
             {
@@ -88,7 +95,7 @@ namespace michi
                     break;
                 if (!(words >> value) || (words >> extra))
                     throw ProblemError(path, "header (line " + std::to_string(lineNumber) + ")",
-                                       "'" + line + "': " + expected);
+                                       "'" + shortLine(line) + "': " + expected);
                 if (word == "type")
                 {
                     // Octile is the only type the benchmark sets use; another type would mean other movement rules.
@@ -106,7 +113,7 @@ namespace michi
                 }
                 else
                     throw ProblemError(path, "header (line " + std::to_string(lineNumber) + ")",
-                                       "unknown header line '" + line + "': " + expected);
+                                       "unknown header line '" + shortLine(line) + "': " + expected);
             }
             if (!haveType)
                 throw ProblemError(path, "header.type", "missing; " + expected);
@@ -209,7 +216,7 @@ namespace michi
                 words >> word >> version;
                 // '1' and '1.0' name the same format version.
                 if (word != "version" || (version != "1" && version != "1.0"))
-                    throw ProblemError(path, "version", "first line '" + line + "', expected 'version 1'");
+                    throw ProblemError(path, "version", "first line '" + shortLine(line) + "', expected 'version 1'");
             }
             std::vector<MovingAiScenario> scenarios;
             int lineNumber = 1;

@@ -19,6 +19,46 @@ namespace michi
 {
     namespace tools
     {
+        std::string printableLine(const std::string &text)
+        {
+            constexpr std::size_t MAX_BYTES = 2000;
+            const auto *bytes = reinterpret_cast<const unsigned char *>(text.data());
+            const std::size_t n = text.size();
+            std::string out;
+            std::size_t i = 0;
+            while (i < n && out.size() < MAX_BYTES)
+            {
+                const unsigned char c = bytes[i];
+                // a printable ASCII character, or a whole UTF-8 sequence (lead byte, then continuation bytes)
+                std::size_t length = 0;
+                if (c >= 0x20 && c < 0x7f)
+                    length = 1;
+                else if (c >= 0xc2 && c <= 0xdf)
+                    length = 2;
+                else if (c >= 0xe0 && c <= 0xef)
+                    length = 3;
+                else if (c >= 0xf0 && c <= 0xf4)
+                    length = 4;
+                bool whole = length > 0 && i + length <= n;
+                for (std::size_t k = 1; whole && k < length; ++k)
+                    whole = (bytes[i + k] & 0xc0) == 0x80;
+                if (whole)
+                {
+                    out.append(text, i, length);
+                    i += length;
+                    continue;
+                }
+                static const char *hex = "0123456789ABCDEF";
+                out += "\\x";
+                out += hex[c >> 4];
+                out += hex[c & 15];
+                ++i;
+            }
+            if (i < n)
+                out += " ... (" + std::to_string(n - i) + " more bytes)";
+            return out;
+        }
+
         validity::CollisionBodiesPtr Problem::bodies() const
         {
             if (kind == Kind::SE2)

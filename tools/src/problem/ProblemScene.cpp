@@ -118,8 +118,8 @@ namespace michi
                     }
                     const std::string file = r.path(r.require(node, "map", key), key + ".map");
                     const double resolution = r.number(node, "resolution", key, 1.);
-                    if (!(resolution > 0.))
-                        r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                    if (!(resolution >= MIN_MAP_RESOLUTION && resolution <= MAX_MAP_RESOLUTION))
+                        r.fail(key + ".resolution", MAP_RESOLUTION_RANGE);
                     const double height = r.number(node, "height", key, 1.);
                     if (!(height > 0.))
                         r.fail(key + ".height", "expected a positive number (metres)");
@@ -333,8 +333,8 @@ namespace michi
                     {
                         const std::string pgm = r.path(map["pgm"], key + ".pgm");
                         const double resolution = r.number(r.require(map, "resolution", key), key + ".resolution");
-                        if (!(resolution > 0.))
-                            r.fail(key + ".resolution", "expected a positive number (metres per cell)");
+                        if (!(resolution >= MIN_MAP_RESOLUTION && resolution <= MAX_MAP_RESOLUTION))
+                            r.fail(key + ".resolution", MAP_RESOLUTION_RANGE);
                         Eigen::Vector2d origin = Eigen::Vector2d::Zero();
                         if (map["origin"])
                         {

@@ -21,6 +21,12 @@ namespace michi
     {
         namespace problem_file
         {
+            /** Metres per cell an occupancy map may have (PGM, MovingAI, ROS): a resolution of 1e-300 made a map
+                1e-297 m wide that OMPL then refused with a message naming no key, or planned in. */
+            constexpr double MIN_MAP_RESOLUTION = 1e-4;
+            constexpr double MAX_MAP_RESOLUTION = 1000.;
+            constexpr const char *MAP_RESOLUTION_RANGE = "expected a number of metres per cell in [0.0001, 1000]";
+
             /** \brief The one way michi reads a YAML file (problem, MoveIt scene and request, experience, replan
                 settings): a regular file under the size limit, parsed once, duplicate keys rejected (yaml-cpp keeps
                 the first and drops the rest silently). Throws ProblemError naming the file and the line. */

@@ -25,8 +25,8 @@ namespace michi
                 RosMap map;
                 map.image = r.path(r.require(doc, "image", ""), "image");
                 map.resolution = r.number(r.require(doc, "resolution", ""), "resolution");
-                if (!(map.resolution > 0.) || !std::isfinite(map.resolution))
-                    r.fail("resolution", "expected a positive number (metres per pixel)");
+                if (!(map.resolution >= MIN_MAP_RESOLUTION && map.resolution <= MAX_MAP_RESOLUTION))
+                    r.fail("resolution", MAP_RESOLUTION_RANGE);
                 const auto origin = r.numbers(r.require(doc, "origin", ""), "origin", 3);
                 for (double v : origin)
                     if (!std::isfinite(v) || std::abs(v) > 1e6)

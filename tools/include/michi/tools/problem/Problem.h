@@ -16,13 +16,20 @@ namespace michi
 {
     namespace tools
     {
-        /** \brief A problem file (or a file it refers to) that cannot be used. what() is one line:
+        /** \brief \e text as one printable line: control characters and bytes that are not UTF-8 become \\xNN,
+            and more than 2,000 bytes are cut with a note of how many were left out. Messages quote what they read,
+            and a binary file's first "line" would otherwise reach the terminal raw. */
+        std::string printableLine(const std::string &text);
+
+        /** \brief A problem file (or a file it refers to) that cannot be used. what() is one printable line:
             "<file>: <key>: <what was expected>". */
         class ProblemError : public std::runtime_error
         {
         public:
             ProblemError(const std::string &file, const std::string &key, const std::string &message)
-                : std::runtime_error(file + (key.empty() ? "" : ": " + key) + ": " + message), file_(file), key_(key)
+                : std::runtime_error(printableLine(file + (key.empty() ? "" : ": " + key) + ": " + message))
+                , file_(file)
+                , key_(key)
             {
             }
             const std::string &file() const
