@@ -259,3 +259,47 @@ TEST(ConcentricCircle, SolvesRandomScenesTheGridSolves)
     }
     EXPECT_GE(tried, 4);
 }
+
+TEST(ConcentricCircle, StopsItsLinkChecksAndItsArmJMapWhenTimeIsUp)
+{
+    // Found by a sweep of every planner setting at its declared limits: with ring_spacing 0.005 the checked search
+    // went on with its motion checks after the time was up (2.9 s past a 0.5 s limit), and with arm_slices 100,000
+    // the arm's J-map was built to its end (5 s). A condition that turns true after a count of evaluations stands in
+    // for the clock, so the test does not depend on this machine's speed.
+    {
+        auto problem = tools::loadProblem(test::sourcePath("problems/planar_2link.yaml"));
+        auto ctx = tools::makePlanningContext(problem);
+        const auto si = ctx.setup->getSpaceInformation();
+        auto planner = std::make_shared<planners::ConcentricCircle>(si);
+        planner->params().setParam("ring_spacing", "0.005");
+        planner->setProblemDefinition(ctx.setup->getProblemDefinition());
+        planner->setup();
+        const auto &validator = *si->getMotionValidator();
+        const unsigned int before = validator.getCheckedMotionCount();
+        // the time runs out once 100 links have been checked: in the middle of the checked search (it checks
+        // about 2,700 on its way), which reads the condition before each link check
+        const ob::PlannerTerminationCondition ptc(
+            [&]
+            {
+                return validator.getCheckedMotionCount() - before >= 100;
+            });
+        EXPECT_EQ(planner->solve(ptc), ob::PlannerStatus::TIMEOUT);
+        EXPECT_LE(validator.getCheckedMotionCount() - before, 101u) << "links checked after the time was up";
+    }
+    {
+        auto problem = tools::loadProblem(test::sourcePath("problems/planar_3dof_hand.yaml"));
+        auto ctx = tools::makePlanningContext(problem);
+        auto planner = std::make_shared<planners::ConcentricCircle>(ctx.setup->getSpaceInformation());
+        planner->params().setParam("arm_slices", "100000");
+        planner->setProblemDefinition(ctx.setup->getProblemDefinition());
+        planner->setup();
+        int evaluations = 0;
+        const ob::PlannerTerminationCondition ptc(
+            [&]
+            {
+                return ++evaluations > 1;
+            });
+        EXPECT_EQ(planner->solve(ptc), ob::PlannerStatus::TIMEOUT);
+        EXPECT_TRUE(planner->stages().empty()) << "the search ran on a map built after the time was up";
+    }
+}

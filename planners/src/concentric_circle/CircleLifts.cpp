@@ -467,7 +467,8 @@ namespace michi
         // ---------------------------------------------------------------- the arm without its hand
 
         ArmMaps makeArmMaps(const ob::SpaceInformationPtr &si, const ProjectionLift &arm,
-                            const std::vector<int> &handValues, int slices, double tolerance)
+                            const std::vector<int> &handValues, int slices, double tolerance,
+                            const ob::PlannerTerminationCondition *ptc)
         {
             ArmMaps out;
             const auto *fcl = fclOf(*si);
@@ -538,9 +539,28 @@ namespace michi
                 settings.slices = slices;
                 settings.tolerance = tolerance;
                 settings.trueIntervals = false;
-                const validity::JMapPtr jmap = validity::JMap::build(*source, settings);
+                // The build is the solve's work (arm_slices 100,000: 5 s past a 0.5 s limit): it stops between
+                // slices when the time is up, through its progress callback (JMap::build has no other exit).
+                struct Stopped
+                {
+                };
+                if (ptc != nullptr)
+                    settings.progress = [ptc](int, int)
+                    {
+                        if ((*ptc)())
+                            throw Stopped{};
+                    };
+                validity::JMapPtr jmap;
+                try
+                {
+                    jmap = validity::JMap::build(*source, settings);
+                }
+                catch (const Stopped &)
+                {
+                    jmap.reset();
+                }
                 const Eigen::Vector2d s2 = arm.start2(), g2 = arm.goal2();
-                if (!jmap->collides(s2.x(), s2.y()) && !jmap->collides(g2.x(), g2.y()))
+                if (jmap && !jmap->collides(s2.x(), s2.y()) && !jmap->collides(g2.x(), g2.y()))
                 {
                     auto map = std::make_shared<PolygonCircleMap>(jmap->polygons(), Eigen::Vector2d(ax1.lo, ax2.lo),
                                                                   Eigen::Vector2d(ax1.hi, ax2.hi));

@@ -362,7 +362,9 @@ namespace michi
             for (int v = 0; v < n; ++v)
                 if (v != axis1_ && v != axis2_)
                     others.push_back(v);
-            const ArmMaps armMaps = makeArmMaps(si_, *arm, others, armSlices_, armTolerance_);
+            const ArmMaps armMaps = makeArmMaps(si_, *arm, others, armSlices_, armTolerance_, &ptc);
+            if (ptc)
+                return false;  // out of time while the arm's J-map was built
             armStage.map = armMaps.map;
             armMapKind_ = armMaps.kind;
             if (armSlices_ > 0 && armMaps.kind == "capsules")

@@ -562,6 +562,11 @@ namespace michi
                     const double d = dist[v] + adjacent[i].length;
                     if (d < dist[u])
                     {
+                        // Out of time: stop before the next link check (in the projection modes a motion check,
+                        // ring_spacing 0.005 ran 2.9 s past a 0.5 s limit). The search then reports no connection;
+                        // a tree (target < 0) is left partial, which collectPaths() tolerates.
+                        if (adjacent[i].unchecked && ptc_ != nullptr && (*ptc_)())
+                            return false;
                         // A failed link leaves adjacency_[v] (order kept): the next link is now at i.
                         if (!validateArc(v, i))
                             continue;

@@ -3,6 +3,7 @@
 
 #include <michi/planners/concentric_circle/CircleMap.h>
 
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/SpaceInformation.h>
 
 #include <functional>
@@ -206,9 +207,11 @@ namespace michi
             a planar arm (every joint about z): the J-map (\e slices cells of axis 1, line-walk tolerance
             \e tolerance) of the arm's links without the links that the values \e handValues move, as the paper
             builds the arm's J-map; the capsule geometry when the start or goal is inside its polygons; and the
-            grown map. Otherwise \e arm's projection map. */
+            grown map. Otherwise \e arm's projection map. The J-map's build stops between slices once \e ptc
+            (when given) is true; the maps are then the capsules' and the caller is out of time. */
         ArmMaps makeArmMaps(const ompl::base::SpaceInformationPtr &si, const ProjectionLift &arm,
-                            const std::vector<int> &handValues, int slices, double tolerance);
+                            const std::vector<int> &handValues, int slices, double tolerance,
+                            const ompl::base::PlannerTerminationCondition *ptc = nullptr);
     }  // namespace planners
 }  // namespace michi
 

@@ -185,6 +185,7 @@ namespace michi
             }
             void setAxis1(int v)
             {
+                requireValueIndex("axis1", v, 0);
                 axis1_ = v;
             }
             int getAxis1() const
@@ -193,6 +194,7 @@ namespace michi
             }
             void setAxis2(int v)
             {
+                requireValueIndex("axis2", v, 0);
                 axis2_ = v;
             }
             int getAxis2() const
@@ -211,6 +213,7 @@ namespace michi
             /** \brief The hand value of hierarchy mode (-1: the first value that is neither axis). */
             void setHandAxis(int v)
             {
+                requireValueIndex("hand_axis", v, -1);
                 handAxis_ = v;
             }
             int getHandAxis() const
@@ -273,6 +276,17 @@ namespace michi
             }
 
         private:
+            /** A setting that names one value of the state (axis1, axis2, hand_axis) must name one of this space's:
+                out of range it was accepted and the solve failed later with "no path". */
+            void requireValueIndex(const char *name, int v, int lowest) const
+            {
+                const int n = static_cast<int>(si_->getStateDimension());
+                if (v < lowest || v >= n)
+                    throw ompl::Exception(getName(), std::string(name) + " = " + std::to_string(v) +
+                                                         " is not a value of the " + std::to_string(n) +
+                                                         "-value state (" + std::to_string(lowest) + " to " +
+                                                         std::to_string(n - 1) + ")");
+            }
             struct Axes;
             bool solveJMap(const std::vector<double> &start, const std::vector<double> &goal,
                            const ompl::base::PlannerTerminationCondition &ptc);
