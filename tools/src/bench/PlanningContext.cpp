@@ -116,8 +116,8 @@ namespace michi
                                            " splits a motion across the space "
                                            "into up to " +
                                            shortNumber(1. / problem.validSegmentFraction) +
-                                           " states to check; at least " + shortNumber(1. / MAX_STATES_PER_MOTION) +
-                                           " (a million states) is allowed");
+                                           " states to check; the smallest fraction allowed is " +
+                                           shortNumber(1. / MAX_STATES_PER_MOTION) + " (a million states)");
                 if (motionValidator != "workspace")
                     return;  // the conservative validator bounds its own walk; the discrete one is covered above
                 // The widest motions: corner to corner of the bounds (SE(2), turning as well) or every joint from

@@ -82,7 +82,7 @@ namespace michi
                     }
                 lastStepSafe = step <= safeStep;
                 // bounded work: a step that no longer moves t (geometry far from its joint makes the bounds huge)
-                // or a motion that needs more than MAX_WALK_STEPS checks is reported invalid. That is conservative
+                // or a motion that needs more than its step budget (maxSteps) is reported invalid. That is conservative
                 // (a planner then avoids the motion), never a hang and never a motion passed unchecked.
                 if (!(t + step > t) || ++steps > maxSteps)
                 {

@@ -446,10 +446,7 @@ namespace michi
                     throw std::runtime_error(path + ": mesh holds no triangles");
                 return Shape::mesh(std::move(vertices), std::move(triangles), path);
             }
-        }  // namespace
 
-        namespace
-        {
             /** Smallest mesh scale factor accepted (metres per file unit): files in micrometres still load. */
             constexpr double MIN_MESH_SCALE = 1e-9;
         }  // namespace
