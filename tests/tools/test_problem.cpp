@@ -438,3 +438,12 @@ TEST(ProblemErrorText, IsOnePrintableLineWhateverItQuotes)
     EXPECT_EQ(error.key(), "header");
     EXPECT_EQ(michi::tools::printableLine("plain text, metres \xc2\xb1 0.1"), "plain text, metres \xc2\xb1 0.1");
 }
+
+TEST(PlannerRegistry, StatusTextNamesEveryStatus)
+{
+    // OMPL 1.5.2's asString() calls ABORT "Unknown status", which `michi plan` printed for a lattice without a path
+    for (int i = 1; i < ompl::base::PlannerStatus::TYPE_COUNT; ++i)
+        EXPECT_NE(michi::tools::statusText(static_cast<ompl::base::PlannerStatus::StatusType>(i)), "Unknown status")
+            << i;
+    EXPECT_EQ(michi::tools::statusText(ompl::base::PlannerStatus::TIMEOUT), "Timeout");
+}

@@ -205,7 +205,7 @@ namespace michi
                     if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
                     {
                         std::cerr << "michi plan: " << problem.file << ": " << name << " found no path within " << time
-                                  << " s (" << status.asString() << ")" << std::endl;
+                                  << " s (" << statusText(status) << ")" << std::endl;
                         return 1;
                     }
                     // bounded like the solve: OMPL's unbounded default can take minutes

@@ -1,6 +1,7 @@
 #include <michi/tools/commands/CircleCommand.h>
 
 #include <michi/tools/pictures/CirclePicture.h>
+#include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/pictures/SvgPlot.h>
 #include <michi/tools/viewer/ReplayPage.h>
@@ -33,7 +34,7 @@ namespace michi
             ctx.setup->setPlanner(planner);
             const auto status = ctx.setup->solve(options.timeLimit);
             std::ostringstream out;
-            out << problem.name << ": ConcentricCircle " << status.asString() << " in "
+            out << problem.name << ": ConcentricCircle " << statusText(status) << " in "
                 << ctx.setup->getLastPlanComputationTime() << " s, mode " << planner->usedMode() << "\n";
             if (!fs::exists(options.outDir))
                 fs::create_directories(options.outDir);
@@ -76,7 +77,7 @@ namespace michi
                 // the summary of the failed search goes to the progress stream, the error stays one line
                 if (options.progress != nullptr)
                     *options.progress << out.str() << std::flush;
-                throw std::runtime_error(problem.file + ": ConcentricCircle found no path (" + status.asString() +
+                throw std::runtime_error(problem.file + ": ConcentricCircle found no path (" + statusText(status) +
                                          "); pictures of the search are in " + options.outDir);
             }
             auto &path = ctx.setup->getSolutionPath();

@@ -143,6 +143,13 @@ namespace michi
                    (name == "test::Segfault" || name == "test::Hang");
         }
 
+        std::string statusText(const ob::PlannerStatus &status)
+        {
+            if (status == ob::PlannerStatus::ABORT)
+                return "Abort: the search ended without a path";
+            return status.asString();
+        }
+
         ob::PlannerPtr allocatePlanner(const std::string &name, const ob::SpaceInformationPtr &si)
         {
             if (isTestPlanner(name))

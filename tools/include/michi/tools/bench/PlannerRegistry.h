@@ -28,6 +28,11 @@ namespace michi
             never returns (it ignores its termination condition). allocatePlanner() makes them then; they never
             appear in plannerNames(). */
         bool isTestPlanner(const std::string &name);
+
+        /** \brief A planner's status in words for a message: OMPL 1.5.2's PlannerStatus::asString() calls ABORT (a
+            planner that ended its search without a path, as HeadingLattice does when its lattice holds none)
+            "Unknown status". */
+        std::string statusText(const ompl::base::PlannerStatus &status);
     }  // namespace tools
 }  // namespace michi
 
