@@ -83,6 +83,7 @@ problem = problem.replace('name: movingai_64room', 'name: heldout_rooms')
 problem = problem.replace('maps/movingai/64room_000.map.scen', os.path.abspath(os.path.join(out, 'rooms.map.scen')))
 problem = problem.replace('maps/movingai/64room_000.map', os.path.abspath(os.path.join(out, 'rooms.map')))
 problem = problem.replace('buckets: [40, 49]', 'buckets: [0, 100]')
+problem = problem.replace("the map's extent, [0, 51.2] x [0, 51.2]", "the map's extent, [0, %g] x [0, %g]" % (W * 0.1, H * 0.1))
 start = problem.index('description: >-\n')
 end = problem.index('\nrobot:', start)
 problem = (problem[:start] + 'description: >-\n  The 64room robot and lattice settings on a held-out map from scripts/rooms_map.py (200 x 160 cells of '
