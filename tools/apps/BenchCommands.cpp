@@ -120,12 +120,13 @@ namespace michi
                     // A name on the command line is the user's flag, not the problem file's: a usage error (exit 2)
                     // before anything is loaded into a benchmark.
                     for (const auto &name : options.planners)
-                        if (!isTestPlanner(name) && plannerAllocators().count(name) == 0)
+                        try
                         {
-                            std::string known;
-                            for (const auto &n : plannerNames())
-                                known += " " + n;
-                            throw UsageError("--planners: unknown planner '" + name + "' (known:" + known + ")");
+                            requirePlannerName(name);
+                        }
+                        catch (const std::invalid_argument &e)
+                        {
+                            throw UsageError(std::string("--planners: ") + e.what());
                         }
                     options.runs = args.runs.value_or(0);        // 0: the problem's benchmark.runs
                     options.timeLimit = args.time.value_or(0.);  // 0: the problem's benchmark.time_limit

@@ -150,20 +150,22 @@ namespace michi
             return status.asString();
         }
 
+        void requirePlannerName(const std::string &name)
+        {
+            if (isTestPlanner(name) || plannerAllocators().count(name) != 0)
+                return;
+            std::ostringstream known;
+            for (const auto &n : plannerNames())
+                known << " " << n;
+            throw std::invalid_argument("unknown planner '" + name + "' (known:" + known.str() + ")");
+        }
+
         ob::PlannerPtr allocatePlanner(const std::string &name, const ob::SpaceInformationPtr &si)
         {
             if (isTestPlanner(name))
                 return allocateTestPlanner(name, si);
-            const auto &registry = plannerAllocators();
-            auto it = registry.find(name);
-            if (it == registry.end())
-            {
-                std::ostringstream known;
-                for (const auto &n : plannerNames())
-                    known << " " << n;
-                throw std::invalid_argument("unknown planner '" + name + "' (known:" + known.str() + ")");
-            }
-            return it->second(si);
+            requirePlannerName(name);
+            return plannerAllocators().at(name)(si);
         }
     }  // namespace tools
 }  // namespace michi

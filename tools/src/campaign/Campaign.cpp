@@ -129,7 +129,6 @@ namespace michi
                 if (!list || !list.IsSequence() || list.size() == 0)
                     r.fail("planners", "expected a non-empty list of planner names or {label, name, params}");
                 std::set<std::string> labels;
-                const auto names = plannerNames();
                 for (std::size_t i = 0; i < list.size(); ++i)
                 {
                     const std::string key = "planners[" + std::to_string(i) + "]";
@@ -153,8 +152,14 @@ namespace michi
                     }
                     else
                         r.fail(key, "expected a planner name or {label, name, params}");
-                    if (std::find(names.begin(), names.end(), p.name) == names.end() && !isTestPlanner(p.name))
+                    try
+                    {
+                        requirePlannerName(p.name);
+                    }
+                    catch (const std::invalid_argument &)
+                    {
                         r.fail(key, "unknown planner '" + p.name + "' (see michi list-planners)");
+                    }
                     if (p.label.empty())
                         p.label = p.name;
                     // the label is a planner name in the log, whose runs are ';'-separated lines, and a field of the

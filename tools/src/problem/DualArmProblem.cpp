@@ -170,9 +170,14 @@ namespace michi
                 {
                     spec.planner = r.text(p["planner"], "dual_arm.planning.planner");
                     // here, not after the work-space maps are computed
-                    if (plannerAllocators().count(spec.planner) == 0)
-                        r.fail("dual_arm.planning.planner",
-                               "unknown planner '" + spec.planner + "' (see michi list-planners)");
+                    try
+                    {
+                        requirePlannerName(spec.planner);
+                    }
+                    catch (const std::invalid_argument &e)
+                    {
+                        r.fail("dual_arm.planning.planner", e.what());
+                    }
                 }
                 if (p["time"])
                     spec.planningTime = r.positive(p["time"], "dual_arm.planning.time");

@@ -17,6 +17,10 @@ namespace michi
             projection, which michi's spaces register. */
         const std::map<std::string, ompl::base::PlannerAllocator> &plannerAllocators();
 
+        /** \brief Throws std::invalid_argument listing the known names unless \e name is one of them (or a test
+            planner isTestPlanner() admits): the one check of a planner name, wherever a name comes from. */
+        void requirePlannerName(const std::string &name);
+
         /** \brief Allocate by name; throws std::invalid_argument listing the known names for an unknown one. */
         ompl::base::PlannerPtr allocatePlanner(const std::string &name, const ompl::base::SpaceInformationPtr &si);
 
