@@ -3,6 +3,8 @@
 // Figures compare against a baseline measured in the same process: the FCL boolean check is the baseline of the
 // clearance query, OMPL's DiscreteMotionValidator the baseline of michi's workspace and conservative validators,
 // the conservative (exact, FCL) validator the baseline of the J-map motion validator (segments on the J-map).
+#include "../../validity/src/spheres/SphereKinematics.h"
+
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/ProblemJMap.h>
 #include <michi/validity/fcl/ConservativeMotionValidator.h>
@@ -110,6 +112,33 @@ namespace
         for (auto _ : bm)
             valid += checker->isValid(f.states[i++ % f.states.size()]);
         bm.counters["valid_fraction"] = static_cast<double>(valid) / std::max<std::size_t>(1, i);
+    }
+
+    /** The sphere checker's forward kinematics alone (every frame of the group, floats), on the same states: the
+        part of a state check that does not depend on the scene. */
+    void sphereKinematics(benchmark::State &bm, const std::string &name)
+    {
+        auto &f = fixture(name);
+        auto group = std::dynamic_pointer_cast<const michi::validity::RobotGroupBodies>(f.ctx.bodies);
+        const auto &vars = group->variables();
+        std::vector<int> links;
+        for (std::size_t l = 0; l < group->model()->links().size(); ++l)
+            links.push_back(static_cast<int>(l));
+        michi::validity::SphereKinematics kinematics(
+            *group->model(), vars, group->fullConfiguration(std::vector<double>(vars.size(), 0.).data()), links);
+        std::vector<michi::validity::FloatFrame> frames(kinematics.frameCount());
+        std::vector<std::vector<double>> values;
+        for (const auto *state : f.states)
+        {
+            values.emplace_back();
+            f.ctx.setup->getStateSpace()->copyToReals(values.back(), state);
+        }
+        std::size_t i = 0;
+        for (auto _ : bm)
+        {
+            kinematics.framesFloat(values[i++ % values.size()].data(), frames.data());
+            benchmark::DoNotOptimize(frames.back().t);
+        }
     }
 
     /** The context `--checker NAME` makes for a fixture's problem (grid, jmap, ...), made once per problem and
@@ -285,6 +314,7 @@ BENCHMARK_CAPTURE(isValidSpheres, xarm6_ring, std::string("xarm6_ring"), false);
 BENCHMARK_CAPTURE(isValidSpheres, panda_table_pick, std::string("panda_table_pick"), false);
 BENCHMARK_CAPTURE(isValidSpheres, exact_xarm6_ring, std::string("xarm6_ring"), true);
 BENCHMARK_CAPTURE(isValidSpheres, exact_panda_table_pick, std::string("panda_table_pick"), true);
+BENCHMARK_CAPTURE(sphereKinematics, panda_table_pick, std::string("panda_table_pick"));
 BENCHMARK_CAPTURE(motion, spheres_xarm6_ring, std::string("xarm6_ring"), 4);
 BENCHMARK_CAPTURE(motion, spheres_panda_table_pick, std::string("panda_table_pick"), 4);
 // planning: RRTConnect's solve() with FCL and with spheres
