@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <regex>
 #include <sstream>
 
 namespace fs = boost::filesystem;
@@ -55,6 +56,16 @@ TEST_F(Cli, BenchWritesLogDatabaseSummaryAndPicture)
     EXPECT_EQ(slurp(out / "planar_2link.db").rfind("SQLite format 3", 0), 0u);
     const std::string summary = slurp(out / "summary.md");
     EXPECT_NE(summary.find("| geometric_RRTConnect | 3 |"), std::string::npos) << summary;
+    // the Benchmark's own share of every time, measured in the same command, is reported beside the medians, and
+    // its planner stays out of the user's log and database
+    std::smatch clock;
+    ASSERT_TRUE(std::regex_search(
+        summary, clock, std::regex("a planner that returns at once is booked ([0-9.e+-]+) ms \\(median of 15 runs")))
+        << summary;
+    EXPECT_GT(std::stod(clock[1].str()), 0.);
+    EXPECT_LT(std::stod(clock[1].str()), 1000.);
+    EXPECT_EQ(log.find("ReturningPlanner"), std::string::npos);
+    EXPECT_EQ(slurp(out / "planar_2link.db").find("ReturningPlanner"), std::string::npos);
     const std::string svg = slurp(out / "planar_2link.svg");
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find("RRTConnect"), std::string::npos);

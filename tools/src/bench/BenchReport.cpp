@@ -30,6 +30,9 @@ namespace michi
 
         namespace
         {
+            /** Runs of the clock floor's planner (about a millisecond each). */
+            constexpr unsigned int CLOCK_FLOOR_RUNS = 15;
+
             double median(std::vector<double> v)
             {
                 if (v.empty())
@@ -90,6 +93,16 @@ namespace michi
             {
                 std::ostringstream out;
                 out << summaryMarkdown(problem, result.planners, timeLimit, runs, compare);
+                // after the runs, so that it cannot disturb them (the Benchmark reads OMPL's seed)
+                const double floor =
+                    median(benchmarkClockTimes(timeLimit, problem.benchmark.memoryLimit, CLOCK_FLOOR_RUNS));
+                if (std::isfinite(floor))
+                    out << "\nBenchmark's own clock: a planner that returns at once is booked " << std::setprecision(3)
+                        << 1e3 * floor << " ms (median of " << CLOCK_FLOOR_RUNS
+                        << " runs through the same OMPL Benchmark and time limit, after the runs above). Every time"
+                           " above includes such a share (OMPL's termination-condition thread, joined in steps of"
+                           " up to 1 ms), so medians within a few times of it say more about that clock than about"
+                           " the planners; docs/benchmarks.md says how to time them on a plain clock.\n";
                 if (datasetRun)
                     out << "\nDataset " << dataset.name << ": run i of every planner planned query i ("
                         << dataset.entries.size() << " queries, " << dataset.entries.front().label << " to "

@@ -28,6 +28,11 @@ namespace michi
         /** \brief A run property as a number (NaN when missing or not a number). */
         double benchProperty(const ompl::tools::Benchmark::RunProperties &run, const std::string &key);
 
+        /** \brief The times (seconds) OMPL's Benchmark books for a planner that returns at once, \e runs runs with
+            the given request settings: the part of every run's time that is the Benchmark's own clock
+            (BenchmarkFloor.cpp). */
+        std::vector<double> benchmarkClockTimes(double timeLimit, double memoryLimit, unsigned int runs);
+
         class BenchSession
         {
         public:
