@@ -3,11 +3,16 @@
 // concurrent queries during lazy builds, and the pre-filter for an arm with a hand.
 #include <michi/tools/problem/ProblemJMap.h>
 #include <michi/tools/bench/PlanningContext.h>
+#include <michi/validity/fcl/ConservativeMotionValidator.h>
+#include <michi/validity/jmap/JMapMotionValidator.h>
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <thread>
 
 using namespace michi;
@@ -164,6 +169,48 @@ TEST(JMapValidityChecker, FclSweepMapOfASpatialArmInstalls)
     ASSERT_NE(ctx.jmap, nullptr);
     EXPECT_EQ(ctx.setup->getSpaceInformation()->getStateValidityChecker().get(), ctx.jmap.get());
     EXPECT_TRUE(ctx.setup->getSpaceInformation()->isValid(ctx.setup->getProblemDefinition()->getStartState(0)));
+}
+
+TEST(JMapValidityChecker, WhatTheMapCannotDecideGoesToAnExactValidator)
+{
+    // arch_3dof keeps the default workspace validator, which samples every 1 cm of motion; behind the J-map that let
+    // shallow contacts through (verify-checker: 63 unsafe motions in 200,000). Motions the workspace validator
+    // accepts and the exact one refuses must be refused with the J-map installed.
+    auto problem = tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/arch_3dof.yaml");
+    ASSERT_EQ(problem.motionValidator, "workspace");
+    problem.checker = "jmap";
+    const auto ctx = tools::makePlanningContext(problem);
+    const auto si = ctx.setup->getSpaceInformation();
+    const auto jmapMotions = si->getMotionValidator();
+    validity::ConservativeMotionValidator exact(si, ctx.checker);
+    // short motions, as verify-checker draws them (within 2 % of the space's extent)
+    ompl::RNG rng(1);
+    const auto &bounds = ctx.setup->getStateSpace()->as<ompl::base::RealVectorStateSpace>()->getBounds();
+    const double near = 0.02 * si->getMaximumExtent();
+    ompl::base::State *a = si->allocState(), *b = si->allocState();
+    auto *va = a->as<ompl::base::RealVectorStateSpace::StateType>(),
+         *vb = b->as<ompl::base::RealVectorStateSpace::StateType>();
+    int shallow = 0, stepped = 0;
+    for (int i = 0; i < 20000 && shallow < 3; ++i)
+    {
+        for (std::size_t d = 0; d < bounds.low.size(); ++d)
+        {
+            va->values[d] = rng.uniformReal(bounds.low[d], bounds.high[d]);
+            vb->values[d] =
+                std::min(bounds.high[d], std::max(bounds.low[d], va->values[d] + rng.uniformReal(-near, near)));
+        }
+        if (!ctx.checker->isValid(a) || !ctx.checker->isValid(b) || !ctx.referenceMotions->checkMotion(a, b) ||
+            exact.checkMotion(a, b))
+            continue;
+        ++shallow;
+        EXPECT_FALSE(jmapMotions->checkMotion(a, b)) << "a contact the workspace validator stepped over";
+        // the map alone does not refuse them: behind it, the workspace validator let them through
+        stepped += validity::JMapMotionValidator(si, ctx.jmap, ctx.referenceMotions).checkMotion(a, b) ? 1 : 0;
+    }
+    si->freeState(a);
+    si->freeState(b);
+    EXPECT_GT(shallow, 0) << "no motion the workspace validator gets wrong: the test shows nothing";
+    EXPECT_GT(stepped, 0) << "the J-map refuses these motions by itself: the test shows nothing";
 }
 
 TEST(JMapValidityChecker, ProblemSwitchInstallsIt)

@@ -202,9 +202,15 @@ namespace michi
                 {
                     ctx.jmap = makeJMapChecker(problem, ctx, problem.jmap);
                     ctx.setup->setStateValidityChecker(ctx.jmap);
-                    // motions too: a segment on the map; what the map cannot decide goes to the FCL-based validator
-                    si->setMotionValidator(
-                        std::make_shared<validity::JMapMotionValidator>(si, ctx.jmap, ctx.referenceMotions));
+                    // motions too: a segment on the map; what the map cannot decide goes to an exact FCL-based
+                    // validator, the problem's own when it is the conservative one. A sampling one (workspace,
+                    // discrete) lets a contact shallower than its step through, and the J-map's motions would be
+                    // no safer than that (verify-checker on arch_3dof with the workspace validator behind the map:
+                    // 63 unsafe motions in 200,000, docs/jmap.md).
+                    ob::MotionValidatorPtr fallback = ctx.referenceMotions;
+                    if (!std::dynamic_pointer_cast<validity::ConservativeMotionValidator>(fallback))
+                        fallback = std::make_shared<validity::ConservativeMotionValidator>(si, ctx.checker);
+                    si->setMotionValidator(std::make_shared<validity::JMapMotionValidator>(si, ctx.jmap, fallback));
                     return;
                 }
                 if (checker == "grid")
@@ -373,9 +379,9 @@ namespace michi
                         OMPL_WARN(
                             "%s: %s (%g, %g, %g) is free for FCL but the grid checker's conservative table "
                             "calls it invalid (its cell or heading bin comes close to an obstacle): planners "
-                            "will not start from it; a finer collision.grid.resolution or more headings help. %s",
+                            "will not %s it; a finer collision.grid.resolution or more headings help. %s",
                             problem.file.c_str(), values == &q.start ? "start" : "goal", (*values)[0], (*values)[1],
-                            (*values)[2], ctx.grid->describe().c_str());
+                            (*values)[2], values == &q.start ? "start from" : "reach", ctx.grid->describe().c_str());
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);
             // benchmark.objective: on the problem definition, where OMPL's optimizing planners (RRT*, BIT*, ...)

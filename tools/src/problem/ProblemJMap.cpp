@@ -154,12 +154,12 @@ namespace michi
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / samples;
                 const double worst = perQuery * maxQueries;
                 if (worst > 10.)
-                    std::cerr << "michi: " << problem.file << ": collision.checker jmap: the J-map of this arm is an "
+                    std::cerr << "michi: " << problem.file << ": the J-map checker: the J-map of this arm is an "
                               << "FCL sweep (" << settings.map.slices << " slices, " << settings.tiles
                               << " tiles built as planning reaches them): up to " << static_cast<long long>(maxQueries)
                               << " distance queries of " << perQuery * 1e3 << " ms, up to about "
-                              << static_cast<long long>(worst) << " s; collision.jmap.slices or collision.checker: "
-                              << "fcl make it shorter" << std::endl;
+                              << static_cast<long long>(worst) << " s; fewer collision.jmap.slices, or the fcl "
+                              << "checker, make it shorter" << std::endl;
             }
         }  // namespace
 
