@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <thread>
 
 using namespace michi;
@@ -208,4 +209,71 @@ TEST(SphereCheckerExactStates, AutoTurnsOnOnlyForAGraspTheSpheresReject)
     EXPECT_TRUE(tools::makePlanningContext(load("panda_table_pick.yaml", "on")).spheres->exactStates());
     EXPECT_FALSE(
         tools::makePlanningContext(load("datasets/table_pick/table_pick_0006.yaml", "off")).spheres->exactStates());
+}
+
+// "auto" settles with FCL only what the spheres (grown by a margin) touch at the start and the goal: at table_pick 6's
+// grasp, the object in the hand. A state whose spheres touch something else is decided by the spheres alone, as in
+// a query that needs no settling; every state the checker accepts is still free for FCL.
+TEST(SphereCheckerExactStates, AutoSettlesOnlyWhatTheQueryEndsTouch)
+{
+    auto problem =
+        tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/datasets/table_pick/table_pick_0006.yaml");
+    problem.checker = "spheres";
+    const auto ctx = tools::makePlanningContext(problem);
+    ASSERT_TRUE(ctx.spheres);
+    const auto &start = problem.queries[0].start, &goal = problem.queries[0].goal;
+    const auto atGoal = ctx.spheres->sphereContacts(goal.data());
+    ASSERT_FALSE(atGoal.empty());
+    // a margin only adds contacts
+    auto settled = ctx.spheres->sphereContacts(goal.data(), tools::EXACT_CONTACT_MARGIN);
+    for (const auto &name : atGoal.obstacles)
+        EXPECT_TRUE(std::binary_search(settled.obstacles.begin(), settled.obstacles.end(), name)) << name;
+    const auto atStart = ctx.spheres->sphereContacts(start.data(), tools::EXACT_CONTACT_MARGIN);
+    settled.obstacles.insert(settled.obstacles.end(), atStart.obstacles.begin(), atStart.obstacles.end());
+    settled.selfPairs.insert(settled.selfPairs.end(), atStart.selfPairs.begin(), atStart.selfPairs.end());
+    std::sort(settled.obstacles.begin(), settled.obstacles.end());
+    std::sort(settled.selfPairs.begin(), settled.selfPairs.end());
+    ASSERT_TRUE(ctx.spheres->exactStates());
+    EXPECT_TRUE(ctx.spheres->isValidConfiguration(goal.data()));
+
+    ompl::RNG rng(5);
+    const auto &bounds = ctx.setup->getStateSpace()->as<ompl::base::RealVectorStateSpace>()->getBounds();
+    std::vector<std::vector<double>> qs;
+    std::vector<char> restricted;
+    for (int i = 0; i < 3000; ++i)
+    {
+        std::vector<double> q;
+        for (std::size_t d = 0; d < bounds.low.size(); ++d)
+            q.push_back(rng.uniformReal(bounds.low[d], bounds.high[d]));
+        restricted.push_back(ctx.spheres->isValidConfiguration(q.data()) ? 1 : 0);
+        EXPECT_FALSE(restricted.back() && !ctx.checker->isValidConfiguration(q.data())) << "unsafe at sample " << i;
+        qs.push_back(std::move(q));
+    }
+    // the same states with every contact settled: those it accepts whose contacts include none the query's ends have
+    // are exactly the ones the restriction refuses
+    ctx.spheres->setExactStates(true);
+    int accepted = 0, elsewhere = 0, refusedElsewhere = 0;
+    for (std::size_t i = 0; i < qs.size(); ++i)
+    {
+        accepted += restricted[i];
+        if (ctx.spheres->spheresFree(qs[i].data()) || !ctx.spheres->isValidConfiguration(qs[i].data()))
+            continue;
+        const auto here = ctx.spheres->sphereContacts(qs[i].data());
+        bool shared = false;
+        for (const auto &name : here.obstacles)
+            shared = shared || std::binary_search(settled.obstacles.begin(), settled.obstacles.end(), name);
+        for (int k : here.selfPairs)
+            shared = shared || std::binary_search(settled.selfPairs.begin(), settled.selfPairs.end(), k);
+        if (shared)
+            continue;
+        ++elsewhere;
+        refusedElsewhere += restricted[i] ? 0 : 1;
+    }
+    EXPECT_GT(accepted, 1000);
+    EXPECT_GT(elsewhere, 0);
+    EXPECT_EQ(refusedElsewhere, elsewhere);
+    // the next query decides again: the grasp's contacts once more
+    tools::setQuery(ctx, problem.queries[0]);
+    EXPECT_TRUE(ctx.spheres->exactStates());
+    EXPECT_TRUE(ctx.spheres->isValidConfiguration(goal.data()));
 }

@@ -287,11 +287,24 @@ namespace michi
             // "auto" turns FCL's settling on only where the spheres alone would make the query unsolvable, a start or
             // goal they reject (a grasp: the hand's spheres stand out of its surface into the object); the callers
             // have shown both free for FCL. Other queries keep the spheres-only speed.
-            bool exact = ctx.sphereExactStates == "on";
             // spheresFree(): the spheres alone, whatever the previous query chose
-            if (ctx.sphereExactStates == "auto")
-                exact = !ctx.spheres->spheresFree(start.data()) || !ctx.spheres->spheresFree(goal.data());
-            ctx.spheres->setExactStates(exact);
+            if (ctx.sphereExactStates != "auto" ||
+                (ctx.spheres->spheresFree(start.data()) && ctx.spheres->spheresFree(goal.data())))
+            {
+                ctx.spheres->setExactStates(ctx.sphereExactStates == "on");
+                return;
+            }
+            // FCL settles only what the spheres, grown by a margin, touch at the start and the goal (the object
+            // grasped, the shelf beside it), so that the states leading there are not refused; contacts elsewhere
+            // are left to the spheres, as in a query that needs no settling
+            auto contacts = ctx.spheres->sphereContacts(start.data(), EXACT_CONTACT_MARGIN);
+            const auto atGoal = ctx.spheres->sphereContacts(goal.data(), EXACT_CONTACT_MARGIN);
+            contacts.obstacles.insert(contacts.obstacles.end(), atGoal.obstacles.begin(), atGoal.obstacles.end());
+            contacts.selfPairs.insert(contacts.selfPairs.end(), atGoal.selfPairs.begin(), atGoal.selfPairs.end());
+            std::sort(contacts.obstacles.begin(), contacts.obstacles.end());
+            contacts.obstacles.erase(std::unique(contacts.obstacles.begin(), contacts.obstacles.end()),
+                                     contacts.obstacles.end());
+            ctx.spheres->setExactContacts(std::move(contacts));
         }
 
         PlanningContext makePlanningContext(const Problem &problem, std::size_t query)

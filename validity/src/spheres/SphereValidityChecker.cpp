@@ -644,6 +644,8 @@ namespace michi
                 // the spheres stand out of the link's surface: near an obstacle (a grasp) the real geometry
                 // decides, so a state is never judged in collision when it is not
                 if (useExact && exact_ && inflation == nullptr &&
+                    (exactEverywhere_ ||
+                     std::binary_search(exactObstacles_.begin(), exactObstacles_.end(), obs.name(hit))) &&
                     !exact_->bodyCollides(values, static_cast<std::size_t>(robotBody_[b])))
                     continue;
                 if (why != nullptr)
@@ -683,7 +685,8 @@ namespace michi
                 const auto &p = selfPairs_[k];
                 if (!spheresTouch(s, r, static_cast<std::size_t>(p.first), static_cast<std::size_t>(p.second)))
                     continue;
-                if (useExact && exact_ && inflation == nullptr)
+                if (useExact && exact_ && inflation == nullptr &&
+                    (exactEverywhere_ || exactPairs_[static_cast<std::size_t>(selfPairIndex_[k])]))
                 {
                     // the spheres of two links overlap: their real geometry decides (a boolean query)
                     if (!exact_->pairCollides(values, static_cast<std::size_t>(selfPairIndex_[k])))
@@ -728,6 +731,52 @@ namespace michi
             thread_local Scratch s;
             place(values, s, true);
             return !collides(s, values, nullptr, nullptr, nullptr, false, nullptr);
+        }
+
+        SphereValidityChecker::Contacts SphereValidityChecker::sphereContacts(const double *values, double margin) const
+        {
+            // collides() without its early exits, every radius grown by the margin; a rare call (once per query)
+            Scratch s;
+            place(values, s, true);
+            const float grow = static_cast<float>(std::max(margin, 0.));
+            for (std::size_t i = 0; i < radius_.size(); ++i)
+                s.r[i] = radius_[i] + grow;
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+                s.bodyRadius[b] = bodyRadius_[b] + grow;
+            const SphereObstacles &obs = obstacles();
+            s.candidates.resize(obs.candidateCapacity());
+            Contacts contacts;
+            for (std::size_t b = 0; b < bodyLink_.size(); ++b)
+            {
+                if (static_[b])
+                    continue;
+                const int found = obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates.data());
+                const int first = begin_[b];
+                const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, s.r.data() + first,
+                                        begin_[b + 1] - first};
+                for (int k = 0; k < found; ++k)
+                {
+                    const int o = s.candidates[k];
+                    if (!obs.hitsSphere(o, s.bodyCentre[b], s.bodyRadius[b]))
+                        continue;
+                    placeBody(b, s);
+                    if (obs.hits(o, batch))
+                        contacts.obstacles.push_back(obs.name(o));
+                }
+            }
+            for (const int k : spherePairs_)
+            {
+                const auto &p = selfPairs_[static_cast<std::size_t>(k)];
+                const float reach = s.bodyRadius[p.first] + s.bodyRadius[p.second];
+                if ((s.bodyCentre[p.first] - s.bodyCentre[p.second]).squaredNorm() < reach * reach &&
+                    spheresTouch(s, s.r.data(), static_cast<std::size_t>(p.first), static_cast<std::size_t>(p.second)))
+                    contacts.selfPairs.push_back(selfPairIndex_[static_cast<std::size_t>(k)]);
+            }
+            std::sort(contacts.obstacles.begin(), contacts.obstacles.end());
+            contacts.obstacles.erase(std::unique(contacts.obstacles.begin(), contacts.obstacles.end()),
+                                     contacts.obstacles.end());
+            std::sort(contacts.selfPairs.begin(), contacts.selfPairs.end());
+            return contacts;
         }
 
         std::string SphereValidityChecker::describeCollision(const double *values) const

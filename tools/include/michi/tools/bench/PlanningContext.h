@@ -57,9 +57,17 @@ namespace michi
             std::vector<double> fixedValues;  ///< the other joints' values (a dual-arm task's configuration)
         };
 
+        /** \brief How far (metres) beyond the spheres' surface chooseExactStates() looks for the contacts of a
+            query's start and goal that FCL settles: the obstacles near a grasp (the object, the shelf beside it),
+            so that the states leading into it are settled too. */
+        constexpr double EXACT_CONTACT_MARGIN = 0.05;
+
         /** \brief With the sphere checker: turn FCL's settling of the spheres' contacts (exact states) on or off
             for a query, as ctx.sphereExactStates says; "auto" turns it on only where the spheres reject \e start or
-            \e goal (a grasp), which FCL has found free. No effect without the sphere checker. */
+            \e goal (a grasp), which FCL has found free, and then only for the obstacles and self pairs the spheres
+            touch within EXACT_CONTACT_MARGIN at the start and the goal
+            (SphereValidityChecker::setExactContacts()); elsewhere the spheres decide, as in a query that needs no
+            settling. No effect without the sphere checker. */
         void chooseExactStates(const PlanningContext &ctx, const std::vector<double> &start,
                                const std::vector<double> &goal);
 

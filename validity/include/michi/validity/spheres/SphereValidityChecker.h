@@ -14,6 +14,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 namespace michi
@@ -79,10 +80,44 @@ namespace michi
             void setExactStates(bool exact)
             {
                 exactStates_ = exact;
+                exactObstacles_.clear();
+                exactPairs_.clear();
+                exactEverywhere_ = true;
             }
             bool exactStates() const
             {
                 return exactStates_;
+            }
+            /** \brief What the spheres touch at some group values (sphereContacts()): the obstacles by name and the
+                self pairs (indices into bodies()->selfCheckPairs()) that spheres rather than a table decide. */
+            struct Contacts
+            {
+                std::vector<std::string> obstacles;  ///< sorted, unique
+                std::vector<int> selfPairs;          ///< sorted, unique
+                bool empty() const
+                {
+                    return obstacles.empty() && selfPairs.empty();
+                }
+            };
+            /** \brief Every obstacle and self pair that the spheres, each grown by \e margin metres, touch at \e values
+                (no early exit; bodies the group does not move and pairs a table decides are left out: FCL and the
+                tables decide those whatever the setting). */
+            Contacts sphereContacts(const double *values, double margin = 0.) const;
+            /** \brief setExactStates(true), but FCL settles only these contacts: a body whose spheres touch an
+                obstacle named in \e contacts, and the self pairs in it; the spheres alone decide every other contact.
+                A grasp's goal needs FCL for the hand and the object it holds, not for every link that meets the table
+                on the way (dataset problems whose goal the spheres reject: 5.6 us a state check and 138 us a motion
+                with every contact settled, docs/checking.md). Never less safe: FCL only turns a contact the spheres
+                report into a free answer when the real geometry is free. */
+            void setExactContacts(Contacts contacts)
+            {
+                exactStates_ = !contacts.empty();
+                exactObstacles_ = std::move(contacts.obstacles);
+                exactPairs_.assign(bodies_->selfCheckPairs().size(), 0);
+                for (int k : contacts.selfPairs)
+                    if (k >= 0 && static_cast<std::size_t>(k) < exactPairs_.size())
+                        exactPairs_[static_cast<std::size_t>(k)] = 1;
+                exactEverywhere_ = false;
             }
             /** \brief The FCL checker of the same bodies given at construction (may be null). */
             const FclValidityCheckerPtr &exact() const
@@ -171,6 +206,11 @@ namespace michi
             std::vector<float> fx_, fy_, fz_;           ///< sphere centres in their body's frame
             std::vector<Eigen::Vector3f> frameCentre_;  ///< bounding sphere centres in the body's frame
             bool exactStates_{false};
+            /** with exactStates_: FCL settles every contact (setExactStates), or only those named below
+                (setExactContacts) */
+            bool exactEverywhere_{true};
+            std::vector<std::string> exactObstacles_;  ///< sorted obstacle names FCL settles
+            std::vector<char> exactPairs_;             ///< per bodies_->selfCheckPairs(): FCL settles the pair
             bool tablesFromDisk_{false};
             /** the state space when it is a RealVectorStateSpace: states are read in place, without copyToReals */
             const ompl::base::RealVectorStateSpace *realVector_{nullptr};
