@@ -123,6 +123,17 @@ TEST_F(CliOptions, UnknownCommandsAndOptionsAreUsageErrors)
     EXPECT_FALSE(fs::exists(out()));
 }
 
+TEST_F(CliOptions, RandomScenesWithoutArmOutsideTheCheckoutNamesArm)
+{
+    // the default --arm is problems/planar_2link.yaml of the current folder, else the installed copy beside the
+    // executable (share/michi/problems); the build tree has neither
+    const fs::path before = fs::current_path();
+    fs::current_path(dir_);
+    expectUsageError("random-scenes --count 1 --out " + out(), "random-scenes", "--arm");
+    fs::current_path(before);
+    EXPECT_FALSE(fs::exists(out()));
+}
+
 TEST_F(CliOptions, IntegersAreCheckedNotWrapped)
 {
     const std::string p = problemFile("planar_2link");

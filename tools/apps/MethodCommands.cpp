@@ -106,12 +106,33 @@ namespace michi
                     bool verbose{false};
                 };
 
+                /** The default --arm: planar_2link from the checkout michi runs in, else from the installed
+                    problems (an installed michi run from any folder). */
+                std::string defaultArm()
+                {
+                    const std::string local = RandomScenesOptions().arm;
+                    if (boost::filesystem::exists(local))
+                        return local;
+                    // relative to the executable (bin/michi next to share/michi/problems), so that an install
+                    // under any prefix finds its own copy
+                    boost::system::error_code error;
+                    const boost::filesystem::path exe = boost::filesystem::read_symlink("/proc/self/exe", error);
+                    const std::string installed =
+                        (exe.parent_path().parent_path() / MICHI_INSTALL_DATADIR / "michi/problems/planar_2link.yaml")
+                            .string();
+                    if (boost::filesystem::exists(installed))
+                        return installed;
+                    throw UsageError("--arm: not given, and the default arm (" + local +
+                                     ") is neither in the current folder nor installed (" + installed +
+                                     "): give --arm PROBLEM.yaml");
+                }
+
                 int runRandomScenesCommand(const RandomScenesArgs &args)
                 {
                     RandomScenesOptions options;
                     options.count = args.count.value_or(options.count);
                     options.seed = args.seed.value_or(options.seed);
-                    options.arm = args.arm.value_or(options.arm);
+                    options.arm = args.arm.value_or(defaultArm());
                     options.scene.polygons = args.polygons.value_or(options.scene.polygons);
                     // the scenes take seeds seed .. seed + count - 1, all 32-bit
                     if (options.seed > MAX_SEED - (options.count - 1))
@@ -291,7 +312,9 @@ namespace michi
                      {
                          args->arm = text;
                      },
-                     "template problem whose arm and settings are used (default problems/planar_2link.yaml)")
+                     "template problem whose arm and settings are used (default problems/planar_2link.yaml in the "
+                     "current "
+                     "folder, else the installed one)")
                     ->type_name("PROBLEM.yaml");
                 addInteger(*c, "--polygons", args->polygons, 0, 1000, "polygons per scene (default 6)")->type_name("K");
                 addVerbose(*c, args->verbose);
