@@ -59,13 +59,16 @@ TEST_F(Cli, BenchWritesLogDatabaseSummaryAndPicture)
     // the Benchmark's own share of every time, measured in the same command, is reported beside the medians, and
     // its planner stays out of the user's log and database
     std::smatch clock;
-    ASSERT_TRUE(std::regex_search(
-        summary, clock, std::regex("a planner that returns at once is booked ([0-9.e+-]+) ms \\(median of 15 runs")))
+    ASSERT_TRUE(
+        std::regex_search(summary, clock,
+                          std::regex("a planner that works 0.5 ms is booked ([0-9.e+-]+) ms, one that returns at "
+                                     "once ([0-9.e+-]+) ms \\(medians of 15 runs")))
         << summary;
-    EXPECT_GT(std::stod(clock[1].str()), 0.);
-    EXPECT_LT(std::stod(clock[1].str()), 1000.);
-    EXPECT_EQ(log.find("ReturningPlanner"), std::string::npos);
-    EXPECT_EQ(slurp(out / "planar_2link.db").find("ReturningPlanner"), std::string::npos);
+    // booked at least the time it worked (no timing decides the test beyond that)
+    EXPECT_GE(std::stod(clock[1].str()), 0.5);
+    EXPECT_GT(std::stod(clock[2].str()), 0.);
+    EXPECT_EQ(log.find("SpinningPlanner"), std::string::npos);
+    EXPECT_EQ(slurp(out / "planar_2link.db").find("SpinningPlanner"), std::string::npos);
     const std::string svg = slurp(out / "planar_2link.svg");
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find("RRTConnect"), std::string::npos);

@@ -28,10 +28,11 @@ namespace michi
         /** \brief A run property as a number (NaN when missing or not a number). */
         double benchProperty(const ompl::tools::Benchmark::RunProperties &run, const std::string &key);
 
-        /** \brief The times (seconds) OMPL's Benchmark books for a planner that returns at once, \e runs runs with
-            the given request settings: the part of every run's time that is the Benchmark's own clock
-            (BenchmarkFloor.cpp). */
-        std::vector<double> benchmarkClockTimes(double timeLimit, double memoryLimit, unsigned int runs);
+        /** \brief The times (seconds) OMPL's Benchmark books for a planner that works \e workSeconds and gives up,
+            \e runs runs with the given request settings: what the Benchmark's own clock adds to a solve of that
+            length (BenchmarkFloor.cpp). */
+        std::vector<double> benchmarkClockTimes(double timeLimit, double memoryLimit, unsigned int runs,
+                                                double workSeconds);
 
         class BenchSession
         {

@@ -1,5 +1,5 @@
-// How much of a `michi bench` time is OMPL's Benchmark rather than the planner: a planner that returns at once, run
-// through the same Benchmark with the same request settings. OMPL 1.5.2's Benchmark hands every solve() a
+// How much of a `michi bench` time is OMPL's Benchmark rather than the planner: a planner that works for a known time,
+// run through the same Benchmark with the same request settings. OMPL 1.5.2's Benchmark hands every solve() a
 // termination condition evaluated by a helper thread that sleeps in 1 ms steps, and books the time until that thread
 // has been joined (DESIGN.md, "Known traps"), so every run carries up to about a millisecond that no planner can
 // avoid. The summary reports it beside the medians, so that a reader of two sub-millisecond planners' times knows how
@@ -13,6 +13,7 @@
 
 #include <ompl/util/Console.h>
 
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -27,12 +28,13 @@ namespace michi
     {
         namespace
         {
-            /** A planner that gives up at once. It reports one progress property, as OMPL's planners do, so that the
-                Benchmark starts its progress thread for it too. */
-            class ReturningPlanner : public ob::Planner
+            /** A planner that works (spins) for a given time, then gives up. It reports one progress property, as
+                OMPL's planners do, so that the Benchmark starts its progress thread for it too. */
+            class SpinningPlanner : public ob::Planner
             {
             public:
-                explicit ReturningPlanner(const ob::SpaceInformationPtr &si) : ob::Planner(si, "ReturningPlanner")
+                SpinningPlanner(const ob::SpaceInformationPtr &si, double seconds)
+                    : ob::Planner(si, "SpinningPlanner"), seconds_(seconds)
                 {
                     addPlannerProgressProperty("iterations INTEGER",
                                                []
@@ -43,12 +45,21 @@ namespace michi
 
                 ob::PlannerStatus solve(const ob::PlannerTerminationCondition &) override
                 {
+                    // busy, as a planner is: a sleeping one would leave the core to the Benchmark's threads
+                    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds_);
+                    while (std::chrono::steady_clock::now() < end)
+                    {
+                    }
                     return ob::PlannerStatus::TIMEOUT;
                 }
+
+            private:
+                double seconds_;
             };
         }  // namespace
 
-        std::vector<double> benchmarkClockTimes(double timeLimit, double memoryLimit, unsigned int runs)
+        std::vector<double> benchmarkClockTimes(double timeLimit, double memoryLimit, unsigned int runs,
+                                                double workSeconds)
         {
             auto space = std::make_shared<ob::RealVectorStateSpace>(1);
             space->setBounds(0., 1.);
@@ -63,7 +74,7 @@ namespace michi
             goal[0] = 1.;
             setup.setStartAndGoalStates(start, goal);
             ot::Benchmark benchmark(setup, "clock floor");
-            benchmark.addPlanner(std::make_shared<ReturningPlanner>(setup.getSpaceInformation()));
+            benchmark.addPlanner(std::make_shared<SpinningPlanner>(setup.getSpaceInformation(), workSeconds));
             // the request of the real runs (BenchRun.cpp): the same time limit, so the same termination thread; the
             // Benchmark's messages about this planner are not the user's business
             ot::Benchmark::Request request(timeLimit, memoryLimit, runs, 0.05, false, false, false);
