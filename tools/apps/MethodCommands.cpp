@@ -132,7 +132,6 @@ namespace michi
                     RandomScenesOptions options;
                     options.count = args.count.value_or(options.count);
                     options.seed = args.seed.value_or(options.seed);
-                    options.arm = args.arm.value_or(defaultArm());
                     options.scene.polygons = args.polygons.value_or(options.scene.polygons);
                     // the scenes take seeds seed .. seed + count - 1, all 32-bit
                     if (options.seed > MAX_SEED - (options.count - 1))
@@ -140,6 +139,8 @@ namespace michi
                                          std::to_string(options.seed) + "' with --count " +
                                          std::to_string(options.count));
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
+                    // after the other arguments' checks, and only when --arm is not given
+                    options.arm = args.arm ? *args.arm : defaultArm();
                     setOmplLogLevel(args.verbose);
                     options.outDir = args.out;
                     const auto files = writeRandomScenes(options);
