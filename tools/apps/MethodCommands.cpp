@@ -313,9 +313,8 @@ namespace michi
                      {
                          args->arm = text;
                      },
-                     "template problem whose arm and settings are used (default problems/planar_2link.yaml in the "
-                     "current "
-                     "folder, else the installed one)")
+                     "template problem whose arm and settings are used (default problems/planar_2link.yaml of the "
+                     "current folder, else the installed one)")
                     ->type_name("PROBLEM.yaml");
                 addInteger(*c, "--polygons", args->polygons, 0, 1000, "polygons per scene (default 6)")->type_name("K");
                 addVerbose(*c, args->verbose);

@@ -1,7 +1,7 @@
 // How much of a `michi bench` time is OMPL's Benchmark rather than the planner: a planner that works for a known time,
 // run through the same Benchmark with the same request settings. OMPL 1.5.2's Benchmark hands every solve() a
 // termination condition evaluated by a helper thread that sleeps in 1 ms steps, and books the time until that thread
-// has been joined (DESIGN.md, "Known traps"), so every run carries up to about a millisecond that no planner can
+// has been joined (docs/benchmarks.md), so every run carries up to about a millisecond that no planner can
 // avoid. The summary reports it beside the medians, so that a reader of two sub-millisecond planners' times knows how
 // much of each is the clock.
 #include "bench/BenchSession.h"
@@ -10,7 +10,6 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/tools/benchmark/Benchmark.h>
-
 #include <ompl/util/Console.h>
 
 #include <chrono>

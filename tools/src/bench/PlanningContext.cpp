@@ -304,6 +304,9 @@ namespace michi
             std::sort(contacts.obstacles.begin(), contacts.obstacles.end());
             contacts.obstacles.erase(std::unique(contacts.obstacles.begin(), contacts.obstacles.end()),
                                      contacts.obstacles.end());
+            std::sort(contacts.selfPairs.begin(), contacts.selfPairs.end());
+            contacts.selfPairs.erase(std::unique(contacts.selfPairs.begin(), contacts.selfPairs.end()),
+                                     contacts.selfPairs.end());
             ctx.spheres->setExactContacts(std::move(contacts));
         }
 
