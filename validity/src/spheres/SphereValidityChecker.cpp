@@ -538,6 +538,19 @@ namespace michi
             return n;
         }
 
+        bool SphereValidityChecker::bodyTouches(Scratch &s, std::size_t b, const SphereObstacles &obs, int o,
+                                                const float *r) const
+        {
+            // a large obstacle (a table top) has a bounding sphere that reaches every body, its shape reaches few:
+            // the body's spheres are placed only once the obstacle's shape is within the body's bound
+            if (!obs.hitsSphere(o, s.bodyCentre[b], s.bodyRadius[b]))
+                return false;
+            placeBody(b, s);
+            const int first = begin_[b];
+            return obs.hits(o, SphereBatch{s.x.data() + first, s.y.data() + first, s.z.data() + first, r + first,
+                                           begin_[b + 1] - first});
+        }
+
         bool SphereValidityChecker::spheresTouch(Scratch &s, const float *r, std::size_t a, std::size_t b) const
         {
             // Two bodies whose bounding spheres overlap usually meet in a small lens: only the spheres of each body
@@ -620,25 +633,10 @@ namespace michi
                 const int found = obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates.data());
                 if (found == 0)
                     continue;
-                const int first = begin_[b];
-                const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, r + first,
-                                        begin_[b + 1] - first};
-                // the body's bounding sphere against the obstacle's own shape first: a large obstacle (a table top)
-                // has a bounding sphere that reaches every body, its shape reaches few; the body's spheres are placed
-                // only once an obstacle's shape is within its bound
                 int hit = -1;
-                for (int k = 0; k < found; ++k)
-                {
-                    const int o = s.candidates[k];
-                    if (!obs.hitsSphere(o, s.bodyCentre[b], s.bodyRadius[b]))
-                        continue;
-                    placeBody(b, s);
-                    if (obs.hits(o, batch))
-                    {
-                        hit = o;
-                        break;
-                    }
-                }
+                for (int k = 0; k < found && hit < 0; ++k)
+                    if (bodyTouches(s, b, obs, s.candidates[k], r))
+                        hit = s.candidates[k];
                 if (hit < 0)
                     continue;
                 // the spheres stand out of the link's surface: near an obstacle (a grasp) the real geometry
@@ -751,18 +749,9 @@ namespace michi
                 if (static_[b])
                     continue;
                 const int found = obs.candidates(s.bodyCentre[b], s.bodyRadius[b], s.candidates.data());
-                const int first = begin_[b];
-                const SphereBatch batch{s.x.data() + first, s.y.data() + first, s.z.data() + first, s.r.data() + first,
-                                        begin_[b + 1] - first};
                 for (int k = 0; k < found; ++k)
-                {
-                    const int o = s.candidates[k];
-                    if (!obs.hitsSphere(o, s.bodyCentre[b], s.bodyRadius[b]))
-                        continue;
-                    placeBody(b, s);
-                    if (obs.hits(o, batch))
-                        contacts.obstacles.push_back(obs.name(o));
-                }
+                    if (bodyTouches(s, b, obs, s.candidates[k], s.r.data()))
+                        contacts.obstacles.push_back(obs.name(s.candidates[k]));
             }
             for (const int k : spherePairs_)
             {

@@ -183,6 +183,9 @@ namespace michi
             /** Spheres of \e body (radii \e r) that reach into the bounding sphere of \e other, placed in the world
                 into \e g (x, y, z, r blocks of maxBodySpheres_, then scratch): their count. */
             int spheresNear(Scratch &s, const float *r, std::size_t body, std::size_t other, float *g) const;
+            /** Does body \e b (sphere radii \e r, bound in s.bodyRadius) touch obstacle \e o of \e obs? Its bounding
+                sphere against the obstacle's own shape first, its spheres (placed on demand) only then. */
+            bool bodyTouches(Scratch &s, std::size_t b, const SphereObstacles &obs, int o, const float *r) const;
             /** Do bodies \e a and \e b (radii \e r) have two spheres that touch? */
             bool spheresTouch(Scratch &s, const float *r, std::size_t a, std::size_t b) const;
             bool collides(Scratch &s, const double *values, const float *inflation, const float *valueSpan,
