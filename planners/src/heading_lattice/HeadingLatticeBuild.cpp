@@ -166,6 +166,7 @@ namespace michi
                 r.forward = (r.columns ? cs : sn) > 0. ? 1 : -1;
                 r.length = c / (r.columns ? std::abs(cs) : std::abs(sn));
                 r.yaw = theta;
+                r.wrappedYaw = wrapAngle(theta);
             }
             scratch_ = si_->allocState();
             {
@@ -214,8 +215,8 @@ namespace michi
             nodeState_.assign(nodeCount_, UNCHECKED);
             edgeState_.assign(nodeCount_, 0);
             groupFree_.assign(groupCount_, 0);
-            hDist_.assign(groupCount_, std::numeric_limits<float>::infinity());
-            hState_.assign(groupCount_, 0);
+            hGroups_.resize(groupCount_, GroupEntry{std::numeric_limits<float>::infinity(), 0u});
+            newHeuristicStamp();
             hReady_ = false;
             boxes_ = sceneBoxes();
             if (const auto *fcl =

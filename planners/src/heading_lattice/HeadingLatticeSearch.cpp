@@ -30,19 +30,31 @@ namespace michi
         void HeadingLattice::resetHeuristic()
         {
             if (hReady_ || !hOpen_.empty())
-            {
-                std::fill(hDist_.begin(), hDist_.end(), std::numeric_limits<float>::infinity());
-                std::fill(hState_.begin(), hState_.end(), 0);
-            }
+                newHeuristicStamp();
             hOpen_.clear();
             hReady_ = false;
+        }
+
+        void HeadingLattice::newHeuristicStamp()
+        {
+            if (++hStamp_ >= (1u << 30))
+            {
+                // the stamps would wrap into old ones: clear every entry once
+                std::fill(hGroups_.begin(), hGroups_.end(), GroupEntry{std::numeric_limits<float>::infinity(), 0u});
+                hStamp_ = 1;
+            }
         }
 
         float HeadingLattice::groupToStart(std::uint32_t g) const
         {
             // Group g is grid point (g / rows, g % rows), the same order as node ids ((i rows + j) K + k).
-            const double x = x0_ + static_cast<double>(g / rows_) * cellSize_;
-            const double y = y0_ + static_cast<double>(g % rows_) * cellSize_;
+            return groupToStart(static_cast<long>(g / rows_), static_cast<long>(g % rows_));
+        }
+
+        float HeadingLattice::groupToStart(long i, long j) const
+        {
+            const double x = x0_ + static_cast<double>(i) * cellSize_;
+            const double y = y0_ + static_cast<double>(j) * cellSize_;
             double d = INF;
             for (std::size_t i = 0; i + 1 < hStarts_.size(); i += 2)
             {
@@ -69,12 +81,8 @@ namespace michi
             // the open groups' priorities follow the new starts; closed groups keep their exact distances (an
             // entry of a group reached twice is recomputed twice; the second is skipped as closed when popped)
             for (auto &e : hOpen_)
-                e.first = hDist_[e.second] + groupToStart(e.second);
-            std::make_heap(hOpen_.begin(), hOpen_.end(),
-                           [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
-                           {
-                               return a.first > b.first || (a.first == b.first && a.second > b.second);
-                           });
+                e = groupKey(hDist(keyGroup(e)) + groupToStart(keyGroup(e)), keyGroup(e));
+            keyHeapMake(hOpen_);
         }
 
         double HeadingLattice::groupDistance(std::uint32_t g, const ob::PlannerTerminationCondition &ptc, bool &stopped)
@@ -86,14 +94,14 @@ namespace michi
             // from the goal to the start (those the lattice search asks for) close long before the rest of the
             // map would in a plain Dijkstra
             const unsigned int K = headings_;
-            auto isFree = [&](std::uint32_t group)
+            auto isFree = [&](std::uint32_t group, long i, long j)
             {
                 std::uint8_t &f = groupFree_[group];
                 if (f == 0)
                 {
                     f = 2;
                     for (unsigned int k = 0; k < K; ++k)
-                        if (nodeValid(group * K + k))
+                        if (nodeValid(group * K + k, i, j, k))
                         {
                             f = 1;
                             break;
@@ -101,28 +109,23 @@ namespace michi
                 }
                 return f == 1;
             };
-            auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
-            {
-                return a.first > b.first || (a.first == b.first && a.second > b.second);
-            };
             const double c = cellSize_, diagonal = cellSize_ * std::sqrt(2.);
             unsigned int count = 0;
-            while (hState_[g] != 2 && !hOpen_.empty())
+            while (hState(g) != 2 && !hOpen_.empty())
             {
                 if ((++count & 255u) == 0 && ptc())
                 {
                     stopped = true;
                     return 0.;
                 }
-                std::pop_heap(hOpen_.begin(), hOpen_.end(), greater);
-                const auto top = hOpen_.back();
-                hOpen_.pop_back();
-                const std::uint32_t u = top.second;
-                if (hState_[u] == 2 || top.first > hDist_[u] + groupToStart(u))
-                    continue;  // closed, or a better way to it was found after this entry
-                hState_[u] = 2;
-                ++work_.heuristicGroups;
+                const std::uint64_t top = keyHeapPop(hOpen_);
+                const std::uint32_t u = keyGroup(top);
                 const long i = u / rows_, j = u % rows_;
+                const float du = hDist(u);
+                if (hState(u) == 2 || keyPriority(top) > du + groupToStart(i, j))
+                    continue;  // closed, or a better way to it was found after this entry
+                setHState(u, 2);
+                ++work_.heuristicGroups;
                 for (int di = -1; di <= 1; ++di)
                     for (int dj = -1; dj <= 1; ++dj)
                     {
@@ -132,19 +135,17 @@ namespace michi
                         if (ni < 0 || nj < 0 || ni >= static_cast<long>(columns_) || nj >= static_cast<long>(rows_))
                             continue;
                         const auto w = static_cast<std::uint32_t>(ni * rows_ + nj);
-                        if (hState_[w] == 2)
+                        if (hState(w) == 2)
                             continue;
-                        const float d = static_cast<float>(hDist_[u] + (di != 0 && dj != 0 ? diagonal : c));
-                        if (d < hDist_[w] && isFree(w))
+                        const float d = static_cast<float>(du + (di != 0 && dj != 0 ? diagonal : c));
+                        if (d < hDist(w) && isFree(w, ni, nj))
                         {
-                            hDist_[w] = d;
-                            hState_[w] = 1;
-                            hOpen_.emplace_back(d + groupToStart(w), w);
-                            std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
+                            setHGroup(w, d, 1);
+                            keyHeapPush(hOpen_, groupKey(d + groupToStart(ni, nj), w));
                         }
                     }
             }
-            return hState_[g] == 2 ? hDist_[g] : INF;
+            return hState(g) == 2 ? hDist(g) : INF;
         }
 
         double HeadingLattice::heuristic(Vertex v, const ob::PlannerTerminationCondition &ptc, bool &stopped)
@@ -202,21 +203,15 @@ namespace michi
                     const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
                     hStarts_.insert(hStarts_.end(), {s->getX(), s->getY()});
                 }
-            auto greater = [](const std::pair<float, std::uint32_t> &a, const std::pair<float, std::uint32_t> &b)
-            {
-                return a.first > b.first || (a.first == b.first && a.second > b.second);
-            };
             for (const auto &q : queries_)
                 if (!q.start)
                     for (Vertex v : q.nodes)
                     {
                         const std::uint32_t g = v / headings_;
-                        if (hState_[g] == 0)
+                        if (hState(g) == 0)
                         {
-                            hDist_[g] = 0.f;
-                            hState_[g] = 1;
-                            hOpen_.emplace_back(groupToStart(g), g);
-                            std::push_heap(hOpen_.begin(), hOpen_.end(), greater);
+                            setHGroup(g, 0.f, 1);
+                            keyHeapPush(hOpen_, groupKey(groupToStart(g), g));
                         }
                     }
             hReady_ = true;

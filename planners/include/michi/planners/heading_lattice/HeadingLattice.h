@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -242,8 +243,13 @@ namespace michi
             void setState(ompl::base::State *state, double x, double y, double yaw) const;
             double headingAngle(unsigned int k) const;
             void nodePosition(Vertex id, double &x, double &y) const;
+            /** \brief The same for heading \e k of the group at grid point (i, j), without dividing an index. */
+            void nodePosition(long i, long j, unsigned int k, double &x, double &y) const;
             /** \brief Is the node free (checked once, then cached)? */
             bool nodeValid(Vertex id);
+            /** \brief The same for node \e id, heading \e k of the group at grid point (i, j), which the caller knows.
+             */
+            bool nodeValid(Vertex id, long i, long j, unsigned int k);
             /** \brief The next node along the node's heading line (forwards), or -1 outside the lattice. */
             std::int64_t driveNext(Vertex id) const;
             std::int64_t drivePrev(Vertex id) const;
@@ -308,6 +314,7 @@ namespace michi
                 int forward;    ///< +1 / -1: sign of cos (columns) or sin (rows)
                 double length;  ///< drive length to the next node
                 double yaw;
+                double wrappedYaw;  ///< yaw in [-pi, pi), as a state holds it (for the grid checker's pose query)
             };
             std::vector<HeadingGeometry> geometry_;
 
@@ -325,16 +332,48 @@ namespace michi
             PagedArray<std::uint32_t> stamp_;
             std::uint32_t searchStamp_{0};
             // the 2-D heuristic over groups (index: group), resumable Dijkstra from the goals
-            std::vector<float> hDist_;
-            std::vector<std::uint8_t> hState_;                    ///< 0 unseen, 1 open, 2 closed
-            std::vector<std::uint8_t> groupFree_;                 ///< 0 unknown, 1 some node free, 2 none
-            std::vector<std::pair<float, std::uint32_t>> hOpen_;  ///< heap (min first)
+            /** \brief A group's distance and state (0 unseen, 1 open, 2 closed) in the 2-D search stamped \e mark >> 2
+                (state: mark & 3); an entry of an older search reads as unseen, so a new goal starts a search without
+                clearing an entry per group (64room: a million groups a query, with the page faults of 5 MB). */
+            struct GroupEntry
+            {
+                float dist;
+                std::uint32_t mark;
+            };
+            std::vector<GroupEntry> hGroups_;  ///< kept across clear() (only its stamps matter)
+            std::uint32_t hStamp_{0};
+            std::uint8_t hState(std::uint32_t g) const
+            {
+                const std::uint32_t m = hGroups_[g].mark;
+                return (m >> 2) == hStamp_ ? static_cast<std::uint8_t>(m & 3u) : std::uint8_t{0};
+            }
+            float hDist(std::uint32_t g) const
+            {
+                const GroupEntry &e = hGroups_[g];
+                return (e.mark >> 2) == hStamp_ ? e.dist : std::numeric_limits<float>::infinity();
+            }
+            void setHGroup(std::uint32_t g, float dist, std::uint8_t state)
+            {
+                hGroups_[g] = GroupEntry{dist, (hStamp_ << 2) | state};
+            }
+            void setHState(std::uint32_t g, std::uint8_t state)
+            {
+                hGroups_[g].mark = (hStamp_ << 2) | state;
+            }
+            /** \brief A new 2-D search: every group unseen (a real clear once in 2^30 searches). */
+            void newHeuristicStamp();
+            std::vector<std::uint8_t> groupFree_;  ///< 0 unknown, 1 some node free, 2 none
+            /** \brief Open groups as a min-heap of (priority, group) packed in one integer (HeadingLatticeCommon.h):
+                the order of the pairs, compared as integers. */
+            std::vector<std::uint64_t> hOpen_;
             bool hReady_{false};
             std::vector<double> hGoals_;   ///< goal positions the heuristic was made for (x, y pairs)
             std::vector<double> hStarts_;  ///< start positions the 2-D search is directed at (x, y pairs)
             /** \brief Straight-line distance from group \e g's point to the nearest start (the 2-D search's A*
                 heuristic). */
             float groupToStart(std::uint32_t g) const;
+            /** \brief The same for the group at grid point (i, j), without dividing its index. */
+            float groupToStart(long i, long j) const;
             /** \brief Direct the open 2-D search at the current starts (its closed groups stay exact). */
             void aimHeuristic();
 
