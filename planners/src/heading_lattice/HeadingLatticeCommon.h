@@ -55,10 +55,9 @@ namespace michi
             }
             /** A min-heap of keys in a vector: the same layout and moves as std::push_heap / std::pop_heap with
                 std::greater, so the 2-D search closes the same groups in the same order as with them. */
-            inline void keyHeapPush(std::vector<std::uint64_t> &heap, std::uint64_t key)
+            /** Put \e key in the heap's \e hole, moving larger parents down. */
+            inline void keyHeapRise(std::vector<std::uint64_t> &heap, std::size_t hole, std::uint64_t key)
             {
-                std::size_t hole = heap.size();
-                heap.push_back(key);
                 while (hole > 0)
                 {
                     const std::size_t parent = (hole - 1) / 2;
@@ -68,6 +67,11 @@ namespace michi
                     hole = parent;
                 }
                 heap[hole] = key;
+            }
+            inline void keyHeapPush(std::vector<std::uint64_t> &heap, std::uint64_t key)
+            {
+                heap.push_back(key);
+                keyHeapRise(heap, heap.size() - 1, key);
             }
             inline std::uint64_t keyHeapPop(std::vector<std::uint64_t> &heap)
             {
@@ -86,15 +90,7 @@ namespace michi
                     heap[hole] = heap[child];
                     hole = child;
                 }
-                while (hole > 0)
-                {
-                    const std::size_t parent = (hole - 1) / 2;
-                    if (heap[parent] <= last)
-                        break;
-                    heap[hole] = heap[parent];
-                    hole = parent;
-                }
-                heap[hole] = last;
+                keyHeapRise(heap, hole, last);
                 return top;
             }
             inline void keyHeapMake(std::vector<std::uint64_t> &heap)
