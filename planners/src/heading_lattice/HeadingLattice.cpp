@@ -133,6 +133,12 @@ namespace michi
             if (scratch_ != nullptr)
                 si_->freeState(scratch_);
             scratch_ = nullptr;
+            for (auto *&m : motionScratch_)
+            {
+                if (m != nullptr)
+                    si_->freeState(m);
+                m = nullptr;
+            }
             // groupFree_ and hGroups_ keep their memory: refilled (or restamped) by the next build, not paged in
             // again (Benchmark calls clear() before every run; on 64room they are 9 MB)
             groupFree_.clear();
@@ -467,6 +473,7 @@ namespace michi
             if (!setup_)
                 return ob::PlannerStatus::ABORT;  // not an SE(2) space (setup() said so)
             const WorkCounters before = work_;
+            eagerTurns_ = false;  // turns lazy until one is refuted (turnFree())
             auto *goal = dynamic_cast<ob::GoalSampleableRegion *>(pdef_->getGoal().get());
             if (goal == nullptr)
             {

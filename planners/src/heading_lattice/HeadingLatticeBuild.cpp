@@ -169,6 +169,8 @@ namespace michi
                 r.wrappedYaw = wrapAngle(theta);
             }
             scratch_ = si_->allocState();
+            for (auto *&m : motionScratch_)
+                m = si_->allocState();
             {
                 ob::State *other = si_->allocState();
                 setState(scratch_, 0.5 * (b.low[0] + b.high[0]), 0.5 * (b.low[1] + b.high[1]), 0.);

@@ -6,6 +6,8 @@
 #include <michi/state_spaces/Angles.h>
 #include <michi/state_spaces/TurnMoveTurnStateSpace.h>
 #include <michi/validity/fcl/FclValidityChecker.h>
+#include <michi/validity/grid/GridValidityChecker.h>
+#include <michi/validity/grid/HeadingTable.h>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
@@ -267,30 +269,60 @@ namespace michi
 
         bool HeadingLattice::checkEdgeMotion(Vertex a, Vertex b)
         {
-            ob::State *sa = si_->allocState(), *sb = si_->allocState();
+            ob::State *sa = motionScratch_[0], *sb = motionScratch_[1];
             setNodeState(a, sa);
             setNodeState(b, sb);
-            bool ok;
             if (isLattice(a) && isLattice(b) && a / headings_ == b / headings_)
             {
                 // a turn in place between the headings, at both nodes' positions
                 ++work_.edgeChecks;
-                ob::State *c = si_->allocState(), *d = si_->allocState();
+                ob::State *c = motionScratch_[2], *d = motionScratch_[3];
                 const auto *pa = sa->as<ob::SE2StateSpace::StateType>();
                 const auto *pb = sb->as<ob::SE2StateSpace::StateType>();
                 setState(c, pa->getX(), pa->getY(), pb->getYaw());
                 setState(d, pb->getX(), pb->getY(), pa->getYaw());
-                ok = si_->checkMotion(sa, c) && si_->checkMotion(d, sb);
-                si_->freeState(c);
-                si_->freeState(d);
+                return si_->checkMotion(sa, c) && si_->checkMotion(d, sb);
             }
-            else
+            ++(isLattice(a) && isLattice(b) ? work_.edgeChecks : work_.queryChecks);
+            return si_->checkMotion(sa, sb);
+        }
+
+        bool HeadingLattice::turnFree(Vertex lower, Vertex upper)
+        {
+            // Lazy by default: a turn counts as free until a path uses it (checkEdges). Once a turn was refuted in this
+            // query (a long robot turning near walls: on a cave map 327 of 348 refuted edges were turns, and each
+            // refutation cost a whole new search), turns are decided when the search meets them: free at once where
+            // the grid table vouches for every yaw the turn sweeps at both nodes' cells (valid entries: every pose of
+            // the cell and bin is free), else by their motion check.
+            const int state = (edgeState_.get(lower) >> 2) & 3;
+            if (!eagerTurns_ || gridChecker_ == nullptr || state == VALID)
+                return true;
+            const validity::HeadingTable &table = gridChecker_->table();
+            const validity::OccupancyGrid &grid = table.grid();
+            const double inverse = 1. / grid.resolution;  // the table's own arithmetic (freeOnGrid)
+            const int bins = table.headings();
+            const int first = table.headingBin(geometry_[lower % headings_].wrappedYaw);
+            const int last = table.headingBin(geometry_[upper % headings_].wrappedYaw);
+            bool vouched = true;
+            for (const Vertex v : {lower, upper})
             {
-                ++(isLattice(a) && isLattice(b) ? work_.edgeChecks : work_.queryChecks);
-                ok = si_->checkMotion(sa, sb);
+                double x, y;
+                nodePosition(v, x, y);
+                const double fx = (x - grid.origin.x()) * inverse, fy = (y - grid.origin.y()) * inverse;
+                const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+                // the turn sweeps the closed interval between the two headings, which these bins cover (bin k: the
+                // yaws within half a step of its centre, both ends included)
+                for (int b = first; vouched; b = (b + 1) % bins)
+                {
+                    vouched = fx >= 0. && fy >= 0. && table.valid(i, j, b);
+                    if (b == last)
+                        break;
+                }
             }
-            si_->freeState(sa);
-            si_->freeState(sb);
+            const bool ok = vouched || checkEdgeMotion(lower, upper);
+            int shift;
+            std::uint8_t *slot = edgeSlot(lower, upper, shift);
+            *slot = static_cast<std::uint8_t>((*slot & ~(3 << shift)) | ((ok ? VALID : INVALID) << shift));
             return ok;
         }
 
@@ -402,9 +434,9 @@ namespace michi
                             relax(u, static_cast<Vertex>(prev), length);
                     }
                     const Vertex up = group * K + (k + 1) % K, down = group * K + (k + K - 1) % K;
-                    if (!stopped && (edgeState_.get(u) >> 2) != INVALID && nodeValid(up))
+                    if (!stopped && (edgeState_.get(u) >> 2) != INVALID && nodeValid(up) && turnFree(u, up))
                         relax(u, up, turnCost_);
-                    if (!stopped && (edgeState_.get(down) >> 2) != INVALID && nodeValid(down))
+                    if (!stopped && (edgeState_.get(down) >> 2) != INVALID && nodeValid(down) && turnFree(down, u))
                         relax(u, down, turnCost_);
                     auto it = std::lower_bound(goalLinks_.begin(), goalLinks_.end(),
                                                std::make_pair(u, std::make_pair(0u, 0u)));
@@ -451,7 +483,12 @@ namespace michi
                 slot = edgeSlot(path[p], path[p + 1], shift);
                 *slot = static_cast<std::uint8_t>((*slot & ~(3 << shift)) | (status << shift));
                 if (status != VALID)
+                {
+                    // a refuted turn: from now on this query's searches check turns as they meet them
+                    if (isLattice(path[p]) && isLattice(path[p + 1]) && path[p] / headings_ == path[p + 1] / headings_)
+                        eagerTurns_ = true;
                     return false;
+                }
             }
             return true;
         }

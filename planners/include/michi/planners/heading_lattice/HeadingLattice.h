@@ -387,6 +387,15 @@ namespace michi
             };
             std::vector<OpenEntry> open_;
             ompl::base::State *scratch_{nullptr};
+            /** \brief States an edge's motion check fills (made with scratch_): an SE(2) state is three allocations,
+                and a turn's check needs four states. */
+            std::array<ompl::base::State *, 4> motionScratch_{};
+            /** \brief Set when a turn of this query's paths was refuted: turnFree() then decides turns as the search
+                meets them. */
+            bool eagerTurns_{false};
+            /** \brief May the search take the turn from node \e lower to the next heading's node \e upper? Lazy (true
+                when unchecked) until eagerTurns_; then decided at once (grid table or motion check) and recorded. */
+            bool turnFree(Vertex lower, Vertex upper);
             /** \brief The space's checker when it is michi's grid checker (else null): nodeValid() asks it about the
                 node's pose directly, without making an OMPL state, with the same answer. */
             const validity::GridValidityChecker *gridChecker_{nullptr};
