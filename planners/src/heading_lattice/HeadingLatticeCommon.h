@@ -53,8 +53,9 @@ namespace michi
             {
                 return static_cast<std::uint32_t>(key);
             }
-            /** A min-heap of keys in a vector: the same layout and moves as std::push_heap / std::pop_heap with
-                std::greater, so the 2-D search closes the same groups in the same order as with them. */
+            // A min-heap of keys in a vector: the same layout and moves as std::push_heap / std::pop_heap with
+            // std::greater, so the 2-D search closes the same groups in the same order as with them
+            // (tests/heading_lattice/test_heading_lattice_heap.cpp).
             /** Put \e key in the heap's \e hole, moving larger parents down. */
             inline void keyHeapRise(std::vector<std::uint64_t> &heap, std::size_t hole, std::uint64_t key)
             {
