@@ -4,7 +4,9 @@ the Dragon Age map issue 14 was filed on: a cellular-automaton cave, about 69 % 
 whose octile grid distance is 80-220 cells, between cells whose 8 neighbours are free, computed by Dijkstra as
 MovingAI's files give it) and OUT/cave.yaml, the 64room problem pointed at them with the 0.16 m x 0.06 m rectangle of
 issue 14 (same lattice parameters). Usage: scripts/cave_map.py OUT [SEED]   (docs/heading-lattice.md, "A cave map")"""
-import heapq, math, os, random, sys
+import os, random, sys
+
+from movingai_scen import scenario_lines
 
 out = sys.argv[1]
 random.seed(int(sys.argv[2]) if len(sys.argv) > 2 else 3)
@@ -30,37 +32,7 @@ def roomy(x, y):  # the robot (0.17 m across its diagonal) fits at the cell cent
     return all(free(x + dx, y + dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1))
 
 
-def dijkstra(sx, sy):  # MovingAI's octile distances: no corner cutting
-    dist = {(sx, sy): 0.0}
-    queue = [(0.0, sx, sy)]
-    while queue:
-        d, x, y = heapq.heappop(queue)
-        if d > dist[(x, y)]:
-            continue
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                nx, ny = x + dx, y + dy
-                if (dx == dy == 0) or not free(nx, ny) or (dx and dy and not (free(x + dx, y) and free(x, y + dy))):
-                    continue
-                nd = d + (math.sqrt(2) if dx and dy else 1)
-                if nd < dist.get((nx, ny), 1e18):
-                    dist[(nx, ny)] = nd
-                    heapq.heappush(queue, (nd, nx, ny))
-    return dist
-
-
-lines = ["version 1"]
-while len(lines) <= 40:
-    sx, sy = random.randrange(W), random.randrange(H)
-    if not roomy(sx, sy):
-        continue
-    dist = dijkstra(sx, sy)
-    far = [k for k, v in dist.items() if 80 < v < 220 and roomy(*k)]
-    if not far:
-        continue
-    gx, gy = random.choice(far)
-    lines.append("%d\tcave.map\t%d\t%d\t%d\t%d\t%d\t%d\t%.8f" % (int(dist[(gx, gy)] // 4), W, H, sx, sy, gx, gy,
-                                                                dist[(gx, gy)]))
+lines = scenario_lines("cave.map", W, H, free, roomy, 40, 80, 220)
 with open(os.path.join(out, 'cave.map'), 'w') as f:
     f.write("type octile\nheight %d\nwidth %d\nmap\n%s\n" % (H, W, "\n".join("".join(r) for r in g)))
 with open(os.path.join(out, 'cave.map.scen'), 'w') as f:

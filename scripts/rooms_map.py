@@ -3,7 +3,9 @@
 walls every 40 cells with 2-cell doors, 120 random blocks) and OUT/rooms.map.scen (40 scenarios whose octile grid
 distance is 60-200 cells, computed by Dijkstra as MovingAI's files give it), plus OUT/rooms.yaml, the 64room problem
 pointed at them. Usage: scripts/rooms_map.py OUT [SEED]   (docs/heading-lattice.md, "A held-out map")"""
-import heapq, math, os, random, sys
+import os, random, sys
+
+from movingai_scen import scenario_lines
 
 out = sys.argv[1]
 random.seed(int(sys.argv[2]) if len(sys.argv) > 2 else 7)
@@ -43,37 +45,7 @@ def free(x, y):
     return 0 <= x < W and 0 <= y < H and g[y][x] in '.G'
 
 
-def dijkstra(sx, sy):  # MovingAI's octile distances: no corner cutting
-    dist = {(sx, sy): 0.0}
-    queue = [(0.0, sx, sy)]
-    while queue:
-        d, x, y = heapq.heappop(queue)
-        if d > dist[(x, y)]:
-            continue
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                nx, ny = x + dx, y + dy
-                if (dx == dy == 0) or not free(nx, ny) or (dx and dy and not (free(x + dx, y) and free(x, y + dy))):
-                    continue
-                nd = d + (math.sqrt(2) if dx and dy else 1)
-                if nd < dist.get((nx, ny), 1e18):
-                    dist[(nx, ny)] = nd
-                    heapq.heappush(queue, (nd, nx, ny))
-    return dist
-
-
-lines = ["version 1"]
-while len(lines) <= 40:
-    sx, sy = random.randrange(W), random.randrange(H)
-    if not free(sx, sy):
-        continue
-    dist = dijkstra(sx, sy)
-    far = [k for k, v in dist.items() if 60 < v < 200]
-    if not far:
-        continue
-    gx, gy = random.choice(far)
-    lines.append("%d\trooms.map\t%d\t%d\t%d\t%d\t%d\t%d\t%.8f" % (int(dist[(gx, gy)] // 4), W, H, sx, sy, gx, gy,
-                                                                 dist[(gx, gy)]))
+lines = scenario_lines("rooms.map", W, H, free, free, 40, 60, 200)
 with open(os.path.join(out, 'rooms.map.scen'), 'w') as f:
     f.write("\n".join(lines) + "\n")
 
