@@ -42,11 +42,12 @@ namespace michi
                                                });
                 }
 
-                ob::PlannerStatus solve(const ob::PlannerTerminationCondition &) override
+                ob::PlannerStatus solve(const ob::PlannerTerminationCondition &ptc) override
                 {
-                    // busy, as a planner is: a sleeping one would leave the core to the Benchmark's threads
+                    // busy, as a planner is: a sleeping one would leave the core to the Benchmark's threads (the
+                    // condition is the termination thread's cached answer, one load)
                     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds_);
-                    while (std::chrono::steady_clock::now() < end)
+                    while (std::chrono::steady_clock::now() < end && !ptc)
                     {
                     }
                     return ob::PlannerStatus::TIMEOUT;
