@@ -60,7 +60,14 @@ TEST(HeadingLattice, SolvesTheCorridorTheSameWayEveryTime)
 {
     const auto problem = michi::tools::loadProblem(CORRIDOR);
     auto ctx = michi::tools::makePlanningContext(problem);
-    const auto first = solvePath(ctx, std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation()));
+    // the paper's path: the lattice path after its correction, not shortened further
+    auto paperPlanner = [](michi::tools::PlanningContext &c)
+    {
+        auto planner = std::make_shared<HeadingLattice>(c.setup->getSpaceInformation());
+        planner->setShortcut(false);
+        return planner;
+    };
+    const auto first = solvePath(ctx, paperPlanner(ctx));
     ASSERT_GE(first.size(), 3u);
     // it turns in place at the corner: somewhere the position stays while the heading changes by 90 degrees
     bool turnsInRoom = false;
@@ -72,9 +79,91 @@ TEST(HeadingLattice, SolvesTheCorridorTheSameWayEveryTime)
     // a fresh planner, and the same planner after clear(), give the very same path
     ompl::RNG::setSeed(99);
     auto ctx2 = michi::tools::makePlanningContext(problem);
-    EXPECT_EQ(solvePath(ctx2, std::make_shared<HeadingLattice>(ctx2.setup->getSpaceInformation())), first);
+    EXPECT_EQ(solvePath(ctx2, paperPlanner(ctx2)), first);
     ctx2.setup->clear();
     EXPECT_EQ(solvePath(ctx2, ctx2.setup->getPlanner()), first);
+}
+
+namespace
+{
+    /** Length of a path of state values in the context's space. */
+    double pathLength(michi::tools::PlanningContext &ctx, const std::vector<std::vector<double>> &path)
+    {
+        const auto space = ctx.setup->getStateSpace();
+        ob::ScopedState<> a(space), b(space);
+        double length = 0.;
+        for (std::size_t i = 0; i + 1 < path.size(); ++i)
+        {
+            a = path[i];
+            b = path[i + 1];
+            length += space->distance(a.get(), b.get());
+        }
+        return length;
+    }
+
+    /** The path with and without the shortcut: the shortcut's is valid (solvePath checks every motion), no longer
+        (shorter when \e strictly), has fewer states, starts and ends where the other does, and is the same on a
+        second solve. */
+    void expectShortcutShortens(const std::string &file, bool strictly, std::vector<std::vector<double>> &lattice,
+                                std::vector<std::vector<double>> &shortened)
+    {
+        const auto problem = michi::tools::loadProblem(file);
+        auto ctx = michi::tools::makePlanningContext(problem);
+        auto plain = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
+        plain->setShortcut(false);
+        lattice = solvePath(ctx, plain);
+        auto ctx2 = michi::tools::makePlanningContext(problem);
+        auto shortcut = std::make_shared<HeadingLattice>(ctx2.setup->getSpaceInformation());
+        EXPECT_TRUE(shortcut->getShortcut());  // the default
+        shortened = solvePath(ctx2, shortcut);
+        ASSERT_GE(lattice.size(), 2u);
+        ASSERT_GE(shortened.size(), 2u);
+        EXPECT_EQ(shortened.front(), lattice.front());
+        EXPECT_EQ(shortened.back(), lattice.back());
+        EXPECT_LT(shortened.size(), lattice.size());
+        EXPECT_LE(pathLength(ctx2, shortened), pathLength(ctx, lattice) + 1e-9);
+        if (strictly)
+            EXPECT_LT(pathLength(ctx2, shortened), pathLength(ctx, lattice) - 1e-6)
+                << file << ": the lattice's zig-zags are gone";
+        EXPECT_GT(shortcut->work().shortcutChecks, 0u);
+        EXPECT_EQ(plain->work().shortcutChecks, 0u);
+        ctx2.setup->clear();
+        EXPECT_EQ(solvePath(ctx2, ctx2.setup->getPlanner()), shortened);
+    }
+}  // namespace
+
+TEST(HeadingLattice, ShortcutShortensTheTurnMoveTurnPath)
+{
+    // the corridor's lattice path is straight drives and one turn already: the same length in 3 states
+    std::vector<std::vector<double>> lattice, path;
+    expectShortcutShortens(CORRIDOR, false, lattice, path);
+}
+
+TEST(HeadingLattice, ShortcutInAPlainSe2SpaceOnlyTurnsInPlaceAndDrivesAlongTheHeading)
+{
+    // movingai_arena plans in OMPL's plain SE2StateSpace, whose motions would turn while driving: the shortcut must
+    // keep the lattice's moves (a turn on the spot, or a drive along the heading or against it)
+    std::vector<std::vector<double>> lattice, path;
+    expectShortcutShortens(std::string(MICHI_SOURCE_DIR) + "/problems/movingai_arena.yaml", true, lattice, path);
+    std::size_t made = 0;
+    for (std::size_t i = 0; i + 1 < path.size(); ++i)
+    {
+        bool own = false;  // a motion of the lattice path itself (the joins of start and goal are straight SE(2))
+        for (std::size_t k = 0; k + 1 < lattice.size() && !own; ++k)
+            own = lattice[k] == path[i] && lattice[k + 1] == path[i + 1];
+        if (own)
+            continue;
+        ++made;
+        const double dx = path[i + 1][0] - path[i][0], dy = path[i + 1][1] - path[i][1];
+        const double turned = std::abs(std::remainder(path[i + 1][2] - path[i][2], 2. * M_PI));
+        if (std::hypot(dx, dy) < 1e-9)
+            continue;  // a turn on the spot
+        EXPECT_LT(turned, 1e-9) << "motion " << i << " turns while it drives";
+        // sideways: the drive's direction against the heading
+        const double across = std::abs(std::sin(std::atan2(dy, dx) - path[i][2]));
+        EXPECT_LT(across, 1e-6) << "motion " << i << " does not drive along its heading";
+    }
+    EXPECT_GT(made, 0u);
 }
 
 TEST(HeadingLattice, CrossesOneCellDoorsOnTheGridChecker)

@@ -68,6 +68,7 @@ namespace
             const double n = static_cast<double>(std::max<std::size_t>(1, runs));
             bm.counters["expansions"] = static_cast<double>(w.expansions) / n;
             bm.counters["heuristic_groups"] = static_cast<double>(w.heuristicGroups) / n;
+            bm.counters["shortcut_checks"] = static_cast<double>(w.shortcutChecks) / n;
             bm.counters["node_checks"] = static_cast<double>(w.nodeChecks) / n;
             bm.counters["edge_checks"] = static_cast<double>(w.edgeChecks) / n;
             bm.counters["searches"] = static_cast<double>(w.searches) / n;

@@ -45,6 +45,7 @@ namespace michi
                                  &HeadingLattice::getConnectionCells, "0.5:0.5:10.");
             declareParam<double>("heuristic_weight", this, &HeadingLattice::setHeuristicWeight,
                                  &HeadingLattice::getHeuristicWeight, "1.:0.05:3.");
+            declareParam<bool>("shortcut", this, &HeadingLattice::setShortcut, &HeadingLattice::getShortcut, "0,1");
         }
 
         HeadingLattice::~HeadingLattice()
@@ -467,6 +468,146 @@ namespace michi
             return ok;
         }
 
+        void HeadingLattice::shortcutPath(og::PathGeometric &path, const ob::PlannerTerminationCondition &ptc)
+        {
+            std::vector<ob::State *> &all = path.getStates();
+            if (all.size() < 3)
+                return;
+            // The search below works on every state, also those in the middle of a straight run: a shortcut that
+            // cuts a corner ends best part way along the next run (tried: runs merged to their ends first, which
+            // saved checks but left the paths longer, docs/heading-lattice.md).
+            const std::vector<ob::State *> states = all;
+            const std::size_t n = states.size();
+            // In a TurnMoveTurnStateSpace one motion of the space turns, drives and turns. In a plain SE(2) space a
+            // motion interpolates position and yaw together (the robot would slide sideways while turning), so
+            // there a shortcut is built as the lattice's own moves: turn in place to the drive's heading (or its
+            // reverse where the lattice may reverse), drive straight, turn in place to the target's heading.
+            const bool turnMoveTurn =
+                dynamic_cast<const state_spaces::TurnMoveTurnStateSpace *>(si_->getStateSpace().get()) != nullptr;
+            // length along the path up to each state: a shortcut i -> j is taken only when it is no longer than
+            // the part it replaces (a turn-move-turn space is not metric, so this is not implied)
+            std::vector<double> along(n, 0.);
+            for (std::size_t k = 1; k < n; ++k)
+                along[k] = along[k - 1] + si_->distance(states[k - 1], states[k]);
+            ob::State *turnOut = si_->allocState(), *turnIn = si_->allocState();
+            std::vector<ob::State *> via;  // the motion i -> j as states after i: [turnOut, turnIn,] j
+            auto plan = [&](std::size_t i, std::size_t j)
+            {
+                via.clear();
+                const auto *a = states[i]->as<ob::SE2StateSpace::StateType>();
+                const auto *b = states[j]->as<ob::SE2StateSpace::StateType>();
+                const double dx = b->getX() - a->getX(), dy = b->getY() - a->getY();
+                if (!turnMoveTurn && std::hypot(dx, dy) > 1e-9)
+                {
+                    const double forwards = std::atan2(dy, dx);
+                    auto turn = [](double from, double to)
+                    {
+                        return std::abs(std::remainder(to - from, 2. * PI));
+                    };
+                    double heading = forwards;
+                    const double backwards = std::remainder(forwards + PI, 2. * PI);
+                    if (reversible_ && turn(a->getYaw(), backwards) + turn(backwards, b->getYaw()) <
+                                           turn(a->getYaw(), forwards) + turn(forwards, b->getYaw()))
+                        heading = backwards;
+                    setState(turnOut, a->getX(), a->getY(), heading);
+                    setState(turnIn, b->getX(), b->getY(), heading);
+                    if (turn(a->getYaw(), heading) > 1e-12)
+                        via.push_back(turnOut);
+                    via.push_back(turnIn);
+                    if (turn(heading, b->getYaw()) <= 1e-12)
+                        via.back() = states[j];  // no turn at the end: the drive ends at j itself
+                    else
+                        via.push_back(states[j]);
+                }
+                else
+                    via.push_back(states[j]);
+            };
+            auto joins = [&](std::size_t i, std::size_t j)
+            {
+                plan(i, j);
+                double length = 0.;
+                const ob::State *prev = states[i];
+                for (const ob::State *v : via)
+                {
+                    length += si_->distance(prev, v);
+                    prev = v;
+                }
+                if (length > along[j] - along[i] + 1e-9)
+                    return false;
+                prev = states[i];
+                for (const ob::State *v : via)
+                {
+                    ++work_.shortcutChecks;
+                    if (!si_->checkMotion(prev, v))
+                        return false;
+                    prev = v;
+                }
+                return true;
+            };
+            // Greedy from the start: from state i, the farthest j found by doubling the reach and then halving
+            // between the last reach that joined and the first that did not. Whether i joins j is not monotone in
+            // j, so this need not find the farthest j, but every motion taken is checked, and it costs a few
+            // checks per kept state instead of one per pair.
+            std::vector<ob::State *> out{states[0]};
+            std::vector<char> used(n, 0);  // states that the new path keeps
+            used[0] = 1;
+            std::size_t i = 0;
+            while (i + 1 < n)
+            {
+                if (ptc)
+                {
+                    // out of time: the rest of the path as it was
+                    for (std::size_t k = i + 1; k < n; ++k)
+                    {
+                        out.push_back(states[k]);
+                        used[k] = 1;
+                    }
+                    break;
+                }
+                std::size_t good = i + 1, bad = n;  // i joins good (a motion of the path); bad: past the end
+                for (std::size_t reach = 2; i + reach < n; reach *= 2)
+                {
+                    if (!joins(i, i + reach))
+                    {
+                        bad = i + reach;
+                        break;
+                    }
+                    good = i + reach;
+                }
+                if (bad == n && good != n - 1)
+                {
+                    if (joins(i, n - 1))
+                        good = n - 1;
+                    else
+                        bad = n - 1;
+                }
+                while (bad - good > 1)
+                {
+                    const std::size_t mid = good + (bad - good) / 2;
+                    if (joins(i, mid))
+                        good = mid;
+                    else
+                        bad = mid;
+                }
+                if (good == i + 1)
+                    out.push_back(states[good]);  // the path's own motion
+                else
+                {
+                    plan(i, good);
+                    for (ob::State *v : via)
+                        out.push_back(v == states[good] ? v : si_->cloneState(v));
+                }
+                used[good] = 1;
+                i = good;
+            }
+            si_->freeState(turnOut);
+            si_->freeState(turnIn);
+            for (std::size_t k = 0; k < n; ++k)
+                if (!used[k])
+                    si_->freeState(states[k]);
+            all.swap(out);
+        }
+
         ob::PlannerStatus HeadingLattice::solve(const ob::PlannerTerminationCondition &ptc)
         {
             checkValidity();
@@ -603,6 +744,8 @@ namespace michi
                 auto solution = std::make_shared<og::PathGeometric>(si_);
                 if (!makePath(path, *solution))
                     continue;
+                if (shortcut_)
+                    shortcutPath(*solution, ptc);
                 rawPath_.clear();
                 ob::State *s = si_->allocState();
                 std::vector<double> values;

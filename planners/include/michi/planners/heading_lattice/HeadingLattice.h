@@ -117,6 +117,19 @@ namespace michi
             {
                 return heuristicWeight_;
             }
+            /** \brief After the paper's path correction, replace runs of the path by single motions of the space
+                (turn-move-turn drives in a TurnMoveTurnStateSpace, straight SE(2) motions in a plain one) where
+                the motion validator accepts them and the path gets no longer: the lattice's fixed headings and
+                cell centres otherwise leave zig-zags (default on; off: the corrected lattice path as the paper
+                gives it). Deterministic; every motion of the returned path is checked. */
+            void setShortcut(bool shortcut)
+            {
+                shortcut_ = shortcut;
+            }
+            bool getShortcut() const
+            {
+                return shortcut_;
+            }
             /** \brief A node of the lattice. */
             struct Node
             {
@@ -170,6 +183,7 @@ namespace michi
                 std::uint64_t searches{0};         ///< A* runs
                 std::uint64_t expansions{0};       ///< A* vertex expansions
                 std::uint64_t heuristicGroups{0};  ///< groups settled by the 2-D heuristic
+                std::uint64_t shortcutChecks{0};   ///< motions checked by the final shortcut (setShortcut)
             };
             const WorkCounters &work() const
             {
@@ -275,6 +289,9 @@ namespace michi
             /** \brief The corrected path of \e path as states, every motion checked; marks the turn edges of a
                 run that cannot be followed invalid and returns false then. */
             bool makePath(const std::vector<Vertex> &path, ompl::geometric::PathGeometric &out);
+            /** \brief setShortcut()'s pass over a path whose motions are all valid (stops shortening when \e ptc
+                says so). */
+            void shortcutPath(ompl::geometric::PathGeometric &path, const ompl::base::PlannerTerminationCondition &ptc);
             void removeEdgePair(Vertex a, Vertex b);
             bool isLattice(Vertex v) const
             {
@@ -295,6 +312,7 @@ namespace michi
             double angleStep_{0.39269908169872414};  // pi / 8
             double connectionCells_{2.};
             double heuristicWeight_{1.};
+            bool shortcut_{true};
 
             unsigned int headings_{0};
             double x0_{0.}, y0_{0.};
