@@ -251,8 +251,13 @@ namespace michi
                     svg.polyline(path, "stroke=\"#1f77b4\" stroke-width=\"2\"");
                     for (const auto &s : path)
                         svg.arrow(s[0], s[1], s[2], 0.3 * cell, "#1f77b4");
-                    svg.legend({{"path on the lattice nodes", "#d62728"},
-                                {"corrected path (footprint at each turn)", "#1f77b4"}});
+                    // with the planner's shortcut on (its default) the returned path is corrected and then
+                    // shortened; `shortcut: 0` in the problem's HeadingLattice parameters shows the correction alone
+                    svg.legend(
+                        {{"path on the lattice nodes", "#d62728"},
+                         {lattice.getShortcut() ? "returned path: corrected, then shortened (footprint at each turn)"
+                                                : "corrected path (footprint at each turn)",
+                          "#1f77b4"}});
                     writeAtomically(svg.finish(), (boost::filesystem::path(dir) / "correction.svg").string());
                 }
                 // Fig. 4: the robot along the whole path
