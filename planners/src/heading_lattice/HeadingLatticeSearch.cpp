@@ -169,7 +169,8 @@ namespace michi
             const double grid = groupDistance(v / headings_, ptc, stopped);
             if (grid == INF)
                 return INF;
-            return heuristicWeight_ * std::max({0., euclidWeight_ * euclid, grid / OCTILE_EXCESS - cellSize_});
+            return heuristicWeight_ * (std::max({0., euclidWeight_ * euclid, grid / OCTILE_EXCESS - cellSize_}) +
+                                       turnTerm_[v % headings_]);
         }
 
         void HeadingLattice::rebuildGoalLinks()
@@ -190,6 +191,29 @@ namespace michi
                 {
                     const auto *s = q.state->as<ob::SE2StateSpace::StateType>();
                     goals.insert(goals.end(), {s->getX(), s->getY(), q.radius});
+                }
+            // The turning still to do: a path from heading k ends at a goal's heading, so it turns at least the
+            // angle between them, on turn edges (turnCost_ a step) or in the join to the goal (which costs at least
+            // as much a radian in both spaces). A turn edge also moves the position, by up to shift_, which the
+            // straight-line part of the heuristic may count (euclidWeight_ shift_ <= turnCost_); so each step of
+            // turning may add only what is left of its cost, turnCost_ - shift_ (0 where a turn is cheaper than
+            // the shift, as for small robots in a turn-move-turn space), and the heuristic stays consistent.
+            const unsigned int K = headings_;
+            const double step = 2. * PI / K;
+            const double perRadian = std::max(0., turnCost_ - euclidWeight_ * shift_) / step;
+            turnTerm_.assign(K, 0.);
+            if (perRadian > 0.)
+                for (unsigned int k = 0; k < K; ++k)
+                {
+                    double least = INF;
+                    for (const auto &q : queries_)
+                        if (!q.start)
+                        {
+                            const double yaw = q.state->as<ob::SE2StateSpace::StateType>()->getYaw();
+                            least = std::min(least, std::abs(std::remainder(geometry_[k].yaw - yaw, 2. * PI)));
+                        }
+                    // rounded down a little, as the other parts, so that float rounding cannot break the bound
+                    turnTerm_[k] = least == INF ? 0. : perRadian * least * (1. - 1e-9);
                 }
             if (hReady_ && goals == hGoals_)
             {

@@ -385,6 +385,9 @@ namespace michi
                 the order of the pairs, compared as integers. */
             std::vector<std::uint64_t> hOpen_;
             bool hReady_{false};
+            /** per heading: the least weighted turning to a goal's heading, added to the heuristic
+                (prepareHeuristic()) */
+            std::vector<double> turnTerm_;
             std::vector<double> hGoals_;   ///< goal positions the heuristic was made for (x, y pairs)
             std::vector<double> hStarts_;  ///< start positions the 2-D search is directed at (x, y pairs)
             /** \brief Straight-line distance from group \e g's point to the nearest start (the 2-D search's A*
