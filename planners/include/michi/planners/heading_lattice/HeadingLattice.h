@@ -117,11 +117,12 @@ namespace michi
             {
                 return heuristicWeight_;
             }
-            /** \brief After the paper's path correction, replace runs of the path by single motions of the space
-                (turn-move-turn drives in a TurnMoveTurnStateSpace, straight SE(2) motions in a plain one) where
-                the motion validator accepts them and the path gets no longer: the lattice's fixed headings and
-                cell centres otherwise leave zig-zags (default on; off: the corrected lattice path as the paper
-                gives it). Deterministic; every motion of the returned path is checked. */
+            /** \brief After the paper's path correction, replace runs of the path by single moves of the robot
+                (one motion of a TurnMoveTurnStateSpace; in a plain SE(2) space a turn on the spot, a drive along the
+                heading and a turn on the spot) where the motion validator accepts them and the path gets no
+                longer: the lattice's fixed headings and cell centres otherwise leave zig-zags (default on; off:
+                the corrected lattice path as the paper gives it). Deterministic; every motion of the returned path
+                is checked. */
             void setShortcut(bool shortcut)
             {
                 shortcut_ = shortcut;
