@@ -499,13 +499,12 @@ namespace michi
                 const double dx = b->getX() - a->getX(), dy = b->getY() - a->getY();
                 if (!turnMoveTurn && std::hypot(dx, dy) > 1e-9)
                 {
-                    const double forwards = std::atan2(dy, dx);
+                    const double forwards = std::atan2(dy, dx), backwards = forwards + PI;  // setState() wraps
                     auto turn = [](double from, double to)
                     {
-                        return std::abs(std::remainder(to - from, 2. * PI));
+                        return std::abs(state_spaces::turnBetween(from, to));
                     };
                     double heading = forwards;
-                    const double backwards = std::remainder(forwards + PI, 2. * PI);
                     if (reversible_ && turn(a->getYaw(), backwards) + turn(backwards, b->getYaw()) <
                                            turn(a->getYaw(), forwards) + turn(forwards, b->getYaw()))
                         heading = backwards;

@@ -210,7 +210,7 @@ namespace michi
                         if (!q.start)
                         {
                             const double yaw = q.state->as<ob::SE2StateSpace::StateType>()->getYaw();
-                            least = std::min(least, std::abs(std::remainder(geometry_[k].yaw - yaw, 2. * PI)));
+                            least = std::min(least, std::abs(state_spaces::turnBetween(yaw, geometry_[k].yaw)));
                         }
                     // rounded down a little, as the other parts, so that float rounding cannot break the bound
                     turnTerm_[k] = least == INF ? 0. : perRadian * least * (1. - 1e-9);
