@@ -354,3 +354,35 @@ TEST_F(BadCommands, BinaryFilesAreQuotedAsOnePrintableLine)
         EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << "a control byte in: " << last;
     EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
+
+TEST_F(BadCommands, PlanRefusesAPathThatFclDoesNotCertify)
+{
+    // Found by the exploratory sweep of 2026-12-07 (docs/reliability.md): `michi plan` wrote, with exit code 0, paths
+    // that the sampling motion validator let through a corner of a blocked cell, where `michi bench` counted the same
+    // path as a failure. Here a wall 2 cm thick spans the whole room and the validator checks states 1 m of robot
+    // motion apart: every path it accepts crosses the wall, so plan must refuse it and write nothing.
+    const fs::path problem = dir_ / "wall.yaml";
+    spit(problem,
+         "name: wall\n"
+         "robot:\n"
+         "  type: se2\n"
+         "  footprint: [[-0.05, -0.05], [0.05, -0.05], [0.05, 0.05], [-0.05, 0.05]]\n"
+         "  bounds: {x: [0, 3], y: [0, 1]}\n"
+         "collision: {motion_validator: workspace, max_step: 1.0}\n"
+         "scene:\n"
+         "  obstacles:\n"
+         "    - name: wall\n"
+         "      box: [0.02, 2, 1]\n"
+         "      pose: {xyz: [1.2, 0.5, 0.5]}\n"
+         "start: [0.5, 0.5, 0]\n"
+         "goal: [2.5, 0.5, 0]\n"
+         "planners: [geometric::RRTConnect]\n"
+         "benchmark: {time_limit: 1, runs: 1}\n");
+    const CommandRun run = runMichi("plan " + problem.string() + " --planner geometric::RRTConnect --time 1 --out " +
+                                    (dir_ / "o").string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    const std::string last = lastLine(run.output);
+    EXPECT_NE(last.find("NOT certified by FCL"), std::string::npos) << run.output;
+    EXPECT_NE(last.find("'wall'"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir_ / "o"));
+}

@@ -3,6 +3,7 @@
 
 #include <michi/tools/FileOutput.h>
 #include <michi/tools/bench/BenchmarkRunner.h>
+#include <michi/tools/bench/PathCertificate.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/commands/VerifyChecker.h>
@@ -212,6 +213,18 @@ namespace michi
                     // bounded like the solve: OMPL's unbounded default can take minutes
                     ctx.setup->simplifySolution(time);
                     auto &path = ctx.setup->getSolutionPath();
+                    // As in michi bench: the path is re-checked with FCL on the real geometry, ten times finer than
+                    // the planners' checks, before anything is printed or written. A motion validator that samples
+                    // (the default workspace one, 1 cm) can step over a corner's contact, and a fast checker can be
+                    // wrong; such a path is not a solution, and plan must not hand it out with exit code 0.
+                    const PathCertificate certificate = certifyPath(path, *ctx.checker);
+                    if (!certificate.certified)
+                    {
+                        std::cerr << "michi plan: " << problem.file << ": " << name
+                                  << "'s path is NOT certified by FCL (" << certificate.reason << "); nothing written"
+                                  << std::endl;
+                        return 1;
+                    }
                     std::vector<std::vector<double>> states;
                     for (const auto *s : path.getStates())
                     {
@@ -221,7 +234,9 @@ namespace michi
                     }
                     std::ostringstream comment;
                     comment << problem.name << " query " << query << ", " << name << ", " << states.size()
-                            << " states, length " << path.length() << ", clearance " << path.clearance();
+                            << " states, length " << path.length() << ", clearance " << path.clearance()
+                            << " (mean over the states), certified by FCL at " << certificate.statesChecked
+                            << " states";
                     std::cout << "# " << comment.str() << "\n";
                     for (const auto &s : states)
                     {

@@ -1,6 +1,7 @@
 #include <michi/tools/commands/CircleCommand.h>
 
 #include <michi/tools/pictures/CirclePicture.h>
+#include <michi/tools/bench/PathCertificate.h>
 #include <michi/tools/bench/PlannerRegistry.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/pictures/SvgPlot.h>
@@ -81,6 +82,16 @@ namespace michi
                                          "); pictures of the search are in " + options.outDir);
             }
             auto &path = ctx.setup->getSolutionPath();
+            // Re-checked with FCL as michi plan and michi bench do: a path the sampling motion validator let through
+            // a corner is reported as a failure, with the search's pictures for finding out why, never as a path.
+            const PathCertificate certificate = certifyPath(path, *ctx.checker);
+            if (!certificate.certified)
+            {
+                if (options.progress != nullptr)
+                    *options.progress << out.str() << std::flush;
+                throw std::runtime_error(problem.file + ": ConcentricCircle's path is NOT certified by FCL (" +
+                                         certificate.reason + "); pictures of the search are in " + options.outDir);
+            }
             std::vector<std::vector<double>> states;
             for (const auto *s : path.getStates())
             {
