@@ -386,3 +386,31 @@ TEST_F(BadCommands, PlanRefusesAPathThatFclDoesNotCertify)
     EXPECT_NE(last.find("'wall'"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
+
+TEST_F(BadCommands, OutputsReplaceOnlyWhatMichiWrote)
+{
+    // Found by the exploratory sweep of 2026-12-07: a folder that had the name of an output file was deleted with
+    // everything in it, and a rerun of `michi replan` deleted a user's file kept in the episode folder.
+    const fs::path out = dir_ / "o";
+    const fs::path clash = out / "planar_2link-geometric__RRTConnect.svg";
+    fs::create_directories(clash);
+    spit(clash / "notes.txt", "mine\n");
+    const CommandRun plan = runMichi("plan " + (dir_ / "p/planar_2link.yaml").string() + PLAN + out.string());
+    EXPECT_EQ(plan.exitCode, 1) << plan.output;
+    EXPECT_NE(lastLine(plan.output).find("is in the way"), std::string::npos) << plan.output;
+    EXPECT_EQ(slurp(clash / "notes.txt"), "mine\n");
+    EXPECT_FALSE(fs::exists(out / "planar_2link-geometric__RRTConnect.path"));
+
+    // a folder michi wrote is replaced by the next run, but not once a user has put a file of their own in it
+    const std::string replan = "replan " + (dir_ / "p/dynamic_mobile_passage.yaml").string() +
+                               " --episodes 1 --methods dual --out " + (dir_ / "r").string();
+    ASSERT_EQ(runMichi(replan).exitCode, 0);
+    ASSERT_TRUE(fs::is_directory(dir_ / "r/episode"));
+    const CommandRun again = runMichi(replan);
+    EXPECT_EQ(again.exitCode, 0) << again.output;
+    spit(dir_ / "r/episode/mynotes.txt", "mine\n");
+    const CommandRun third = runMichi(replan);
+    EXPECT_EQ(third.exitCode, 1) << third.output;
+    EXPECT_NE(lastLine(third.output).find("holds files michi did not write"), std::string::npos) << third.output;
+    EXPECT_EQ(slurp(dir_ / "r/episode/mynotes.txt"), "mine\n");
+}

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <climits>
@@ -17,6 +18,8 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace michi
 {
@@ -89,6 +92,43 @@ namespace michi
 
         namespace
         {
+            /** The file that lists what michi wrote into a folder inside an output folder (StagedDirectory::commit). */
+            const char *const OUTPUT_MARK = ".michi-output";
+
+            /** Paths of the files under \e folder, relative to it, sorted; the list file itself left out. */
+            std::vector<std::string> filesUnder(const boost::filesystem::path &folder)
+            {
+                namespace fs = boost::filesystem;
+                std::vector<std::string> names;
+                boost::system::error_code ec;
+                for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+                    if (!fs::is_directory(it->path()))
+                    {
+                        const std::string name = it->path().lexically_relative(folder).generic_string();
+                        if (name != OUTPUT_MARK)
+                            names.push_back(name);
+                    }
+                std::sort(names.begin(), names.end());
+                return names;
+            }
+
+            /** Whether every file under \e folder is one that michi listed when it wrote the folder (an empty folder
+                is michi's too): only then may a new run replace the folder whole. */
+            bool writtenByMichi(const boost::filesystem::path &folder)
+            {
+                const std::vector<std::string> present = filesUnder(folder);
+                if (present.empty())
+                    return true;
+                std::ifstream in((folder / OUTPUT_MARK).string());
+                if (!in)
+                    return false;
+                std::vector<std::string> listed;
+                for (std::string line; std::getline(in, line);)
+                    listed.push_back(line);
+                std::sort(listed.begin(), listed.end());
+                return std::includes(listed.begin(), listed.end(), present.begin(), present.end());
+            }
+
             // Staging folders that exist right now, so that a signal (Ctrl-C, kill, a crash) removes them too.
             // The handler may only call async-signal-safe functions: it forks and execs rm on paths copied into
             // fixed buffers when the folder was made (no allocation, no locks in the handler).
@@ -232,6 +272,9 @@ namespace michi
                 boost::system::error_code ec;
                 if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
                     throw std::runtime_error("output folder '" + out_.string() + "' is a file, not a folder");
+                // before any work, not when the results are moved in at the end
+                if (fs::exists(out_, ec) && access(out_.c_str(), W_OK | X_OK) != 0)
+                    throw std::runtime_error("output folder '" + out_.string() + "' is not writable");
             }
             removeAbandonedStaging(out_);
             boost::system::error_code ec;
@@ -263,13 +306,58 @@ namespace michi
             fs::create_directories(out_, ec);
             if (ec)
                 throw std::runtime_error("output folder '" + out_.string() + "': cannot create it: " + ec.message());
+            // Every entry is checked before any is moved, so a refusal leaves the output folder as it was. Only what
+            // michi wrote is ever replaced: a file by a file, and a folder by a folder only when michi listed every
+            // file in it (OUTPUT_MARK) or it is empty. A user's folder that happens to have an output's name (a folder
+            // "summary.md", notes kept in "episode/") was deleted with everything in it before.
+            std::vector<std::pair<fs::path, fs::path>> moves;
             for (const auto &entry : fs::directory_iterator(dir_))
             {
                 const fs::path target = out_ / entry.path().filename();
-                // A folder (pictures, logs) is replaced whole; rename() cannot replace a non-empty folder.
-                if (fs::is_directory(target))
-                    fs::remove_all(target);
-                fs::rename(entry.path(), target);
+                const bool stagedFolder = fs::is_directory(entry.path());
+                const fs::file_status status = fs::symlink_status(target, ec);
+                if (fs::exists(status))
+                {
+                    if (stagedFolder != fs::is_directory(status))
+                        throw std::runtime_error("output folder '" + out_.string() + "': '" + target.string() +
+                                                 "' is in the way (michi writes a " +
+                                                 (stagedFolder ? "folder" : "file") + " there); move it away");
+                    if (stagedFolder && !writtenByMichi(target))
+                        throw std::runtime_error("output folder '" + out_.string() + "': '" + target.string() +
+                                                 "' holds files michi did not write (it replaces that folder whole); "
+                                                 "move them away or choose another folder");
+                }
+                moves.emplace_back(entry.path(), target);
+            }
+            try
+            {
+                moveAll(moves);
+            }
+            catch (const fs::filesystem_error &e)
+            {
+                // one line that names the folder the user gave, not the staging folder beside it
+                throw std::runtime_error("output folder '" + out_.string() +
+                                         "': cannot move the results in: " + e.code().message());
+            }
+        }
+
+        void StagedDirectory::moveAll(
+            const std::vector<std::pair<boost::filesystem::path, boost::filesystem::path>> &moves)
+        {
+            namespace fs = boost::filesystem;
+            for (const auto &move : moves)
+            {
+                if (fs::is_directory(move.first))
+                {
+                    // the list that lets a later run replace this folder (and nothing a user added to it)
+                    std::ofstream mark(fs::path(move.first / OUTPUT_MARK).string());
+                    for (const std::string &name : filesUnder(move.first))
+                        mark << name << "\n";
+                    // rename() cannot replace a non-empty folder
+                    if (fs::is_directory(move.second))
+                        fs::remove_all(move.second);
+                }
+                fs::rename(move.first, move.second);
             }
         }
     }  // namespace tools

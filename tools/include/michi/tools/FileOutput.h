@@ -4,6 +4,8 @@
 #include <boost/filesystem/path.hpp>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace michi
 {
@@ -50,6 +52,9 @@ namespace michi
             }
 
         private:
+            /** Moves each staged entry (first) to its place in the output folder (second). */
+            static void moveAll(const std::vector<std::pair<boost::filesystem::path, boost::filesystem::path>> &moves);
+
             boost::filesystem::path out_;
             boost::filesystem::path dir_;
             int slot_{-1};  ///< registration for removal on a signal (FileOutput.cpp)
