@@ -118,6 +118,8 @@ TEST_F(CliOptions, UnknownCommandsAndOptionsAreUsageErrors)
     expectUsageError("bench " + p + " --checker fcl,jmpa --out " + out(), "bench", "got 'fcl,jmpa'");
     expectUsageError("path-seed-library " + p + " --variant spiral --out " + out(), "path-seed-library", "--variant");
     expectUsageError("circles " + p + " --set divisions --out " + out(), "circles", "--set");
+    // a parameter ConcentricCircle does not have is named by --set, not as a key of the problem file
+    expectUsageError("circles " + p + " --set foo=1 --out " + out(), "circles", "--set foo: unknown parameter");
     expectUsageError("circles " + p + " --view 0,0,1 --out " + out(), "circles", "--view");
     expectUsageError("random-scenes --count 2 --out " + out() + " extra", "random-scenes", "extra");
     EXPECT_FALSE(fs::exists(out()));
@@ -166,6 +168,8 @@ TEST_F(CliOptions, NumbersMustBeFiniteAndInRange)
     expectUsageError("bench " + p + " --out " + out() + " --time=inf", "bench", "--time");
     expectUsageError("lattice " + p + " --out " + out() + " --cell-sizes 0.5,inf", "lattice", "--cell-sizes");
     expectUsageError("lattice " + p + " --out " + out() + " --angle-steps 0.1,", "lattice", "--angle-steps");
+    // beyond pi/2, which the planner refuses: a usage error naming the range the planner takes (it failed the run)
+    expectUsageError("lattice " + p + " --out " + out() + " --angle-steps 2", "lattice", "<= 1.5708");
     expectUsageError("experience-queries " + p + " --out " + out() + " --start-spread nan", "experience-queries",
                      "--start-spread");
     // task regions replace the perturbation: a spread beside them is a usage error naming both

@@ -67,7 +67,23 @@ namespace michi
                     options.timeLimit = args.time.value_or(options.timeLimit);
                     options.progress = &std::cerr;
                     options.html = args.html;
-                    std::cout << runCircles(loadProblem(args.problem), options);
+                    const Problem problem = loadProblem(args.problem);
+                    try
+                    {
+                        std::cout << runCircles(problem, options);
+                    }
+                    catch (const ProblemError &e)
+                    {
+                        // circles takes ConcentricCircle's parameters from --set only, so a bad one is a usage error
+                        // of --set, not a key of the problem file
+                        const std::string prefix = "planners.michi::ConcentricCircle.params.";
+                        if (e.key().compare(0, prefix.size(), prefix) != 0)
+                            throw;
+                        const std::string what = e.what();
+                        const std::string head = e.file() + ": " + e.key() + ": ";
+                        throw UsageError("--set " + e.key().substr(prefix.size()) + ": " +
+                                         (what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what));
+                    }
                     return 0;
                 }
 
@@ -168,7 +184,8 @@ namespace michi
                     if (args.cellSizes)
                         options.cellSizes = parseRealList("--cell-sizes", *args.cellSizes, 0., 1e6);
                     if (args.angleSteps)
-                        options.angleSteps = parseRealList("--angle-steps", *args.angleSteps, 0., 2. * M_PI);
+                        // at most pi/2, as the planner takes it (a usage error here, exit 2, not a failed run)
+                        options.angleSteps = parseRealList("--angle-steps", *args.angleSteps, 0., M_PI / 2. + 1e-9);
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
                     setOmplLogLevel(args.verbose);
                     options.outDir = args.out;
