@@ -297,6 +297,12 @@ TEST_F(BadCommands, SettingsThatHungOrBlamedTheWrongKey)
                                       "motion: {model: turn_move_turn, turn_weight: 1.0e12}"));
     expectCleanError("plan " + corridor.string() + PLAN + (dir_ / "o").string(), "robot.motion.turn_weight",
                      dir_ / "o");
+    // a tiny turn weight makes every motion's checks far denser (its turns take a tiny share of the distance): the
+    // weight is to blame, not collision.max_step and robot.bounds (found 2026-12-07)
+    spit(corridor, std::regex_replace(corridorText, std::regex("motion: turn_move_turn"),
+                                      "motion: {model: turn_move_turn, turn_weight: 1.0e-6}"));
+    expectCleanError("plan " + corridor.string() + PLAN + (dir_ / "o").string(), "robot.motion.turn_weight",
+                     dir_ / "o");
     spit(corridor, corridorText);
     // an unknown planner on the command line is a usage error (exit 2), named by its flag, not the problem's key
     const CommandRun run =

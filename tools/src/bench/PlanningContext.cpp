@@ -160,22 +160,32 @@ namespace michi
                 const double states = widest / problem.maxStep;
                 if (!(states <= MAX_STATES_PER_MOTION))
                 {
-                    // the turn weight is to blame when a turn on the spot alone is too much
+                    // The turn weight is to blame when a turn on the spot alone is too much, or when a turn weight
+                    // below the footprint's circumradius r is what makes the motions too wide: a turn-move-turn motion
+                    // covers its turns in a share of the distance as small as the weight, so its checks must be
+                    // r / weight times denser (TurnMoveTurnBodies), and the motion would fit without that factor.
+                    double reach = 0.;
+                    for (const Eigen::Vector2d &p : problem.footprint)
+                        reach = std::max(reach, p.norm());
+                    const double w = problem.se2Motion.turnWeight;
+                    const double factor = w > 0. ? std::max(1., reach / w) : 1.;
                     const bool turnWeight =
-                        problem.se2Motion.turnWeight > 0. && !(turn / problem.maxStep <= MAX_STATES_PER_MOTION);
-                    if (turnWeight)
+                        w > 0. && (!(turn / problem.maxStep <= MAX_STATES_PER_MOTION) ||
+                                   (factor > 1. && widest / factor / problem.maxStep <= MAX_STATES_PER_MOTION));
+                    if (turnWeight && !(turn / problem.maxStep <= MAX_STATES_PER_MOTION))
                         widest = turn;
                     throw ProblemError(
                         problem.file, turnWeight ? "robot.motion.turn_weight" : "collision.max_step",
                         "one motion would test up to " + shortNumber(states) + " states: the widest motion " +
                             (turnWeight
-                                 ? "(a half turn, which the turn weight " + shortNumber(problem.se2Motion.turnWeight) +
-                                       " m/rad counts as " + shortNumber(widest) + " m of motion)"
+                                 ? "(the turn weight " + shortNumber(w) + " m/rad, against the footprint's reach of " +
+                                       shortNumber(reach) + " m, makes it " + shortNumber(widest) + " m of motion)"
                                  : "moves the robot up to " + shortNumber(widest) + " m" +
                                        (problem.kind == Problem::Kind::SE2 ? " (robot.bounds)" : "")) +
                             " checked every " + shortNumber(problem.maxStep) + " m (collision.max_step); at most " +
                             shortNumber(MAX_STATES_PER_MOTION) + " are allowed: " +
-                            (turnWeight ? "lower the turn weight" : "raise collision.max_step or narrow the bounds"));
+                            (turnWeight ? "bring the turn weight nearer the footprint's reach"
+                                        : "raise collision.max_step or narrow the bounds"));
                 }
             }
         }  // namespace
