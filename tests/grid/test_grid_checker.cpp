@@ -527,3 +527,38 @@ TEST(Dataset, SelectionsAndProblemQueries)
     EXPECT_EQ(tools::datasetOf(arena, tools::parseQuerySelection("1-2")).entries.size(), 2u);
     EXPECT_THROW(tools::datasetOf(arena, tools::parseQuerySelection("0-99")), tools::ProblemError);
 }
+
+TEST(GridChecker, ObstaclesAboveOrBelowTheRobotStayOutOfTheGrid)
+{
+    // Found by the exploratory sweep of 2026-12-07: a table top over a robot lower than it blocked the grid beneath
+    // it (55 % of the states FCL calls free were refused, the start among them), where FCL finds no contact.
+    validity::Scene scene;
+    auto at = [](double x, double y, double z)
+    {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = Eigen::Vector3d(x, y, z);
+        return pose;
+    };
+    // a robot over z in [0, 0.5]: a table top at [0.75, 0.85] is above it, a lamp hanging down to 0.45 reaches
+    // into it, a plate lying on it from 0.5 up touches it (contact counts), a box under the floor is below it
+    scene.add(validity::Obstacle{"table_top", validity::Shape::box({1., 1., 0.1}), at(1., 1., 0.8), {}});
+    scene.add(validity::Obstacle{"lamp", validity::Shape::box({0.2, 0.2, 0.4}), at(3., 1., 0.65), {}});
+    scene.add(validity::Obstacle{"plate", validity::Shape::box({0.2, 0.2, 0.1}), at(1., 3., 0.55), {}});
+    scene.add(validity::Obstacle{"cellar", validity::Shape::box({0.2, 0.2, 0.1}), at(3., 3., -0.1), {}});
+    const Eigen::Vector2d origin(0., 0.);
+    const validity::OccupancyGrid heights = validity::rasterizeScene(scene, 0.1, origin, 40, 40, 1e-7, 0., 0.5);
+    const validity::OccupancyGrid every = validity::rasterizeScene(scene, 0.1, origin, 40, 40, 1e-7);
+    auto occupied = [](const validity::OccupancyGrid &g, double x, double y)
+    {
+        return g.cells[static_cast<std::size_t>(g.row(y)) * g.width + g.column(x)] != 0;
+    };
+    EXPECT_FALSE(occupied(heights, 1., 1.));  // table top
+    EXPECT_TRUE(occupied(heights, 3., 1.));   // lamp
+    EXPECT_TRUE(occupied(heights, 1., 3.));   // plate
+    EXPECT_FALSE(occupied(heights, 3., 3.));  // cellar
+    // without a height range every obstacle counts, as before
+    for (const auto &p :
+         {Eigen::Vector2d(1., 1.), Eigen::Vector2d(3., 1.), Eigen::Vector2d(1., 3.), Eigen::Vector2d(3., 3.)})
+        EXPECT_TRUE(occupied(every, p.x(), p.y()));
+    EXPECT_EQ(heights.occupiedCount() + 100 + 4, every.occupiedCount());
+}

@@ -230,8 +230,12 @@ namespace michi
                                            "the grid checker is for SE2 robots (robot.type se2)");
                     try
                     {
+                        // the robot's heights, as its FCL body has them: obstacles above or below it stay out
+                        validity::GridCheckerSettings settings = problem.grid;
+                        settings.robotZMin = 0.;
+                        settings.robotZMax = problem.footprintHeight;
                         ctx.grid = std::make_shared<validity::GridValidityChecker>(si, problem.footprint, ctx.scene,
-                                                                                   problem.se2Bounds, problem.grid);
+                                                                                   problem.se2Bounds, settings);
                     }
                     catch (const std::invalid_argument &e)
                     {

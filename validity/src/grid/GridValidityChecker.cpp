@@ -220,12 +220,15 @@ namespace michi
             // A cell is occupied when an obstacle overlaps it shrunk by this much, so a map's box on cell edges
             // occupies exactly its cells, not their neighbours too (checking.md).
             tolerance_ = 1e-6 * res;
+            zMin_ = settings.robotZMin;  // refresh() rasterises the moved scene over the same heights
+            zMax_ = settings.robotZMax;
             // On a grid map the occupied cells are the obstacles exactly, so the exact footprint test is exact; a
             // polygon scene is only rasterised, and the table alone answers.
             exact_ = settings.mapResolution > 0.;
             const Eigen::Vector2d origin(o.x() + i0 * res, o.y() + j0 * res);
             OccupancyGrid grid =
-                rasterizeScene(*scene_, res, origin, static_cast<int>(i1 - i0), static_cast<int>(j1 - j0), tolerance_);
+                rasterizeScene(*scene_, res, origin, static_cast<int>(i1 - i0), static_cast<int>(j1 - j0), tolerance_,
+                               settings.robotZMin, settings.robotZMax);
             // the band table where the exact test is costly: a footprint over more than a few table cells (on
             // 64room, 1.4 cells of circumradius, the exact test took about 40 ns and a band table of 6 million
             // entries, 20 MiB, made the queries slower, not faster: measured, docs/checking.md); nor where the
@@ -365,7 +368,8 @@ namespace michi
             const OccupancyGrid &g = table_->grid();
             // The same grid as the constructor's (resolution, origin, size, tolerance), so update() can compare cell by
             // cell and recompute only the entries near changed cells.
-            const OccupancyGrid now = rasterizeScene(*scene_, g.resolution, g.origin, g.width, g.height, tolerance_);
+            const OccupancyGrid now =
+                rasterizeScene(*scene_, g.resolution, g.origin, g.width, g.height, tolerance_, zMin_, zMax_);
             const CellBox box = table_->update(now);
             if (!box.empty())
                 distanceTransform();

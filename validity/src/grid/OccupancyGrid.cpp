@@ -1,7 +1,11 @@
 #include <michi/validity/grid/OccupancyGrid.h>
 
+#include <fcl/math/bv/AABB.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace bg = boost::geometry;
 
@@ -27,8 +31,31 @@ namespace michi
             return static_cast<std::size_t>(std::count(cells.begin(), cells.end(), std::uint8_t{1}));
         }
 
+        namespace
+        {
+            /** The lowest and highest z of an obstacle: its FCL geometries' local boxes taken to the world. */
+            std::pair<double, double> zRange(const Obstacle &obstacle)
+            {
+                double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+                for (const auto &g : obstacle.shape->geometries())
+                {
+                    const fcl::AABBd &box = g->aabb_local;
+                    for (int corner = 0; corner < 8; ++corner)
+                    {
+                        const Eigen::Vector3d local((corner & 1) ? box.max_.x() : box.min_.x(),
+                                                    (corner & 2) ? box.max_.y() : box.min_.y(),
+                                                    (corner & 4) ? box.max_.z() : box.min_.z());
+                        const double z = (obstacle.pose * local).z();
+                        lo = std::min(lo, z);
+                        hi = std::max(hi, z);
+                    }
+                }
+                return {lo, hi};
+            }
+        }  // namespace
+
         OccupancyGrid rasterizeScene(const Scene &scene, double resolution, const Eigen::Vector2d &origin, int width,
-                                     int height, double tolerance)
+                                     int height, double tolerance, double zMin, double zMax)
         {
             OccupancyGrid grid;
             grid.width = width;
@@ -37,8 +64,18 @@ namespace michi
             grid.origin = origin;
             grid.cells.assign(static_cast<std::size_t>(width) * height, 0);
             const double r = resolution;
+            const bool everyHeight = std::isinf(zMin) && std::isinf(zMax);
             for (const auto &obstacle : scene.obstacles())
             {
+                if (!everyHeight)
+                {
+                    // Wholly above or below the robot (with a margin of float rounding): FCL finds no contact with
+                    // it at any pose, so leaving it out keeps the grid conservative. Touching still counts.
+                    const auto z = zRange(obstacle);
+                    const double margin = 1e-9 * (1. + std::abs(zMin) + std::abs(zMax));
+                    if (z.first > zMax + margin || z.second < zMin - margin)
+                        continue;
+                }
                 const MultiPolygon2 shadow = obstacle.shape->footprint(obstacle.pose);
                 for (const auto &polygon : shadow)
                 {

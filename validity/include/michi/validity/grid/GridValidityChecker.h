@@ -7,6 +7,7 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include <array>
+#include <limits>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -28,6 +29,11 @@ namespace michi
             /** \brief A corner of the map's cells: table cells are aligned with it. */
             Eigen::Vector2d origin{Eigen::Vector2d::Zero()};
             unsigned int headings{16};  ///< heading bins over 2 pi
+            /** \brief The z range the robot occupies (an SE(2) robot: [0, its height]). Obstacles wholly above or
+                below it are left out of the grid, as FCL never finds them in contact; the default keeps every
+                obstacle. */
+            double robotZMin{-std::numeric_limits<double>::infinity()};
+            double robotZMax{std::numeric_limits<double>::infinity()};
         };
 
         /** \brief The table cell size GridCheckerSettings::resolution = 0 stands for. */
@@ -123,6 +129,8 @@ namespace michi
             std::vector<Eigen::Vector2d> outline_;  ///< points of the footprint's outline, at most a cell apart
             ScenePtr scene_;
             double tolerance_{0.};
+            double zMin_{-std::numeric_limits<double>::infinity()};  ///< the robot's z range (GridCheckerSettings)
+            double zMax_{std::numeric_limits<double>::infinity()};
             std::unique_ptr<HeadingTable> table_;
             std::vector<float> distance_;  ///< cellDistance() per cell, metres
             double buildSeconds_{0.};

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace michi
@@ -42,11 +43,14 @@ namespace michi
             obstacle on the x-y plane (Shape::footprint: the outline of prisms and boxes, the convex hull of other
             shapes) overlaps the cell's square shrunk by \e tolerance metres on each side, so obstacles that only
             touch a cell's edge (a map's boxes on cell boundaries) leave it free; whatever of an obstacle lies in a
-            cell's closed square is then covered by an occupied cell grown by \e tolerance. Obstacles' heights are
-            ignored (every obstacle counts, whatever its z range: conservative). Moving obstacles are taken where the
-            scene has them now. */
+            cell's closed square is then covered by an occupied cell grown by \e tolerance. An obstacle whose z range
+            (its bounding box) lies wholly above \e zMax or below \e zMin is left out: a robot within [zMin, zMax]
+            cannot touch it (a table top over a low robot); by default every obstacle counts. Moving obstacles are
+            taken where the scene has them now. */
         OccupancyGrid rasterizeScene(const Scene &scene, double resolution, const Eigen::Vector2d &origin, int width,
-                                     int height, double tolerance);
+                                     int height, double tolerance,
+                                     double zMin = -std::numeric_limits<double>::infinity(),
+                                     double zMax = std::numeric_limits<double>::infinity());
     }  // namespace validity
 }  // namespace michi
 
