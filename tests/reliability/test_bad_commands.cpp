@@ -420,3 +420,20 @@ TEST_F(BadCommands, OutputsReplaceOnlyWhatMichiWrote)
     EXPECT_NE(lastLine(third.output).find("holds files michi did not write"), std::string::npos) << third.output;
     EXPECT_EQ(slurp(dir_ / "r/episode/mynotes.txt"), "mine\n");
 }
+
+TEST_F(BadCommands, AQueryEndTheFastCheckerRefusesIsNamedBeforePlanning)
+{
+    // Found by the exploratory sweep of 2026-12-07: with the J-map checker a start free for FCL but refused by the
+    // conservative map showed only as OMPL's "Invalid start" after the time limit; the grid checker already warned.
+    // table_pick 6's goal (a grasp) is refused by the spheres alone (exact_states off) and free for FCL.
+    const fs::path problem = dir_ / "p/datasets/table_pick/table_pick_0006.yaml";
+    spit(problem, slurp(problem) + "collision:\n  checker: spheres\n  spheres: {exact_states: off}\n");
+    const CommandRun run = runMichi("plan " + problem.string() + PLAN + (dir_ / "o").string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find("goal ("), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("is free for FCL but the spheres checker, which is conservative, calls it invalid"),
+              std::string::npos)
+        << run.output;
+    EXPECT_EQ(run.output.find("start ("), std::string::npos) << run.output;  // the ready pose is free for both
+    EXPECT_FALSE(fs::exists(dir_ / "o"));
+}

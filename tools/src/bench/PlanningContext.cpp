@@ -404,6 +404,7 @@ namespace michi
             ctx.sphereExactStates = problem.spheres.exactStates;
             chooseExactStates(ctx, q.start, q.goal);
             if (ctx.grid)
+            {
                 for (const auto *values : {&q.start, &q.goal})
                     if (!ctx.grid->isValidPose((*values)[0], (*values)[1], (*values)[2]))
                         OMPL_WARN(
@@ -412,6 +413,27 @@ namespace michi
                             "will not %s it; a finer collision.grid.resolution or more headings help. %s",
                             problem.file.c_str(), values == &q.start ? "start" : "goal", (*values)[0], (*values)[1],
                             (*values)[2], values == &q.start ? "start from" : "reach", ctx.grid->describe().c_str());
+            }
+            else if (ctx.checkerName != "fcl")
+                // The J-map and sphere checkers are conservative too: an end they refuse (FCL accepted it above)
+                // would otherwise show only as OMPL's "Invalid start" after the whole time limit.
+                for (const auto *values : {&q.start, &q.goal})
+                {
+                    ob::ScopedState<> s(ctx.setup->getStateSpace());
+                    setState(s, *values);
+                    if (si->isValid(s.get()))
+                        continue;
+                    std::string at;
+                    for (double v : *values)
+                        at += (at.empty() ? "" : ", ") + shortNumber(v);
+                    const char *help = ctx.spheres ? "collision.spheres.exact_states auto or on lets FCL settle it"
+                                                   : "plan with --checker fcl, or move it away from the obstacles";
+                    OMPL_WARN(
+                        "%s: %s (%s) is free for FCL but the %s checker, which is conservative, calls it "
+                        "invalid: planners will not %s it; %s",
+                        problem.file.c_str(), values == &q.start ? "start" : "goal", at.c_str(),
+                        ctx.checkerName.c_str(), values == &q.start ? "start from" : "reach", help);
+                }
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);
             // benchmark.objective: on the problem definition, where OMPL's optimizing planners (RRT*, BIT*, ...)
