@@ -100,6 +100,25 @@ TEST_P(PlannerConformance, SolveClearSolve)
     }
 }
 
+TEST_P(PlannerConformance, SolvesAgainWithoutClear)
+{
+    // As OMPL's planners do: a solve stopped at once, then solve() again without clear() (SimpleSetup::solve twice,
+    // a retry with more time). ConcentricCircle and PathSeed answered "Invalid start" to every later solve: OMPL's
+    // PlannerInputStates had handed the start out once (found 2026-12-07).
+    problem_.setup->setup();
+    const ompl::base::PlannerTerminationCondition done(
+        []
+        {
+            return true;
+        });
+    EXPECT_NE(problem_.setup->solve(done), ompl::base::PlannerStatus::EXACT_SOLUTION);
+    for (int round = 0; round < 2; ++round)
+    {
+        ASSERT_EQ(solve(), ompl::base::PlannerStatus::EXACT_SOLUTION) << "round " << round;
+        EXPECT_EQ(michi::test::independentPathCheck(problem_.setup->getSolutionPath()), "") << "round " << round;
+    }
+}
+
 TEST_P(PlannerConformance, ReturnsPromptlyWhenTerminated)
 {
     problem_.setup->setup();

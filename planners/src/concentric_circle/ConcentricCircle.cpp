@@ -519,6 +519,10 @@ namespace michi
         ob::PlannerStatus ConcentricCircle::solve(const ob::PlannerTerminationCondition &ptc)
         {
             checkValidity();
+            // Every solve plans from the problem's start afresh (no tree is kept between solves), so the input
+            // states are read again: OMPL's PlannerInputStates hands each state out once, and a second solve()
+            // without clear() (SimpleSetup::solve twice, a retry with more time) found no start at all.
+            pis_.restart();
             const ob::State *startState = pis_.nextStart();
             if (startState == nullptr)
             {

@@ -403,6 +403,9 @@ namespace michi
                 checkThreads_.reset();
             else if (!checkThreads_ || checkThreads_->helpers() != threads_ - 1)
                 checkThreads_ = std::make_unique<CheckThreads>(threads_ - 1);
+            // Every solve decodes for the problem's start afresh, so the input states are read again: OMPL's
+            // PlannerInputStates hands each state out once, and a second solve() without clear() found no start.
+            pis_.restart();
             const ob::State *start = pis_.nextStart();
             if (start == nullptr)
             {
