@@ -244,3 +244,31 @@ TEST(ConcentricCircleRules, FreeArcsFromCrossingsAgreeWithPointTestsAndSplitAtTh
         EXPECT_EQ(arc[i], arc[0]);
     EXPECT_GE(arc[0], 0);
 }
+
+TEST(ConcentricCircle, SettersRefuseValuesThatMakeTheSearchNonsense)
+{
+    // Found 2026-12-07 through the C++ API (the command line already refused values outside the declared ranges):
+    // a ring spacing of 0 or below ran to the time limit, negative counts ended in ABORT.
+    auto space = std::make_shared<ompl::base::RealVectorStateSpace>(2);
+    space->setBounds(-1., 1.);
+    auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+    michi::planners::ConcentricCircle planner(si);
+    for (const auto &bad : std::vector<std::pair<std::string, std::string>>{{"ring_spacing", "0"},
+                                                                            {"ring_spacing", "-1"},
+                                                                            {"divisions", "-8"},
+                                                                            {"divisions", "0"},
+                                                                            {"point_spacing", "-0.1"},
+                                                                            {"max_paths", "0"},
+                                                                            {"max_arc_points", "-1"},
+                                                                            {"max_recursions", "-1"},
+                                                                            {"potential_range", "-1"},
+                                                                            {"k_obstacle", "-1"}})
+    {
+        const std::string before = planner.params()[bad.first].getValue();
+        EXPECT_THROW(planner.params().setParam(bad.first, bad.second), ompl::Exception)
+            << bad.first << " " << bad.second;
+        EXPECT_EQ(planner.params()[bad.first].getValue(), before) << bad.first;
+    }
+    EXPECT_TRUE(planner.params().setParam("ring_spacing", "0.05"));
+    EXPECT_TRUE(planner.params().setParam("max_arc_points", "0"));
+}

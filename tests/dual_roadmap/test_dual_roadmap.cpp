@@ -598,3 +598,20 @@ TEST(DualRoadmap, PartialRecheckKeepsEveryPathValidUnderRandomLocalChanges)
     }
     EXPECT_GE(solved, 10);
 }
+
+TEST(DualRoadmap, EdgeProbesBeyondTheirRangeAreRefused)
+{
+    // Found 2026-12-07 through the C++ API: edge_probes 4294967295 made the probe loop endless (solve never
+    // returned), 100,000,000 made a 0.5 s solve take 6 s.
+    auto space = std::make_shared<ompl::base::SE2StateSpace>();
+    ompl::base::RealVectorBounds bounds(2);
+    bounds.setLow(0.);
+    bounds.setHigh(1.);
+    space->setBounds(bounds);
+    auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+    michi::planners::DualRoadmap planner(si);
+    EXPECT_THROW(planner.setEdgeProbes(4294967295u), ompl::Exception);
+    EXPECT_THROW(planner.params().setParam("edge_probes", "16"), ompl::Exception);
+    EXPECT_TRUE(planner.params().setParam("edge_probes", "15"));
+    EXPECT_EQ(planner.getEdgeProbes(), 15u);
+}

@@ -441,3 +441,17 @@ TEST(ExperienceQueries, BadFilesAreNamedWithTheirKey)
         EXPECT_NE(std::string(e.what()).find("held_out[0].goal: in collision"), std::string::npos) << e.what();
     }
 }
+
+TEST(PathSeedPlanner, CheckThreadsBeyondTheirRangeAreRefused)
+{
+    // Found 2026-12-07 through the C++ API: check_threads 100000 (or -1, which wraps) started helper threads until
+    // std::system_error ended the process.
+    auto space = std::make_shared<ompl::base::RealVectorStateSpace>(2);
+    space->setBounds(-1., 1.);
+    auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+    michi::planners::PathSeed planner(si);
+    EXPECT_THROW(planner.setCheckThreads(100000), ompl::Exception);
+    EXPECT_THROW(planner.params().setParam("check_threads", "-1"), ompl::Exception);
+    EXPECT_TRUE(planner.params().setParam("check_threads", "8"));
+    EXPECT_EQ(planner.getCheckThreads(), 8u);
+}

@@ -7,6 +7,7 @@
 #include <ompl/base/Planner.h>
 #include <ompl/util/Exception.h>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -79,6 +80,7 @@ namespace michi
 
             void setRingSpacing(double v)
             {
+                requireSetting(v > 0. && std::isfinite(v), "ring_spacing must be a positive number");
                 settings_.ringSpacing = v;
             }
             double getRingSpacing() const
@@ -87,6 +89,7 @@ namespace michi
             }
             void setDivisions(int v)
             {
+                requireSetting(v >= 8 && v <= 720, "divisions must be in [8, 720]");
                 settings_.divisions = v;
             }
             int getDivisions() const
@@ -95,6 +98,7 @@ namespace michi
             }
             void setPointSpacing(double v)
             {
+                requireSetting(v >= 0. && std::isfinite(v), "point_spacing must be 0 or a positive number");
                 settings_.pointSpacing = v;
             }
             double getPointSpacing() const
@@ -103,6 +107,7 @@ namespace michi
             }
             void setKGoal(double v)
             {
+                requireSetting(v >= 0. && std::isfinite(v), "k_goal must be 0 or a positive number");
                 settings_.kGoal = v;
             }
             double getKGoal() const
@@ -111,6 +116,7 @@ namespace michi
             }
             void setKObstacle(double v)
             {
+                requireSetting(v >= 0. && std::isfinite(v), "k_obstacle must be 0 or a positive number");
                 settings_.kObstacle = v;
             }
             double getKObstacle() const
@@ -119,6 +125,7 @@ namespace michi
             }
             void setPotentialRange(double v)
             {
+                requireSetting(v >= 0. && std::isfinite(v), "potential_range must be 0 or a positive number");
                 settings_.potentialRange = v;
             }
             double getPotentialRange() const
@@ -127,6 +134,7 @@ namespace michi
             }
             void setMaxArcPoints(int v)
             {
+                requireSetting(v >= 0, "max_arc_points must be 0 or more");
                 settings_.maxArcPoints = v;
             }
             int getMaxArcPoints() const
@@ -143,6 +151,7 @@ namespace michi
             }
             void setMaxRecursions(int v)
             {
+                requireSetting(v >= 0, "max_recursions must be 0 or more");
                 settings_.maxRecursions = v;
             }
             int getMaxRecursions() const
@@ -159,6 +168,7 @@ namespace michi
             }
             void setMaxPaths(int v)
             {
+                requireSetting(v >= 1, "max_paths must be at least 1");
                 settings_.maxPaths = v;
             }
             int getMaxPaths() const
@@ -276,6 +286,14 @@ namespace michi
             }
 
         private:
+            /** Setters refuse what would make the search nonsense or endless (a ring spacing of 0, negative counts),
+                as the command line refuses values outside the declared ranges: C++ callers set them directly. */
+            void requireSetting(bool ok, const char *what) const
+            {
+                if (!ok)
+                    throw ompl::Exception(getName(), what);
+            }
+
             /** A setting that names one value of the state (axis1, axis2, hand_axis) must name one of this space's:
                 out of range it was accepted and the solve failed later with "no path". */
             void requireValueIndex(const char *name, int v, int lowest) const

@@ -288,6 +288,10 @@ namespace michi
                 collision; an edge that passes gets its full motion check as before. 0: none. */
             void setEdgeProbes(unsigned int n)
             {
+                // the declared range: each probe is a state check of every unproved edge a search takes, and a count
+                // near UINT_MAX never ended
+                if (n > 15)
+                    throw ompl::Exception("DualRoadmap: edge_probes must be in [0, 15]");
                 edgeProbes_ = n;
             }
             unsigned int getEdgeProbes() const

@@ -7,6 +7,7 @@
 
 #include <ompl/base/Planner.h>
 #include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/Exception.h>
 
 #include <algorithm>
 #include <atomic>
@@ -146,6 +147,10 @@ namespace michi
              * more threads were slower). */
             void setCheckThreads(unsigned int threads)
             {
+                // the declared range: helper threads are started for the planner's life, and 100,000 of them (or -1,
+                // which wraps) ended the process with std::system_error
+                if (threads > 8)
+                    throw ompl::Exception("PathSeed: check_threads must be in [1, 8]");
                 threads_ = std::max(1u, threads);
             }
             unsigned int getCheckThreads() const
