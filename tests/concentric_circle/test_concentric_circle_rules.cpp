@@ -11,6 +11,7 @@
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/util/Console.h>
 
@@ -271,4 +272,46 @@ TEST(ConcentricCircle, SettersRefuseValuesThatMakeTheSearchNonsense)
     }
     EXPECT_TRUE(planner.params().setParam("ring_spacing", "0.05"));
     EXPECT_TRUE(planner.params().setParam("max_arc_points", "0"));
+}
+
+TEST(ConcentricCircle, AutoModeOnAPlainSe2SpaceFallsBackToTheProjection)
+{
+    // Found 2026-12-07 through the C++ API: on OMPL's SE2StateSpace (3 values, no arm) auto chose the restriction
+    // surface, which found nothing for start and goal at one heading (ABORT), where mode projection solves at once.
+    // A wall at x in [4.9, 5.1] up to y = 8 (the way round it above), a thin wall at y = 5 from x = 6.
+    auto space = std::make_shared<ompl::base::SE2StateSpace>();
+    ompl::base::RealVectorBounds bounds(2);
+    bounds.setLow(0.);
+    bounds.setHigh(10.);
+    space->setBounds(bounds);
+    ompl::geometric::SimpleSetup setup(space);
+    auto free = [](double x, double y)
+    {
+        return !(x >= 4.9 && x <= 5.1 && y <= 8.) && !(y >= 4.99 && y <= 5.01 && x >= 6.);
+    };
+    setup.setStateValidityChecker(
+        [&](const ompl::base::State *s)
+        {
+            const auto *se2 = s->as<ompl::base::SE2StateSpace::StateType>();
+            return setup.getSpaceInformation()->satisfiesBounds(s) && free(se2->getX(), se2->getY());
+        });
+    setup.getSpaceInformation()->setStateValidityCheckingResolution(0.001);
+    ompl::base::ScopedState<ompl::base::SE2StateSpace> start(space), goal(space);
+    start->setXY(1., 1.);
+    start->setYaw(0.);
+    goal->setXY(9., 1.);
+    goal->setYaw(0.);
+    setup.setStartAndGoalStates(start, goal);
+    auto planner = std::make_shared<michi::planners::ConcentricCircle>(setup.getSpaceInformation());
+    setup.setPlanner(planner);
+    ASSERT_EQ(setup.solve(5.), ompl::base::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(planner->usedMode(), "projection");
+    auto &path = setup.getSolutionPath();
+    EXPECT_TRUE(path.check());
+    path.interpolate(2000);
+    for (const auto *s : path.getStates())
+    {
+        const auto *se2 = s->as<ompl::base::SE2StateSpace::StateType>();
+        ASSERT_TRUE(free(se2->getX(), se2->getY())) << se2->getX() << " " << se2->getY();
+    }
 }

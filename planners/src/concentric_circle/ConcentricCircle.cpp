@@ -611,6 +611,15 @@ namespace michi
                     usedMode_ = "projection";
                     found = solveProjection(start, goalValues, ptc);
                 }
+                if (!found && !ptc && mode_ == "auto" && usedMode_ == "surface")
+                {
+                    // Nor did the restriction planes: the 2-D projection is the last map auto tries. On a plain
+                    // SE(2) space with start and goal at one heading the planes found nothing where the projection
+                    // of x and y solves at once (found 2026-12-07).
+                    freePaths();
+                    usedMode_ = "projection";
+                    found = solveProjection(start, goalValues, ptc);
+                }
             }
             if (!found)
             {
