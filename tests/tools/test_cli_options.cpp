@@ -143,6 +143,12 @@ TEST_F(CliOptions, IntegersAreCheckedNotWrapped)
     for (const std::string runs : {"4294967297", "1e12", "0", "-1", "2.5", "many", "", "18446744073709551617"})
         expectUsageError("bench " + p + " --out " + out() + " --runs '" + runs + "'", "bench", "--runs");
     expectUsageError("replan " + p + " --out " + out() + " --episodes 4294967297", "replan", "--episodes");
+    // unknown, repeated (a duplicate key in replan.json) or no method names: usage errors of --methods (found
+    // 2026-12-07: exit 1, a duplicate key, and "" taken as every method)
+    const std::string passage = problemFile("dynamic_mobile_passage");
+    for (const std::string methods : {"foo", "dual,dual", "dual,rrtconnect,rrtconnect", ""})
+        expectUsageError("replan " + passage + " --out " + out() + " --episodes 1 --methods '" + methods + "'",
+                         "replan", "--methods");
     expectUsageError("random-scenes --out " + out() + " --count 1e12", "random-scenes", "--count");
     expectUsageError("random-scenes --out " + out() + " --seed 4294967296", "random-scenes", "--seed");
     expectUsageError("random-scenes --out " + out() + " --seed 4294967295 --count 2", "random-scenes", "--seed");

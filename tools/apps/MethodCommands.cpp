@@ -233,7 +233,7 @@ namespace michi
                     std::string out;
                     std::optional<unsigned int> episodes;
                     std::optional<unsigned int> seed;
-                    std::string methods;
+                    std::optional<std::string> methods;  ///< unset: every method; given empty: a usage error
                     bool html{false};
                     bool verbose{false};
                 };
@@ -247,10 +247,25 @@ namespace michi
                     options.outDir = args.out;
                     options.episodes = args.episodes.value_or(20);
                     options.seed = args.seed.value_or(1);
-                    options.methods = splitComma("--methods", args.methods);
+                    if (args.methods)
+                    {
+                        if (args.methods->empty())
+                            throw UsageError("--methods: expected method names, e.g. dual,rrtconnect, got ''");
+                        options.methods = splitComma("--methods", *args.methods);
+                    }
                     options.html = args.html;
                     options.progress = &std::cerr;
-                    std::cout << runReplan(options);
+                    try
+                    {
+                        std::cout << runReplan(options);
+                    }
+                    catch (const std::invalid_argument &e)
+                    {
+                        // an unknown or repeated method name is a usage error of --methods (exit 2)
+                        if (std::string(e.what()).rfind("--methods:", 0) == 0)
+                            throw UsageError(e.what());
+                        throw;
+                    }
                     std::cerr << "michi replan: wrote " << (fs::path(options.outDir) / "replan.json").string();
                     if (args.html)  // the page is named by the problem's name, which may differ from the file's
                         std::cerr << " and "

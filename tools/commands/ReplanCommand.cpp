@@ -131,6 +131,14 @@ namespace michi
                             known += (known.empty() ? "" : ", ") + m.id;
                         throw std::invalid_argument("--methods: unknown method '" + name + "' (known: " + known + ")");
                     }
+                    // replan.json lists each method once (a second run under the same key was a duplicate JSON key)
+                    if (std::any_of(methods.begin(), methods.end(),
+                                    [&](const Method &m)
+                                    {
+                                        return m.id == it->id;
+                                    }))
+                        throw std::invalid_argument("--methods: '" + name + "' names method '" + it->id +
+                                                    "' a second time");
                     methods.push_back(*it);
                 }
 
