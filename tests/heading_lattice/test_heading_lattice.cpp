@@ -556,3 +556,30 @@ TEST(HeadingLattice, TurnsLeftToTheGoalsHeadingKeepTheShortestLatticePath)
         EXPECT_LT(planner->work().expansions, c.expansionsBefore) << c.file;
     }
 }
+
+TEST(HeadingLattice, AGoalInCollisionIsRefusedWithoutWaitingForTheTimeLimit)
+{
+    // Found 2026-12-07: with a goal state in collision the planner waited in OMPL's nextGoal(ptc) for the whole time
+    // limit before answering "no valid goal" (an invalid start was refused at once). Counted, not timed: the
+    // condition ends the wait after 2,000 evaluations, and the planner must not need more than a few.
+    auto problem = michi::tools::loadProblem(CORRIDOR);
+    auto ctx = michi::tools::makePlanningContext(problem);
+    const auto si = ctx.setup->getSpaceInformation();
+    ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
+    si->getStateSpace()->copyFromReals(start.get(), problem.queries[0].start);
+    si->getStateSpace()->copyFromReals(goal.get(), {5., 5., 0.});  // inside the walls
+    ASSERT_TRUE(si->isValid(start.get()));
+    ASSERT_FALSE(si->isValid(goal.get()));
+    ctx.setup->setStartAndGoalStates(start, goal);
+    auto planner = std::make_shared<michi::planners::HeadingLattice>(si);
+    planner->setProblemDefinition(ctx.setup->getProblemDefinition());
+    planner->setup();
+    int asked = 0;
+    const ob::PlannerTerminationCondition ptc(
+        [&asked]
+        {
+            return ++asked > 2000;
+        });
+    EXPECT_EQ(planner->solve(ptc), ob::PlannerStatus::INVALID_GOAL);
+    EXPECT_LT(asked, 50);
+}

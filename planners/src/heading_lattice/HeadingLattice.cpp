@@ -10,6 +10,8 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/base/goals/GoalStates.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/util/Time.h>
 
@@ -679,6 +681,28 @@ namespace michi
             {
                 OMPL_ERROR("%s: no valid start state", getName().c_str());
                 return ob::PlannerStatus::INVALID_START;
+            }
+            // Goals of fixed states that are all invalid: waiting cannot make one valid, and OMPL's nextGoal(ptc)
+            // would wait for the whole time limit before the search said "no valid goal" (found 2026-12-07).
+            {
+                const ob::Goal *goal = pdef_->getGoal().get();
+                bool fixed = false, anyValid = false;
+                if (const auto *one = dynamic_cast<const ob::GoalState *>(goal))
+                {
+                    fixed = true;
+                    anyValid = si_->isValid(one->getState());
+                }
+                else if (const auto *many = dynamic_cast<const ob::GoalStates *>(goal))
+                {
+                    fixed = true;
+                    for (std::size_t i = 0; i < many->getStateCount() && !anyValid; ++i)
+                        anyValid = si_->isValid(many->getState(i));
+                }
+                if (fixed && !anyValid)
+                {
+                    OMPL_ERROR("%s: no valid goal state", getName().c_str());
+                    return ob::PlannerStatus::INVALID_GOAL;
+                }
             }
             while (pis_.haveMoreGoalStates() && !ptc)
             {
