@@ -122,6 +122,8 @@ TEST_F(CliOptions, UnknownCommandsAndOptionsAreUsageErrors)
     expectUsageError("circles " + p + " --set foo=1 --out " + out(), "circles", "--set foo: unknown parameter");
     expectUsageError("circles " + p + " --view 0,0,1 --out " + out(), "circles", "--view");
     expectUsageError("random-scenes --count 2 --out " + out() + " extra", "random-scenes", "extra");
+    // the shard folders are named as the help names them, not by an internal field ("dirs is required")
+    expectUsageError("campaign merge --out " + out(), "campaign", "DIR is required");
     EXPECT_FALSE(fs::exists(out()));
 }
 

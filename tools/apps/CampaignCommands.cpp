@@ -181,7 +181,7 @@ namespace michi
 
                 CLI::App *merge = c->add_subcommand(
                     "merge", "merge shard folders into OUT/campaign.db, OUT/summary.md and OUT/logs/");
-                merge->add_option("dirs", args->dirs, "the shards' folders")->required()->type_name("DIR...");
+                merge->add_option("DIR", args->dirs, "the shards' folders")->required()->type_name("");
                 addOut(*merge, args->out, "output folder (made if missing)");
 
                 CLI::App *slurm = c->add_subcommand(
