@@ -8,6 +8,8 @@
 #include <michi/planners/concentric_circle/ConcentricCircle.h>
 #include <michi/planners/concentric_circle/ConcentricCircleSearch.h>
 
+#include <michi/state_spaces/JointStateSpace.h>
+
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -279,11 +281,7 @@ TEST(ConcentricCircle, AutoModeOnAPlainSe2SpaceFallsBackToTheProjection)
     // Found 2026-12-07 through the C++ API: on OMPL's SE2StateSpace (3 values, no arm) auto chose the restriction
     // surface, which found nothing for start and goal at one heading (ABORT), where mode projection solves at once.
     // A wall at x in [4.9, 5.1] up to y = 8 (the way round it above), a thin wall at y = 5 from x = 6.
-    auto space = std::make_shared<ompl::base::SE2StateSpace>();
-    ompl::base::RealVectorBounds bounds(2);
-    bounds.setLow(0.);
-    bounds.setHigh(10.);
-    space->setBounds(bounds);
+    const auto space = michi::state_spaces::makeSe2StateSpace(0., 10., 0., 10.);
     ompl::geometric::SimpleSetup setup(space);
     auto free = [](double x, double y)
     {

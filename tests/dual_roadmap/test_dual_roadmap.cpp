@@ -11,6 +11,8 @@
 #include <michi/planners/dual_roadmap/DualRoadmap.h>
 #include <michi/validity/fcl/WorkspaceMotionValidator.h>
 
+#include <michi/state_spaces/JointStateSpace.h>
+
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
@@ -603,12 +605,7 @@ TEST(DualRoadmap, EdgeProbesBeyondTheirRangeAreRefused)
 {
     // Found 2026-12-07 through the C++ API: edge_probes 4294967295 made the probe loop endless (solve never
     // returned), 100,000,000 made a 0.5 s solve take 6 s.
-    auto space = std::make_shared<ompl::base::SE2StateSpace>();
-    ompl::base::RealVectorBounds bounds(2);
-    bounds.setLow(0.);
-    bounds.setHigh(1.);
-    space->setBounds(bounds);
-    auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+    auto si = std::make_shared<ompl::base::SpaceInformation>(michi::state_spaces::makeSe2StateSpace(0., 1., 0., 1.));
     michi::planners::DualRoadmap planner(si);
     EXPECT_THROW(planner.setEdgeProbes(4294967295u), ompl::Exception);
     EXPECT_THROW(planner.params().setParam("edge_probes", "16"), ompl::Exception);
