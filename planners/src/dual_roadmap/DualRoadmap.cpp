@@ -697,7 +697,9 @@ namespace michi
             if (!solved)
             {
                 refill_ = restartWhenFull_ && graph_.vertexCount() >= maxWorkingVertices_;  // see above
-                return ob::PlannerStatus::TIMEOUT;
+                // TIMEOUT only when the time ran out; a query that ended on a full working roadmap gave up (it was
+                // reported as a timeout after 0.07 ms with max_working_vertices 1)
+                return ptc ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT;
             }
 
             // Paper 002: found paths are smoothed (redundant parts removed) before they are executed. Every shortcut
