@@ -323,6 +323,14 @@ TEST_F(BadCommands, SettingsThatHungOrBlamedTheWrongKey)
                                      "dual_roadmap_params: {edge_probs"));
     expectCleanError("replan " + passage.string() + " --episodes 1 --methods dual --out " + (dir_ / "o").string(),
                      "extras.replan.dual_roadmap_params.edge_probs", dir_ / "o");
+    // a margin that grows a walker's predicted copy over the start is the margin's key, not "start: in collision"
+    // (found 2026-12-07)
+    spit(passage, std::regex_replace(slurp(passage), std::regex("dual_roadmap_params: \\{edge_probs"),
+                                     "dual_roadmap_params: {edge_probes"));
+    spit(passage, std::regex_replace(slurp(passage), std::regex("\n    margin: [0-9.]+"), "\n    margin: 3"));
+    expectCleanError("replan " + passage.string() + " --episodes 1 --methods dual --out " + (dir_ / "o").string(),
+                     "extras.replan.margin: the start touches a moving obstacle grown by the margin of 3 m",
+                     dir_ / "o");
     // a tiny lattice angle step is blamed on itself, not on cell_size
     expectCleanError("lattice " + corridor.string() + " --angle-steps 1e-9 --out " + (dir_ / "o").string(),
                      "raise angle_step", dir_ / "o");

@@ -7,6 +7,7 @@
 #include <ompl/base/ScopedState.h>
 
 #include <cstdlib>
+#include <sstream>
 #include <iostream>
 
 namespace ob = ompl::base;
@@ -288,7 +289,30 @@ namespace michi
             {
                 ContextOptions options;
                 options.scene = scene;
-                return makePlanningContext(problem_, options);
+                try
+                {
+                    return makePlanningContext(problem_, options);
+                }
+                catch (const ProblemError &e)
+                {
+                    // The scene here holds the movers grown by the margin and their predicted copies ("name~k"): a
+                    // start or goal that touches one of those is the margin's doing (or the prediction's), so name
+                    // the key to change rather than only "start: in collision" (found 2026-12-07)
+                    const std::string what = e.what();
+                    const std::string head = e.file() + ": " + e.key() + ": ";
+                    if ((e.key() == "start" || e.key() == "goal") && what.find('~') != std::string::npos)
+                    {
+                        std::ostringstream margin;
+                        margin << settings_.margin;
+                        throw ProblemError(
+                            e.file(), "extras.replan.margin",
+                            "the " + e.key() + " touches a moving obstacle grown by the margin of " + margin.str() +
+                                " m, or one of its predicted copies (" +
+                                (what.compare(0, head.size(), head) == 0 ? what.substr(head.size()) : what) +
+                                "): a smaller margin, or a start and goal farther from the movers' paths");
+                    }
+                    throw;
+                }
             }
 
             NonStopSettings MethodRun::executorSettings() const
