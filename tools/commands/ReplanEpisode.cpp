@@ -6,6 +6,7 @@
 
 #include <ompl/base/ScopedState.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 #include <iostream>
@@ -295,12 +296,19 @@ namespace michi
                 }
                 catch (const ProblemError &e)
                 {
-                    // The scene here holds the movers grown by the margin and their predicted copies ("name~k"): a
-                    // start or goal that touches one of those is the margin's doing (or the prediction's), so name
-                    // the key to change rather than only "start: in collision" (found 2026-12-07)
+                    // The scene here holds the movers grown by the margin and their predicted copies ("name~k"), both
+                    // FCL-free of the query's ends in the problem's own scene: an end that touches one of them is the
+                    // margin's doing (or the prediction's), so name the key to change rather than only "start: in
+                    // collision" (found 2026-12-07)
                     const std::string what = e.what();
                     const std::string head = e.file() + ": " + e.key() + ": ";
-                    if ((e.key() == "start" || e.key() == "goal") && what.find('~') != std::string::npos)
+                    const bool mover = std::any_of(movers_.begin(), movers_.end(),
+                                                   [&](const Mover &m)
+                                                   {
+                                                       return what.find("'" + m.name + "'") != std::string::npos ||
+                                                              what.find("'" + m.name + "~") != std::string::npos;
+                                                   });
+                    if ((e.key() == "start" || e.key() == "goal") && mover)
                     {
                         std::ostringstream margin;
                         margin << settings_.margin;

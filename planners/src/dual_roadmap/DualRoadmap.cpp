@@ -53,7 +53,7 @@ namespace michi
             declareParam<double>("search_weight", this, &DualRoadmap::setSearchWeight, &DualRoadmap::getSearchWeight,
                                  "1.:0.5:10.");
             declareParam<unsigned int>("edge_probes", this, &DualRoadmap::setEdgeProbes, &DualRoadmap::getEdgeProbes,
-                                       "0:1:15");
+                                       "0:1:" + std::to_string(MAX_EDGE_PROBES));
             declareParam<unsigned int>("recheck_depth", this, &DualRoadmap::setRecheckDepth,
                                        &DualRoadmap::getRecheckDepth, "0:1:10");
             declareParam<unsigned int>("dominant_dofs", this, &DualRoadmap::setDominantDofs,

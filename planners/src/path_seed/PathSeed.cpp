@@ -55,7 +55,7 @@ namespace michi
             declareParam<double>("range", this, &PathSeed::setRange, &PathSeed::getRange, "0.:0.1:10.");
             declareParam<bool>("stitch", this, &PathSeed::setStitch, &PathSeed::getStitch, "0,1");
             declareParam<unsigned int>("check_threads", this, &PathSeed::setCheckThreads, &PathSeed::getCheckThreads,
-                                       "1:1:8");
+                                       "1:1:" + std::to_string(MAX_CHECK_THREADS));
             declareParam<bool>("anchored", this, &PathSeed::setAnchored, &PathSeed::getAnchored, "0,1");
             declareParam<unsigned int>("stitch_neighbours", this, &PathSeed::setStitchNeighbours,
                                        &PathSeed::getStitchNeighbours, "1:1:20");

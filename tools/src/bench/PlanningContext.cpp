@@ -403,20 +403,9 @@ namespace michi
             installChecker(problem, ctx, checker);
             ctx.sphereExactStates = problem.spheres.exactStates;
             chooseExactStates(ctx, q.start, q.goal);
-            if (ctx.grid)
-            {
-                for (const auto *values : {&q.start, &q.goal})
-                    if (!ctx.grid->isValidPose((*values)[0], (*values)[1], (*values)[2]))
-                        OMPL_WARN(
-                            "%s: %s (%g, %g, %g) is free for FCL but the grid checker's conservative table "
-                            "calls it invalid (its cell or heading bin comes close to an obstacle): planners "
-                            "will not %s it; a finer collision.grid.resolution or more headings help. %s",
-                            problem.file.c_str(), values == &q.start ? "start" : "goal", (*values)[0], (*values)[1],
-                            (*values)[2], values == &q.start ? "start from" : "reach", ctx.grid->describe().c_str());
-            }
-            else if (ctx.checkerName != "fcl")
-                // The J-map and sphere checkers are conservative too: an end they refuse (FCL accepted it above)
-                // would otherwise show only as OMPL's "Invalid start" after the whole time limit.
+            // The fast checkers are conservative: an end they refuse (FCL accepted it above) would otherwise show
+            // only as OMPL's "Invalid start" after the whole time limit.
+            if (ctx.checkerName != "fcl")
                 for (const auto *values : {&q.start, &q.goal})
                 {
                     ob::ScopedState<> s(ctx.setup->getStateSpace());
@@ -426,13 +415,17 @@ namespace michi
                     std::string at;
                     for (double v : *values)
                         at += (at.empty() ? "" : ", ") + shortNumber(v);
-                    const char *help = ctx.spheres ? "collision.spheres.exact_states auto or on lets FCL settle it"
-                                                   : "plan with --checker fcl, or move it away from the obstacles";
-                    OMPL_WARN(
-                        "%s: %s (%s) is free for FCL but the %s checker, which is conservative, calls it "
-                        "invalid: planners will not %s it; %s",
-                        problem.file.c_str(), values == &q.start ? "start" : "goal", at.c_str(),
-                        ctx.checkerName.c_str(), values == &q.start ? "start from" : "reach", help);
+                    const std::string why =
+                        ctx.grid ? "the grid checker's conservative table calls it invalid (its cell or heading bin "
+                                   "comes close to an obstacle)"
+                                 : "the " + ctx.checkerName + " checker, which is conservative, calls it invalid";
+                    const std::string help =
+                        ctx.grid ? "a finer collision.grid.resolution or more headings help. " + ctx.grid->describe()
+                        : ctx.spheres ? std::string("collision.spheres.exact_states auto or on lets FCL settle it")
+                                      : std::string("plan with --checker fcl, or move it away from the obstacles");
+                    OMPL_WARN("%s: %s (%s) is free for FCL but %s: planners will not %s it; %s", problem.file.c_str(),
+                              values == &q.start ? "start" : "goal", at.c_str(), why.c_str(),
+                              values == &q.start ? "start from" : "reach", help.c_str());
                 }
             // no SimpleSetup::setup() here: without a planner it would pick OMPL's default one
             ctx.setup->setStartAndGoalStates(start, goal);

@@ -286,12 +286,15 @@ namespace michi
                 motion): one found invalid refutes the edge for the price of a state check. Most edges of a lazy
                 candidate path that fail, fail there, and a failing motion check walks far before it finds the
                 collision; an edge that passes gets its full motion check as before. 0: none. */
+            /** \brief The most edge_probes (its declared range and the setter's bound). */
+            static constexpr unsigned int MAX_EDGE_PROBES = 15;
             void setEdgeProbes(unsigned int n)
             {
                 // the declared range: each probe is a state check of every unproved edge a search takes, and a count
                 // near UINT_MAX never ended
-                if (n > 15)
-                    throw ompl::Exception("DualRoadmap: edge_probes must be in [0, 15]");
+                if (n > MAX_EDGE_PROBES)
+                    throw ompl::Exception("DualRoadmap: edge_probes must be in [0, " + std::to_string(MAX_EDGE_PROBES) +
+                                          "]");
                 edgeProbes_ = n;
             }
             unsigned int getEdgeProbes() const

@@ -145,12 +145,15 @@ namespace michi
             }
             /** \brief Threads that share the state checks of recall and stitching (default 1: none; on a loaded machine
              * more threads were slower). */
+            /** \brief The most check_threads (its declared range and the setter's bound). */
+            static constexpr unsigned int MAX_CHECK_THREADS = 8;
             void setCheckThreads(unsigned int threads)
             {
                 // the declared range: helper threads are started for the planner's life, and 100,000 of them (or -1,
                 // which wraps) ended the process with std::system_error
-                if (threads > 8)
-                    throw ompl::Exception("PathSeed: check_threads must be in [1, 8]");
+                if (threads > MAX_CHECK_THREADS)
+                    throw ompl::Exception("PathSeed: check_threads must be in [1, " +
+                                          std::to_string(MAX_CHECK_THREADS) + "]");
                 threads_ = std::max(1u, threads);
             }
             unsigned int getCheckThreads() const
