@@ -17,6 +17,8 @@
 #include <sstream>
 #include <thread>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -29,10 +31,9 @@ namespace
     using michi::test::runMichi;
     using michi::test::slurp;
 
-    /** the rows of an SQLite query, "a|b" per row (Debian's sqlite3 command) */
-    std::string sql(const fs::path &db, const std::string &query)
+    /** what a shell command prints (stdout and stderr) */
+    std::string shell(const std::string &command)
     {
-        const std::string command = "sqlite3 '" + db.string() + "' \"" + query + "\" 2>&1";
         std::string out;
         FILE *pipe = popen(command.c_str(), "r");
         if (pipe == nullptr)
@@ -43,6 +44,12 @@ namespace
             out.append(buffer.data(), n);
         pclose(pipe);
         return out;
+    }
+
+    /** the rows of an SQLite query, "a|b" per row (Debian's sqlite3 command) */
+    std::string sql(const fs::path &db, const std::string &query)
+    {
+        return shell("sqlite3 '" + db.string() + "' \"" + query + "\" 2>&1");
     }
 
     std::size_t lines(const std::string &text)
@@ -287,4 +294,108 @@ TEST_F(Campaign, KilledShardResumesWithoutLosingAFinishedUnit)
     const fs::path db = dir_ / "merged" / "campaign.db";
     EXPECT_EQ(sql(db, "select count(*) from runs"), "8\n");
     EXPECT_EQ(sql(db, "select count(*) from runs where outcome = 'timeout' and solved = 0"), "4\n");
+}
+
+TEST_F(Campaign, ShardsRunWithOtherSettingsAreNeverMixedAndProgressIsKept)
+{
+    // Found by the campaign sweep of 2026-12-07: the plan held neither the time limit nor the planners' parameters,
+    // so shards run before and after an edit of the campaign file merged into one database under the later settings
+    // (and a resume mixed them in one folder); and the database's progress table stayed empty.
+    const std::string head = "name: edited\nseed: 3\nruns: 2\nproblems: [" + problemFile("planar_2link") +
+                             "]\ncheckers: [fcl]\nplanners:\n  - {name: geometric::RRTstar, params: {range: ";
+    const fs::path file = write("edited.yaml", "time_limit: 0.2\n" + head + "0.3}}\n");
+    const fs::path s1 = dir_ / "s1", s2 = dir_ / "s2";
+    CommandRun run = runMichi("campaign run " + file.string() + " --shard 1/2 --out " + s1.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    write("edited.yaml", "time_limit: 0.1\n" + head + "0.3}}\n");
+    run = runMichi("campaign run " + file.string() + " --shard 2/2 --out " + s2.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    run = runMichi("campaign merge " + s1.string() + " " + s2.string() + " --out " + (dir_ / "m").string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find("'# time_limit 0.1' against '# time_limit 0.2'"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir_ / "m"));
+    // resuming shard 1 with a planner parameter changed is refused, naming the line
+    write("edited.yaml", "time_limit: 0.2\n" + head + "2}}\n");
+    run = runMichi("campaign run " + file.string() + " --shard 1/2 --out " + s1.string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find("range=0.3"), std::string::npos) << run.output;
+
+    // shard 1 alone, with a folder that never got a plan (a Slurm task cancelled while pending): merged, the
+    // missing folder named and its units counted missing; RRT*'s progress reaches the database
+    fs::create_directories(dir_ / "never");
+    run = runMichi("campaign merge " + s1.string() + " " + (dir_ / "never").string() + " --out " +
+                   (dir_ / "m1").string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("never: no campaign.plan"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("1 of 2 units have no result"), std::string::npos) << run.output;
+    const fs::path db = dir_ / "m1" / "campaign.db";
+    EXPECT_EQ(sql(db, "select count(*) from runs"), "1\n");
+    EXPECT_NE(sql(db, "select count(*) > 0 from progress p join runs r on p.runid = r.id where p.best_cost > 0"),
+              "0\n");
+    EXPECT_EQ(sql(db, "select count(*) from enums where name = 'status' and description = 'Abort'"), "1\n");
+}
+
+TEST_F(Campaign, OneRunWorksInAShardFolderAndItsUnitsDieWithIt)
+{
+    const fs::path file = smallCampaign("test::Hang", "hang_margin: 100\n");
+    const fs::path out = dir_ / "shard";
+    fs::create_directories(out);
+    {
+        // another run holds the folder: refused at once, not run twice (the second run's scratch files were removed
+        // under it)
+        const int fd = open((out / ".lock").c_str(), O_RDWR | O_CREAT, 0644);
+        ASSERT_GE(fd, 0);
+        ASSERT_EQ(flock(fd, LOCK_EX), 0);
+        const CommandRun run = runMichi("campaign run " + file.string() + " --out " + out.string());
+        EXPECT_EQ(run.exitCode, 1) << run.output;
+        EXPECT_NE(run.output.find("another `michi campaign run` is working in this folder"), std::string::npos)
+            << run.output;
+        EXPECT_FALSE(fs::exists(out / "units"));
+        close(fd);
+    }
+    // A shard killed on its own (kill, the OOM killer) left its unit running: a hung planner spun for ever. Now the
+    // unit gets SIGKILL when its shard dies.
+    const std::string michi = std::string(MICHI_BINARY_DIR) + "/bin/michi";
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0)
+    {
+        if (freopen("/dev/null", "w", stderr) == nullptr)
+            _exit(126);
+        execl(michi.c_str(), michi.c_str(), "campaign", "run", file.c_str(), "--out", out.c_str(), nullptr);
+        _exit(127);
+    }
+    // the units run in plan order: the first test::Hang unit is unit 2 (planner 1 of problem 0, run 0)
+    auto unitAlive = [&]
+    {
+        // "2[.]spec": the pattern does not match the shell that runs pgrep with it
+        return !shell("pgrep -f '" + (out / "work").string() + "/2[.]spec'").empty();
+    };
+    for (int i = 0; i < 6000 && !unitAlive(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_TRUE(unitAlive());
+    kill(pid, SIGKILL);  // the shard only, not its group
+    int status = 0;
+    waitpid(pid, &status, 0);
+    // an event to wait for, with a bound far above the kernel's few milliseconds, not a timing
+    for (int i = 0; i < 3000 && unitAlive(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_FALSE(unitAlive());
+}
+
+TEST_F(Campaign, CopiesOfOneCampaignFileWriteTheSamePlan)
+{
+    // Found by the campaign sweep of 2026-12-07: problems named by absolute paths were written into the plan relative
+    // to the campaign file, so two copies of one file in different folders made "different campaigns".
+    const std::string text = "name: copies\nseed: 2\ntime_limit: 0.5\nruns: 2\nproblems: [" +
+                             problemFile("planar_2link") + "]\nplanners: [geometric::RRTConnect]\ncheckers: [fcl]\n";
+    fs::create_directories(dir_ / "a");
+    fs::create_directories(dir_ / "b" / "deeper");
+    const fs::path a = write("a/c.yaml", text), b = write("b/deeper/c.yaml", text);
+    ASSERT_EQ(runMichi("campaign run " + a.string() + " --shard 1/2 --out " + (dir_ / "s1").string()).exitCode, 0);
+    ASSERT_EQ(runMichi("campaign run " + b.string() + " --shard 2/2 --out " + (dir_ / "s2").string()).exitCode, 0);
+    const CommandRun run = runMichi("campaign merge " + (dir_ / "s1").string() + " " + (dir_ / "s2").string() +
+                                    " --out " + (dir_ / "m").string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(sql(dir_ / "m" / "campaign.db", "select count(*) from runs"), "2\n");
 }

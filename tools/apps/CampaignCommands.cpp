@@ -109,7 +109,7 @@ namespace michi
                 int runMerge(const CampaignArgs &args)
                 {
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
-                    const MergeResult r = mergeCampaign(args.dirs, args.out, &std::cerr);
+                    const MergeResult r = mergeCampaign(args.dirs, args.out, &std::cerr);  // names skipped folders
                     std::cout << r.summaryText << "\nwrote " << r.database << "\n      " << r.summary << "\n      "
                               << r.logs.size() << " logs in " << (fs::path(r.database).parent_path() / "logs").string()
                               << std::endl;
@@ -124,8 +124,6 @@ namespace michi
                 {
                     checkOutputPath("--out", args.out, OutputKind::FOLDER);
                     const Campaign c = load(args);
-                    if (args.seed)
-                        throw UsageError("--seed: put the seed in the campaign file for Slurm (every task reads it)");
                     SlurmScripts s;
                     try
                     {
@@ -191,7 +189,7 @@ namespace michi
                 addOut(*slurm, args->out, "folder of the scripts, the shards' results and the merged results");
                 slurm->add_option("--partition", args->partition, "Slurm partition (default: the cluster's)")
                     ->type_name("NAME");
-                seed(slurm);
+                // no --seed: every array task reads the campaign file, so the seed has to be in it
 
                 // internal: one work unit, run by `campaign run` in a child process
                 CLI::App *unit = c->add_subcommand("unit", "run one work unit (internal, used by campaign run)");

@@ -9,7 +9,10 @@
 #include <boost/filesystem.hpp>
 
 #include <algorithm>
+#include <fstream>
+#include <iomanip>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace fs = boost::filesystem;
@@ -21,6 +24,50 @@ namespace michi
         namespace
         {
             using problem_file::Reader;
+
+            std::string normalised(const std::string &file)
+            {
+                return fs::absolute(fs::path(file)).lexically_normal().string();
+            }
+
+            /** a problem file as the plan names it: relative to the campaign file, unless the campaign file gave it
+                (or its dataset folder) by an absolute path */
+            std::string planPath(const Campaign &campaign, const std::string &file)
+            {
+                const std::string problem = normalised(file);
+                if (campaign.absoluteFiles.count(problem))
+                    return problem;
+                const fs::path folder = fs::absolute(fs::path(campaign.file)).parent_path().lexically_normal();
+                return fs::path(problem).lexically_relative(folder).string();
+            }
+
+            /** the fewest digits (up to 17) that read back as the same double: 0.05, not 0.050000000000000003 */
+            std::string shortestText(double v)
+            {
+                for (int digits = 15;; ++digits)
+                {
+                    std::ostringstream out;
+                    out << std::setprecision(digits) << v;
+                    if (digits == 17 || std::stod(out.str()) == v)
+                        return out.str();
+                }
+            }
+
+            /** FNV-1a over the file's bytes, in hex: enough to see that a problem file was edited between shards */
+            std::string contentHash(const std::string &file)
+            {
+                std::ifstream in(file, std::ios::binary);
+                std::uint64_t h = 14695981039346656037ULL;
+                char c;
+                while (in.get(c))
+                {
+                    h ^= static_cast<unsigned char>(c);
+                    h *= 1099511628211ULL;
+                }
+                std::ostringstream out;
+                out << std::hex << std::setw(16) << std::setfill('0') << h;
+                return out.str();
+            }
 
             /** "all", "A-B" or "A" under \e key, as a selection */
             QuerySelection selection(const Reader &r, const YAML::Node &n, const std::string &key)
@@ -59,6 +106,8 @@ namespace michi
                     const YAML::Node fileNode = n.IsMap() ? n["file"] : n;
                     const std::string fileKey = n.IsMap() ? key + ".file" : key;
                     const std::string file = r.path(fileNode, fileKey);
+                    if (fs::path(r.text(fileNode, fileKey)).is_absolute())
+                        c.absoluteFiles.insert(normalised(file));
                     // Loaded (and so checked) now: a bad problem stops the campaign before its first unit, not in the
                     // middle.
                     const Problem problem = loadProblem(file);
@@ -112,6 +161,9 @@ namespace michi
                     try
                     {
                         c.datasets.push_back(loadDatasetFolder(folder, s));
+                        if (given.is_absolute())
+                            for (const auto &entry : c.datasets.back().entries)
+                                c.absoluteFiles.insert(normalised(entry.problemFile));
                     }
                     catch (const ProblemError &)
                     {
@@ -365,11 +417,49 @@ namespace michi
         {
             // the problem relative to the campaign file, so that shards started from different folders (or with an
             // absolute campaign path) write the same plan, which resume and merge compare
-            const fs::path folder = fs::absolute(fs::path(campaign.file)).parent_path().lexically_normal();
-            const fs::path problem = fs::absolute(fs::path(unit.entry.problemFile)).lexically_normal();
-            return std::to_string(unit.id) + "\t" + unit.dataset + "\t" + problem.lexically_relative(folder).string() +
+            return std::to_string(unit.id) + "\t" + unit.dataset + "\t" + planPath(campaign, unit.entry.problemFile) +
                    "#" + std::to_string(unit.entry.query) + "\t" + campaign.planners.at(unit.planner).label + "\t" +
                    unit.checker + "\trun " + std::to_string(unit.run) + "\tseed " + std::to_string(unit.seed);
+        }
+
+        std::string planText(const Campaign &campaign, const std::vector<WorkUnit> &units)
+        {
+            std::ostringstream plan;
+            plan << "# campaign " << campaign.name << " seed " << campaign.seed << "\n";
+            // The settings a unit's record does not carry in its plan line: without them, shards run before and after
+            // an edit of the campaign file merged into one database under the later file's settings.
+            plan << "# time_limit " << shortestText(campaign.timeLimit) << "\n";
+            for (const auto &p : campaign.planners)
+            {
+                plan << "# planner " << p.label << " = " << p.name;
+                for (const auto &kv : p.params)
+                    plan << " " << kv.first << "=" << kv.second;
+                plan << "\n";
+            }
+            std::set<std::string> files;
+            for (const auto &u : units)
+                if (files.insert(u.entry.problemFile).second)
+                    plan << "# problem " << planPath(campaign, u.entry.problemFile) << " content "
+                         << contentHash(u.entry.problemFile) << "\n";
+            for (const auto &u : units)
+                plan << planLine(campaign, u) << "\n";
+            return plan.str();
+        }
+
+        std::string planDifference(const std::string &here, const std::string &there)
+        {
+            std::istringstream a(here), b(there);
+            std::string la, lb;
+            for (std::size_t line = 1;; ++line)
+            {
+                const bool moreA = static_cast<bool>(std::getline(a, la)),
+                           moreB = static_cast<bool>(std::getline(b, lb));
+                if (!moreA && !moreB)
+                    return "";
+                if (moreA != moreB || la != lb)
+                    return "line " + std::to_string(line) + ": '" + (moreA ? la : "(none)") + "' against '" +
+                           (moreB ? lb : "(none)") + "'";
+            }
         }
     }  // namespace tools
 }  // namespace michi

@@ -99,8 +99,12 @@ namespace michi
             log << "1 enum types\nstatus";
             // The status enum as OMPL writes it, so ompl_benchmark_statistics maps the status numbers (CRASH, TIMEOUT)
             // to names.
+            // OMPL 1.5.2's asString() has no name for ABORT ("Unknown status"); the database gets "Abort".
             for (int i = 0; i < ob::PlannerStatus::TYPE_COUNT; ++i)
-                log << "|" << ob::PlannerStatus(static_cast<ob::PlannerStatus::StatusType>(i)).asString();
+                log << "|"
+                    << (i == ob::PlannerStatus::ABORT
+                            ? std::string("Abort")
+                            : ob::PlannerStatus(static_cast<ob::PlannerStatus::StatusType>(i)).asString());
             log << "\n";
             log << order.size() << " planners\n";
             for (const auto &name : order)
@@ -137,6 +141,34 @@ namespace michi
                         log << (it == r->properties.end() ? "" : logValue(it->second)) << "; ";
                     }
                     log << "\n";
+                }
+                // OMPL's progress section (saveResultsToStream): one line per run, in the runs' order, each sample's
+                // values followed by ',' and each sample by ';'. A unit that crashed has none: an empty line keeps the
+                // lines matched to their runs.
+                const std::vector<std::string> *progressNames = nullptr;
+                for (const auto *r : runs)
+                    if (!r->progressNames.empty())
+                    {
+                        progressNames = &r->progressNames;
+                        break;
+                    }
+                if (progressNames != nullptr)
+                {
+                    log << progressNames->size() << " progress properties for each run\n";
+                    for (const auto &n : *progressNames)
+                        log << n << "\n";
+                    log << runs.size() << " runs\n";
+                    for (const auto *r : runs)
+                    {
+                        if (r->progressNames == *progressNames)
+                            for (const auto &sample : r->progress)
+                            {
+                                for (const auto &v : sample)
+                                    log << logValue(v) << ",";
+                                log << ";";
+                            }
+                        log << "\n";
+                    }
                 }
                 log << ".\n";
             }

@@ -1,6 +1,7 @@
 // `campaign merge`: shard folders -> one OMPL log per problem, one Planner Arena database, one summary.
 #include <michi/tools/campaign/CampaignMerge.h>
 #include <michi/tools/FileOutput.h>
+#include <michi/tools/campaign/Campaign.h>
 
 #include <boost/filesystem.hpp>
 
@@ -53,18 +54,33 @@ namespace michi
         {
             if (dirs.empty())
                 throw std::runtime_error("no campaign run folder given");
-            std::string plan;
+            std::string plan, planDir;
             std::map<std::size_t, UnitRecord> records;
+            MergeResult result;
             for (const auto &dir : dirs)
             {
+                if (!fs::exists(fs::path(dir) / "campaign.plan"))
+                {
+                    // A shard that never began (a Slurm task cancelled while pending) must not hold back the others:
+                    // its units are reported missing, as those of a shard still running are.
+                    result.skipped.push_back(dir);
+                    if (progress)
+                        *progress << "michi campaign merge: " << dir
+                                  << ": no campaign.plan (a shard that never started?): skipped" << std::endl;
+                    continue;
+                }
                 // Shards are merged only when their plans match line for line: unit ids mean the same unit only within
-                // one plan.
+                // one plan, and the plan's header holds the settings the units ran with.
                 const std::string p = readText(fs::path(dir) / "campaign.plan");
-                if (plan.empty())
+                if (planDir.empty())
+                {
                     plan = p;
+                    planDir = dir;
+                }
                 else if (p != plan)
-                    throw std::runtime_error(dir + ": its campaign.plan differs from " + dirs.front() +
-                                             "'s (shards of different campaigns)");
+                    throw std::runtime_error(dir + ": its campaign.plan differs from " + planDir + "'s at " +
+                                             planDifference(p, plan) +
+                                             " (shards of different campaigns, or run with other settings)");
                 const fs::path units = fs::path(dir) / "units";
                 if (!fs::is_directory(units))
                     continue;  // a shard that has not finished a unit yet
@@ -87,7 +103,11 @@ namespace michi
             // from 0, and the file ends with a newline (run writes it whole): anything else is a plan cut short or
             // edited, whose unit count would otherwise be misread (a truncated plan gave "unit 2 is not in the
             // campaign's plan").
-            const std::string planFile = (fs::path(dirs.front()) / "campaign.plan").string();
+            if (planDir.empty())
+                throw std::runtime_error("no campaign.plan in " + dirs.front() +
+                                         (dirs.size() > 1 ? " nor in the other folders" : "") +
+                                         " (not campaign run folders?)");
+            const std::string planFile = (fs::path(planDir) / "campaign.plan").string();
             std::size_t planned = 0;
             {
                 if (!plan.empty() && plan.back() != '\n')
@@ -111,7 +131,6 @@ namespace michi
             }
             const unsigned int seed = planSeed(plan);
 
-            MergeResult result;
             result.planned = planned;
             std::vector<UnitRecord> all;
             for (auto &kv : records)
@@ -127,8 +146,7 @@ namespace michi
             result.merged = all.size();
             result.missing = planned - all.size();
             if (all.empty())
-                throw std::runtime_error("no finished unit in " + dirs.front() +
-                                         (dirs.size() > 1 ? " and the rest" : ""));
+                throw std::runtime_error("no finished unit in " + planDir + (dirs.size() > 1 ? " and the rest" : ""));
 
             // one log per problem file, in plan order (records are sorted by unit id)
             std::vector<std::string> problems;

@@ -19,6 +19,8 @@
 #include <thread>
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,11 +65,14 @@ namespace michi
                     writeAtomically(text, file.string());
                     return;
                 }
-                if (readText(file) != text)
+                const std::string held = readText(file);
+                if (held != text)
                     // A folder belongs to one campaign plan and one shard: resuming it with another would mix records
-                    // of different units under the same ids.
-                    throw std::runtime_error(file.string() + ": the folder holds " + what +
-                                             " (resume with the same campaign file and --shard, or use another --out)");
+                    // of different units, or of other settings, under the same ids.
+                    throw std::runtime_error(file.string() + ": the folder holds " + what + " (" +
+                                             planDifference(held, text) +
+                                             " in this run; resume with the same campaign file and --shard, or use "
+                                             "another --out)");
             }
 
             struct Child
@@ -85,12 +90,18 @@ namespace michi
                     args.push_back(const_cast<char *>(a.c_str()));
                 args.push_back(nullptr);
                 const auto start = Clock::now();
+                const pid_t parent = getpid();
                 const pid_t pid = fork();
                 if (pid < 0)
                     throw std::runtime_error(std::string("cannot start a unit's process: ") + std::strerror(errno));
                 if (pid == 0)
                 {
-                    // only async-signal-safe calls between fork and exec
+                    // only async-signal-safe calls between fork and exec. The unit dies with its shard: a shard
+                    // killed by a signal (kill, the OOM killer) can no longer kill a hung unit at its deadline, which
+                    // would then spin on a core for ever. If the shard died before this line, exit at once.
+                    prctl(PR_SET_PDEATHSIG, SIGKILL);
+                    if (getppid() != parent)
+                        _exit(126);
                     const int fd = open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
                     if (fd >= 0)
                     {
@@ -123,6 +134,37 @@ namespace michi
                 }
                 return child;
             }
+
+            /** An exclusive lock on a shard folder for as long as a run works in it: two runs into one folder would
+                run the same units and remove each other's scratch files. The kernel drops the lock when the process
+                ends, however it ends, so a killed shard never leaves the folder locked. */
+            class FolderLock
+            {
+            public:
+                explicit FolderLock(const fs::path &folder)
+                {
+                    const std::string file = (folder / ".lock").string();
+                    fd_ = open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+                    if (fd_ < 0)
+                        throw std::runtime_error(file + ": cannot open the folder's lock: " + std::strerror(errno));
+                    if (flock(fd_, LOCK_EX | LOCK_NB) != 0)
+                    {
+                        close(fd_);
+                        throw std::runtime_error(folder.string() +
+                                                 ": another `michi campaign run` is working in this folder (wait for "
+                                                 "it, or use another --out)");
+                    }
+                }
+                ~FolderLock()
+                {
+                    close(fd_);  // releases the lock
+                }
+                FolderLock(const FolderLock &) = delete;
+                FolderLock &operator=(const FolderLock &) = delete;
+
+            private:
+                int fd_{-1};
+            };
 
             /** the properties a run that never returned gets, so the log and database count it as a failed run */
             void failedRun(UnitRecord &r, const std::string &outcome, ob::PlannerStatus::StatusType status)
@@ -216,14 +258,14 @@ namespace michi
             const auto units = planUnits(campaign);
             const auto share = shardUnits(units, options.shard, options.shards);
             const fs::path out = fs::absolute(options.outDir);
-            fs::create_directories(out / "units");
-            fs::create_directories(out / "work");
-            std::string plan = "# campaign " + campaign.name + " seed " + std::to_string(campaign.seed) + "\n";
-            for (const auto &u : units)
-                plan += planLine(campaign, u) + "\n";
-            claim(out / "campaign.plan", plan, "another campaign's units");
+            fs::create_directories(out);
+            const FolderLock lock(out);
+            claim(out / "campaign.plan", planText(campaign, units), "another campaign's units or settings");
             claim(out / "shard", std::to_string(options.shard) + "/" + std::to_string(options.shards) + "\n",
                   "another shard");
+            // after the claims: a refused run leaves the folder as it found it
+            fs::create_directories(out / "units");
+            fs::create_directories(out / "work");
 
             ShardResult result;
             result.units = share.size();

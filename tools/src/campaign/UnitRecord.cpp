@@ -92,6 +92,16 @@ namespace michi
                 line("setting", s);
             for (const auto &kv : r.properties)
                 line("property." + kv.first, kv.second);
+            for (const auto &name : r.progressNames)
+                line("progress_name", name);
+            for (const auto &sample : r.progress)
+            {
+                // values are numbers as OMPL prints them; ',' cannot occur in one
+                std::string joined;
+                for (std::size_t i = 0; i < sample.size(); ++i)
+                    joined += (i ? "," : "") + sample[i];
+                line("progress_sample", joined);
+            }
             line("end", "1");  // a record without it was cut short
             return out.str();
         }
@@ -166,6 +176,18 @@ namespace michi
                         r.settings.push_back(value);
                     else if (key.rfind("property.", 0) == 0)
                         r.properties[key.substr(9)] = value;
+                    else if (key == "progress_name")
+                        r.progressNames.push_back(value);
+                    else if (key == "progress_sample")
+                    {
+                        std::vector<std::string> sample;
+                        std::istringstream cells(value);
+                        for (std::string cell; std::getline(cells, cell, ',');)
+                            sample.push_back(cell);
+                        if (value.empty() || value.back() == ',')
+                            sample.emplace_back();  // getline drops a last empty value
+                        r.progress.push_back(std::move(sample));
+                    }
                     else if (key == "end")
                         ended = true;
                     else
@@ -178,6 +200,11 @@ namespace michi
             }
             if (!ended)
                 throw std::runtime_error(source + ": incomplete unit record (no end line)");
+            for (const auto &sample : r.progress)
+                if (sample.size() != r.progressNames.size())
+                    throw std::runtime_error(source + ": a progress sample has " + std::to_string(sample.size()) +
+                                             " values for " + std::to_string(r.progressNames.size()) +
+                                             " progress properties");
             // The summary and the database read outcomes by name: any other word would be counted as neither solved nor
             // failed.
             if (r.outcome != "done" && r.outcome != "crash" && r.outcome != "timeout" && r.outcome != "error" &&

@@ -175,6 +175,20 @@ namespace michi
             record.settings.clear();
             for (const auto &kv : planned.common)
                 record.settings.push_back(kv.first + " = " + kv.second);
+            // the anytime planners' progress (best cost over time), which the log's progress section carries
+            record.progressNames = planned.progressPropertyNames;
+            record.progress.clear();
+            if (!planned.runsProgressData.empty())
+                for (const auto &point : planned.runsProgressData[0])
+                {
+                    std::vector<std::string> sample;
+                    for (const auto &name : record.progressNames)
+                    {
+                        const auto it = point.find(name);
+                        sample.push_back(it == point.end() ? "" : it->second);
+                    }
+                    record.progress.push_back(std::move(sample));
+                }
             return record;
         }
     }  // namespace tools

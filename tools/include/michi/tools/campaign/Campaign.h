@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ namespace michi
             std::vector<CampaignPlanner> planners;
             /** \brief Checker names (PlanningContext.h checkerNames()); "problem" keeps each problem's own. */
             std::vector<std::string> checkers;
+            /** \brief Problem files (absolute, normalised) that the campaign file names by an absolute path, directly
+                or through a dataset folder: the plan keeps these absolute and the others relative to the campaign
+                file, so that one campaign file copied to two places writes the same plan. */
+            std::set<std::string> absoluteFiles;
         };
 
         /** \brief One work unit: a query of a problem, one planner configuration, one checker, one run. */
@@ -81,6 +86,17 @@ namespace michi
         /** \brief One line: id, dataset, problem file (relative to the campaign file's folder)#query, planner label,
             checker, run, seed (tab-separated). The same whatever the working folder. */
         std::string planLine(const Campaign &campaign, const WorkUnit &unit);
+
+        /** \brief The text of a shard's `campaign.plan`: a header of what decides a unit's result beside its plan
+            line (the campaign's name and seed, the time limit, every planner configuration with its parameters, and
+            every problem file with a hash of its bytes), then one planLine() per unit. Resume and merge compare it
+            line for line, so records run with other settings or an edited problem file are never mixed under one
+            unit id. */
+        std::string planText(const Campaign &campaign, const std::vector<WorkUnit> &units);
+
+        /** \brief Where two plan texts first differ: "line N: 'here' against 'there'" (a missing line is
+            "(none)"); empty when they are equal. */
+        std::string planDifference(const std::string &here, const std::string &there);
     }  // namespace tools
 }  // namespace michi
 

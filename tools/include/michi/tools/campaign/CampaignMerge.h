@@ -22,6 +22,9 @@ namespace michi
             std::string summary;
             std::string summaryText;
             std::vector<std::string> logs;
+            /** \brief Folders given that hold no `campaign.plan` (a Slurm task cancelled before it began, a shard that
+                never started): left out, their units counted as missing. */
+            std::vector<std::string> skipped;
         };
 
         /** \brief Merge shard folders of one campaign (each holds the same `campaign.plan`) into \e outDir:
@@ -29,8 +32,9 @@ namespace michi
             runs on it, failed units included as unsolved runs with their outcome and signal), `campaign.db`
             (Debian's ompl_benchmark_statistics over all the logs: Planner Arena's database, one `runs` row per
             unit) and `summary.md` (summaryMarkdown()). A unit found in two folders counts once. All-or-nothing:
-            written to a staging folder and moved in at the end. Throws std::runtime_error naming the folder or
-            file at fault. */
+            written to a staging folder and moved in at the end. A folder without a `campaign.plan` is skipped
+            (MergeResult::skipped) so that one shard that never ran does not hold back the others; throws
+            std::runtime_error naming the folder or file at fault otherwise, and when no folder holds a plan. */
         MergeResult mergeCampaign(const std::vector<std::string> &dirs, const std::string &outDir,
                                   std::ostream *progress = nullptr);
 

@@ -47,6 +47,11 @@ namespace michi
             /** \brief The run's properties as OMPL's Benchmark records them ("time REAL" -> "0.0123") plus michi's
                 (checker, check counts, path). */
             std::map<std::string, std::string> properties;
+            /** \brief The planner's progress properties as OMPL's Benchmark names them ("best cost REAL"), when it
+                reported any (RRT*, BIT*, PRM); the log's and database's `progress` data. */
+            std::vector<std::string> progressNames;
+            /** \brief The run's progress samples in time order, each the values of progressNames in that order. */
+            std::vector<std::vector<std::string>> progress;
         };
 
         /** \brief The record as text (one "key=value" per line; values on one line). */
