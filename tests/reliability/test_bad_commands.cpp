@@ -445,3 +445,20 @@ TEST_F(BadCommands, AQueryEndTheFastCheckerRefusesIsNamedBeforePlanning)
     EXPECT_EQ(run.output.find("start ("), std::string::npos) << run.output;  // the ready pose is free for both
     EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
+
+TEST_F(BadCommands, AQueryIsNamedByItsKeyInTheFileNotByItsIndex)
+{
+    // Found by the campaign sweep of 2026-12-07: with a top-level start and goal before a queries list, query i of
+    // the problem is queries[i - 1] of the file, but messages named queries[i] (a key the file may not have) and
+    // blamed queries[0] for the top-level start.
+    const fs::path arm = dir_ / "p/planar_2link.yaml";
+    std::string text = slurp(arm);
+    const auto start = text.find("\nstart:") + 1;
+    ASSERT_NE(start, std::string::npos + 1);
+    // [1, 1] puts link 2 into the upper L (the sweep's case)
+    text.replace(start, text.find('\n', start) - start, "start: [1, 1]");
+    spit(arm, text + "queries:\n  - {start: [0.1, 0.2], goal: [-2.5, 0.4]}\n  - {start: [0.1, 0.2], goal: [1, 1]}\n");
+    expectCleanError("plan " + arm.string() + PLAN + (dir_ / "o").string(), ": start: in collision", dir_ / "o");
+    expectCleanError("plan " + arm.string() + " --query 2" + PLAN + (dir_ / "o").string(),
+                     ": queries[1].goal: in collision", dir_ / "o");
+}

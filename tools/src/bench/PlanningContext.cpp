@@ -390,12 +390,9 @@ namespace michi
             // FCL-based one.
             ctx.referenceMotions = si->getMotionValidator();
 
-            const std::string prefix = !ownQuery && (problem.queries.size() > 1 || query > 0)
-                                           ? "queries[" + std::to_string(query) + "]."
-                                           : std::string();
-            const Query q = ownQuery ? Query{options.start, options.goal, {}} : problem.queries[query];
-            checkEndpoint(problem, ctx, q.start, prefix.empty() ? "start" : prefix + "start");
-            checkEndpoint(problem, ctx, q.goal, prefix.empty() ? "goal" : prefix + "goal");
+            const Query q = ownQuery ? Query{options.start, options.goal, {}, {}} : problem.queries[query];
+            checkEndpoint(problem, ctx, q.start, ownQuery ? "start" : queryEndKey(problem, query, "start"));
+            checkEndpoint(problem, ctx, q.goal, ownQuery ? "goal" : queryEndKey(problem, query, "goal"));
             ob::ScopedState<> start(ctx.setup->getStateSpace()), goal(ctx.setup->getStateSpace());
             setState(start, q.start);
             setState(goal, q.goal);

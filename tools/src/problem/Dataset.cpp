@@ -109,10 +109,9 @@ namespace michi
                     throw ProblemError(entry.problemFile, "queries",
                                        "dataset entry '" + entry.label + "' is not a query of " + problem.file);
                 const Query &q = problem.queries[entry.query];
-                const std::string key = "queries[" + std::to_string(entry.query) + "].";
                 for (const auto *values : {&q.start, &q.goal})
                 {
-                    const std::string k = key + (values == &q.start ? "start" : "goal");
+                    const std::string k = queryEndKey(problem, entry.query, values == &q.start ? "start" : "goal");
                     ob::ScopedState<> state(space);
                     space->copyFromReals(state.get(), *values);
                     // Wraps continuous joints into [-pi, pi) first, as the planners will see the state.

@@ -76,12 +76,12 @@ namespace michi
         {
             installScene(problem, ctx, source);
             const Query &q = source.queries.at(query);
-            const std::string key = "queries[" + std::to_string(query) + "].";
             for (const auto *values : {&q.start, &q.goal})
             {
                 const std::string why = invalidStateReason(ctx, *values);
                 if (!why.empty())
-                    throw ProblemError(source.file, key + (values == &q.start ? "start" : "goal"), why);
+                    throw ProblemError(source.file, queryEndKey(source, query, values == &q.start ? "start" : "goal"),
+                                       why);
             }
             setQuery(ctx, q);
         }

@@ -166,7 +166,10 @@ namespace michi
 
             std::vector<Query> requestQuery;
             if (root["request"])
+            {
                 requestQuery.push_back(readRequestQuery(r, root["request"], "request", problem, robot, true));
+                requestQuery.back().key = "request";
+            }
             if (root["queries"])
             {
                 const YAML::Node q = root["queries"];
@@ -181,11 +184,12 @@ namespace michi
                             r.fail(key, "give either request or start and goal, not both");
                         problem.queries.push_back(readRequestQuery(r, q[i]["request"], key + ".request", problem, robot,
                                                                    key + ".request" == firstRequestKey));
+                        problem.queries.back().key = key + ".request";
                         continue;
                     }
                     problem.queries.push_back(
                         Query{readConfiguration(r, r.require(q[i], "start", key), key + ".start", problem),
-                              readConfiguration(r, r.require(q[i], "goal", key), key + ".goal", problem)});
+                              readConfiguration(r, r.require(q[i], "goal", key), key + ".goal", problem), "", key});
                 }
             }
             // Query order: the top-level request or start/goal is query 0, then the file's queries, then the map's
@@ -197,13 +201,29 @@ namespace michi
             {
                 const auto start = readConfiguration(r, r.require(root, "start", ""), "start", problem);
                 const auto goal = readConfiguration(r, r.require(root, "goal", ""), "goal", problem);
-                problem.queries.insert(problem.queries.begin(), Query{start, goal});
+                problem.queries.insert(problem.queries.begin(), Query{start, goal, "", "start/goal"});
             }
             readPlanners(r, root["planners"], problem);
             readBenchmark(r, root["benchmark"], problem);
             readCollision(r, root["collision"], problem);
             problem.experience = readExperienceQueries(path, problem);  // ExperienceQueries.cpp
             return problem;
+        }
+
+        std::string queryEndKey(const Problem &problem, std::size_t query, const std::string &end)
+        {
+            // Query i is not queries[i] of the file when a top-level start and goal (or request) come first, and a
+            // map scenario has no key of its own: a message must name what the user can find in the file.
+            const std::string key = query < problem.queries.size() ? problem.queries[query].key : std::string();
+            if (key == "start/goal")
+                return end;
+            if (key.empty())
+                return "queries[" + std::to_string(query) + "]." + end;
+            if (key == "request" || key.find(".request") != std::string::npos)
+                return key;
+            if (key == "scene.movingai.scenarios")  // the label names the scenario file's line
+                return key + " (" + problem.queries[query].label + ")." + end;
+            return key + "." + end;
         }
     }  // namespace tools
 }  // namespace michi

@@ -211,7 +211,8 @@ namespace michi
                             // MovingAI scenarios give cells only: start and goal face yaw 0, at their cells' centres.
                             Query{{a.x(), a.y(), 0.},
                                   {b.x(), b.y(), 0.},
-                                  boost::filesystem::path(scenFile).filename().string() + " " + line});
+                                  boost::filesystem::path(scenFile).filename().string() + " " + line,
+                                  "scene.movingai.scenarios"});
                     }
                     if (info.queries.empty())
                         r.fail(sk, "no scenario in '" + scenFile + "'" +

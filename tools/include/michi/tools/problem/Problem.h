@@ -62,6 +62,10 @@ namespace michi
             std::vector<double> start;
             std::vector<double> goal;
             std::string label;  ///< where it came from ("arena.map.scen line 12"); may be empty
+            /** \brief Where the problem file gives it, for messages: "start/goal" (the top-level start and goal),
+                "queries[1]", "request" or "queries[1].request" (a MoveIt request), "scene.movingai.scenarios";
+                empty for a query made by a tool (queryEndKey() then counts it among the queries). */
+            std::string key;
         };
 
         struct BenchmarkSettings
@@ -182,6 +186,12 @@ namespace michi
             and key for anything malformed, validity::UrdfError (naming the URDF) for a bad robot. Start and goal
             are checked against joint limits here; against collisions by makePlanningContext(). */
         Problem loadProblem(const std::string &path);
+
+        /** \brief The key that names the start or goal (\e end: "start" or "goal") of query \e query of \e problem
+            in its file: "start", "queries[1].goal", "request" (a MoveIt request gives both),
+            "scene.movingai.scenarios" (a map scenario: the query's label names the line); "queries[N].goal" for a
+            query a tool made. */
+        std::string queryEndKey(const Problem &problem, std::size_t query, const std::string &end);
     }  // namespace tools
 }  // namespace michi
 
