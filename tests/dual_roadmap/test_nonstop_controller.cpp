@@ -11,10 +11,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace ob = ompl::base;
@@ -321,4 +324,157 @@ TEST(NonStopController, RejectsBadSettingsAndBadUse)
         EXPECT_EQ(q, (Configuration{3., 1.}));
     EXPECT_THROW(controller.update(a.get(), 1.), std::invalid_argument);  // time went back
     EXPECT_EQ(controller.state(), Exec::IDLE);
+}
+
+TEST(NonStopController, RefusesSettingsThatAreNotFiniteAndStatesThatAreNotNumbers)
+{
+    auto space = plane();
+    const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+    // each accepted before: an infinite speed or deceleration made every braking distance 0 or NaN, an infinite
+    // horizon a length_error in update(), a NaN margin every comparison false
+    for (auto set :
+         std::vector<std::function<void(NonStopControllerSettings &)>>{
+             [&](NonStopControllerSettings &s)
+             {
+                 s.motion.speed = inf;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.motion.deceleration = inf;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.motion.stopMargin = -1.;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.motion.stopMargin = nan;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.motion.safetyDistance = nan;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.planningTime = inf;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.trackingTolerance = inf;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.horizon = inf;
+             },
+             [&](NonStopControllerSettings &s)
+             {
+                 s.horizon = 1e9;
+             },
+             // refused by the executor after the controller had allocated states: they leaked (LeakSanitizer)
+             [&](NonStopControllerSettings &s)
+             {
+                 s.motion.speed = 0.;
+             }})
+    {
+        auto bad = settings();
+        set(bad);
+        EXPECT_THROW(NonStopController(space, bad), std::invalid_argument);
+    }
+
+    Fixture f;
+    Robot robot = f.begin();
+    ASSERT_TRUE(f.controller->waitForPlanner(30.));
+    f.controller->update(robot.state.get(), 0.);
+    // one NaN in a measurement went into the arc lengths, and the next update() aborted the process in an OMPL
+    // assertion; now it is refused and the model of the robot stays where it was
+    Robot lost(f.space, nan, 0.);
+    EXPECT_THROW(f.controller->update(lost.state.get(), 0.05), std::invalid_argument);
+    const TimedPath next = f.controller->update(robot.state.get(), 0.1);
+    for (const auto &q : next.configurations)
+        EXPECT_TRUE(std::isfinite(q[0]) && std::isfinite(q[1]));
+
+    Fixture g;
+    g.observe({});
+    ob::ScopedState<> nanGoal(g.space), farGoal(g.space);
+    nanGoal[0] = nan;
+    nanGoal[1] = 0.;
+    farGoal[0] = 50.;
+    farGoal[1] = 0.;
+    EXPECT_THROW(g.controller->start(robot.state.get(), nanGoal.get()), std::invalid_argument);
+    EXPECT_THROW(g.controller->start(robot.state.get(), farGoal.get()), std::invalid_argument);
+    EXPECT_EQ(g.controller->state(), Exec::IDLE);
+}
+
+TEST(NonStopController, AWallSeenWhileStartingOffIsStoppedShortOf)
+{
+    // The robot is still speeding up (0.1 s after the start, about 0.2 m/s) when a wall across the whole plane is
+    // observed. Its stop point was placed with the braking distance of that speed; it went on speeding up towards
+    // its cruise speed of 1.5 m/s and, braking from there, stood 0.45 m inside the wall, and every trajectory it
+    // returned from then on ran into the wall.
+    auto s = settings();
+    s.motion.speed = 1.5;
+    s.motion.stopMargin = 0.;
+    s.period = 0.02;
+    Fixture f(s);
+    Robot robot = f.begin();
+    ASSERT_TRUE(f.controller->waitForPlanner(30.));
+    std::vector<Disc> wall;
+    for (double y = -5.; y <= 5.001; y += 0.25)
+        wall.push_back({2.5, y, 0.5});  // the robot is a point: the discs are the wall grown by a radius
+    int intoTheWall = 0;
+    for (int tick = 0; tick <= 250; ++tick)
+    {
+        if (tick == 5)
+            f.observe(wall);
+        const TimedPath trajectory = f.controller->update(robot.state.get(), 0.02 * tick);
+        if (tick >= 5)
+            for (const auto &q : trajectory.configurations)
+                intoTheWall += f.current->inside(q) ? 1 : 0;
+        robot.follow(trajectory);
+        ASSERT_TRUE(f.controller->waitForPlanner(30.));
+    }
+    EXPECT_EQ(intoTheWall, 0);
+    EXPECT_FALSE(f.current->inside(robot.q())) << robot.q()[0] << ", " << robot.q()[1];
+    EXPECT_EQ(f.controller->state(), Exec::STOPPED);  // no way round: it waits in front of the wall
+}
+
+TEST(NonStopController, APlannerSlowerThanTheSensorStillGetsItsPath)
+{
+    // The world, empty, is observed again every 0.1 s of wall time and the planner takes 0.15 s. A robot standing
+    // at its start (a one-state path) saw each observation leave that "path" free, cancelled the query and sent a
+    // new one: 52 queries, no path, in 5 s. Wall-clock time here is the condition that the bug needs; the
+    // assertion is on the outcome, not on a time.
+    auto slow = [](const ob::SpaceInformationPtr &si) -> ob::PlannerPtr
+    {
+        class Slow : public ompl::geometric::RRTConnect
+        {
+        public:
+            using RRTConnect::RRTConnect;
+            ob::PlannerStatus solve(const ob::PlannerTerminationCondition &ptc) override
+            {
+                std::this_thread::sleep_for(std::chrono::milliseconds(150));
+                return RRTConnect::solve(ptc);
+            }
+        };
+        return std::make_shared<Slow>(si);
+    };
+    Fixture f(settings(), slow);
+    Robot robot = f.begin();
+    const auto start = std::chrono::steady_clock::now();
+    auto lastObservation = start;
+    double t = 0.;
+    while (!f.controller->finished() && std::chrono::steady_clock::now() - start < std::chrono::seconds(30))
+    {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - lastObservation >= std::chrono::milliseconds(100))
+        {
+            f.observe({});
+            lastObservation = now;
+        }
+        robot.follow(f.controller->update(robot.state.get(), t));
+        t += 0.05;  // a loop period of the settings' 0.05 s, run faster than real time
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    EXPECT_TRUE(f.controller->finished()) << f.controller->statistics().queries << " queries";
+    EXPECT_GE(f.controller->statistics().pathsFound, 1u);
 }

@@ -49,11 +49,20 @@ namespace michi
             if (!space_)
                 throw std::invalid_argument("NonStopController: no state space");
             const auto &s = settings_;
-            if (!(s.planningTime > 0.) || !(s.trackingTolerance > 0.) || !(s.period > 0.) || !(s.horizon >= 0.) ||
-                !(s.lookahead > 0.) || !(s.checkResolution > 0. && s.checkResolution <= 1.))
+            const auto finite = [](double v)
+            {
+                return std::isfinite(v);
+            };
+            if (!(s.planningTime > 0. && finite(s.planningTime)) ||
+                !(s.trackingTolerance > 0. && finite(s.trackingTolerance)) || !(s.period > 0. && finite(s.period)) ||
+                !(s.horizon >= 0. && finite(s.horizon)) || !(s.lookahead > 0.) ||
+                !(s.checkResolution > 0. && s.checkResolution <= 1.))
                 throw std::invalid_argument(
-                    "NonStopController: planningTime, trackingTolerance, period and lookahead must be positive, "
-                    "horizon not negative, checkResolution in (0, 1]");
+                    "NonStopController: planningTime, trackingTolerance and period must be positive and finite, "
+                    "lookahead positive, horizon finite and not negative, checkResolution in (0, 1]");
+            // update() returns horizon / period + 1 samples every call
+            if (s.horizon / s.period > 1e6)
+                throw std::invalid_argument("NonStopController: horizon / period gives more than 10^6 samples");
             settings_.motion.brakeAtEnd = true;  // a robot's trajectory ends at rest
             // Two SpaceInformation on one space: the robot loop's thread checks paths against the newest world while
             // the planning thread plans in the world of its query.
@@ -78,10 +87,11 @@ namespace michi
                     });
             // Here, not on the planning thread: setup() may set the shared space up again.
             planner_->setup();
+            // the executor first: it refuses bad motion settings, and states allocated before a throw would leak
+            executor_ = std::make_unique<NonStopExecutor>(hooks(), settings_.motion);
             scratchA_ = space_->allocState();
             scratchB_ = space_->allocState();
             scratchOut_ = space_->allocState();
-            executor_ = std::make_unique<NonStopExecutor>(hooks(), settings_.motion);
         }
 
         NonStopController::~NonStopController()
@@ -96,6 +106,20 @@ namespace michi
         {
             Configuration q;
             space_->copyToReals(q, state);
+            return q;
+        }
+
+        Configuration NonStopController::measuredReals(const ob::State *state, const char *what) const
+        {
+            if (state == nullptr)
+                throw std::invalid_argument(std::string("NonStopController: no ") + what);
+            Configuration q = toReals(state);
+            // A NaN went on into the arc lengths and from there into an index: an OMPL assertion aborted the process
+            // one update later.
+            for (const double v : q)
+                if (!std::isfinite(v))
+                    throw std::invalid_argument(std::string("NonStopController: the ") + what +
+                                                " has a value that is not a finite number");
             return q;
         }
 
@@ -118,19 +142,23 @@ namespace michi
                 if (observed_ == 0)
                     throw std::logic_error("NonStopController::start: no world observed yet (observeWorld)");
             }
-            executor_->start(toReals(measured), toReals(goal));
+            Configuration from = measuredReals(measured, "measured state"), to = measuredReals(goal, "goal");
+            if (!space_->satisfiesBounds(goal))
+                throw std::invalid_argument("NonStopController::start: the goal is outside the state space's bounds");
+            executor_->start(std::move(from), std::move(to));
         }
 
         TimedPath NonStopController::update(const ob::State *measured, double time)
         {
             if (!std::isfinite(time) || (haveTime_ && time < time_))
                 throw std::invalid_argument("NonStopController::update: the time must be finite and never decrease");
+            Configuration robot = measuredReals(measured, "measured state");  // before anything moves
             const double dt = haveTime_ ? time - time_ : 0.;
             time_ = time;
             haveTime_ = true;
             // the model first moves as commanded, then goes where the robot really is
             executor_->step(dt);
-            executor_->track(toReals(measured), settings_.trackingTolerance);
+            executor_->track(robot, settings_.trackingTolerance);
             return executor_->preview(settings_.horizon, settings_.period);
         }
 

@@ -35,11 +35,25 @@ namespace michi
                 throw std::invalid_argument(
                     "NonStopExecutor: plan, distance, interpolate, firstInterference and "
                     "clearance hooks are required");
-            if (!(settings_.speed > 0.) || !(settings_.deceleration > 0.))
-                throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive");
-            if (!(settings_.planningDelay >= 0.) || !(settings_.cpuTimeScale >= 0.))
-                throw std::invalid_argument("NonStopExecutor: planningDelay and cpuTimeScale must not be negative");
-            if (settings_.retiming && (!(settings_.retimingHorizon > 0.) || !(settings_.retimingStep > 0.)))
+            // finite as well as in range: an infinite speed or deceleration makes every braking distance 0 or NaN, a
+            // NaN margin every comparison false
+            const auto positive = [](double v)
+            {
+                return std::isfinite(v) && v > 0.;
+            };
+            const auto notNegative = [](double v)
+            {
+                return std::isfinite(v) && v >= 0.;
+            };
+            if (!positive(settings_.speed) || !positive(settings_.deceleration))
+                throw std::invalid_argument("NonStopExecutor: speed and deceleration must be positive and finite");
+            if (!notNegative(settings_.safetyDistance) || !notNegative(settings_.stopMargin))
+                throw std::invalid_argument(
+                    "NonStopExecutor: safetyDistance and stopMargin must be finite and not negative");
+            if (!notNegative(settings_.planningDelay) || !notNegative(settings_.cpuTimeScale))
+                throw std::invalid_argument(
+                    "NonStopExecutor: planningDelay and cpuTimeScale must be finite and not negative");
+            if (settings_.retiming && (!positive(settings_.retimingHorizon) || !positive(settings_.retimingStep)))
                 throw std::invalid_argument("NonStopExecutor: retimingHorizon and retimingStep must be positive");
             clearTiming();
             // Paper 002, Fig. 1: the planning thread is the executor's own; the caller's thread is the execution
@@ -365,10 +379,10 @@ namespace michi
                         transition(ExecState::STOPPING, Signal::GEO_CHANGE);
                         return;
                     }
-                    // Braking from full speed needs brakingDistance(), and stopMargin keeps the stop short of the
-                    // interference: the robot can run on for room before it must start to brake, which is the time the
-                    // planner gets.
-                    const double room = hit - settings_.stopMargin - brakingDistance();
+                    // Braking needs the braking distance of the speed the robot will have then, and stopMargin keeps
+                    // the stop short of the interference: the robot can run on for room before it must start to brake,
+                    // which is the time the planner gets.
+                    const double room = roomBeforeBraking(hit - settings_.stopMargin);
                     if (room <= EPS)
                     {
                         // A stop here would leave the robot in (or at) an obstacle's predicted region, in its way: a
@@ -422,8 +436,10 @@ namespace michi
                 case ExecState::STOPPING:
                 case ExecState::STOPPED:
                     // the predicted interference is gone, or (retiming) the original path misses the obstacles at a
-                    // slower speed or after a wait: cancel replanning, go on with the original path
-                    if (free || (settings_.nonStop && retime()))
+                    // slower speed or after a wait: cancel replanning, go on with the original path. A robot standing
+                    // at the end of a path that stops short of the goal has nothing to go on with: its query stays
+                    // (cancelling it on every observation starved a planner slower than the sensor's period).
+                    if ((free && pathLength() - s_ > EPS) || (settings_.nonStop && retime()))
                     {
                         if (free)
                             clearTiming();
@@ -437,7 +453,7 @@ namespace michi
                     // (the stop point moves to after the crossing, and the query with it).
                     if (exec_ == ExecState::REPLANNING)
                     {
-                        const double room = hit - settings_.stopMargin - brakingDistance();
+                        const double room = roomBeforeBraking(hit - settings_.stopMargin);
                         const double after = room <= EPS && settings_.nonStop ? crossing() : -1.;
                         if (std::isinf(after))
                         {
@@ -559,6 +575,13 @@ namespace michi
             transition(ExecState::EXECUTE, Signal::PATH_FOUND);
         }
 
+        bool NonStopExecutor::mustBrake(double s, double v, double dt) const
+        {
+            // advance() lowers the speed before it moves, so braking from v covers v^2 / (2 a) - v dt / 2: a robot
+            // that starts to brake before the stop point stands within the braking distance the stop point left
+            return s + v * dt >= stopArc_ - EPS;
+        }
+
         void NonStopExecutor::step(double dt)
         {
             time_ += dt;
@@ -590,7 +613,8 @@ namespace michi
             // A crossing (crossing()) was checked in time against the obstacles' motion: braking in it
             // because one is near would stop the robot in its way.
             if (exec_ == ExecState::REPLANNING &&
-                (s_ >= stopArc_ - EPS || (s_ >= crossUntil_ && hooks_.clearance(current_) < settings_.safetyDistance)))
+                (mustBrake(s_, velocity_, dt) ||
+                 (s_ >= crossUntil_ && hooks_.clearance(current_) < settings_.safetyDistance)))
                 transition(ExecState::STOPPING, Signal::STEP);
             if (exec_ == ExecState::STOPPING && velocity_ <= 0.)
             {
@@ -811,7 +835,7 @@ namespace michi
             {
                 advance(state, s, v, period, speedCap_, time_ + period * i - period < holdUntil_);
                 // the transitions of step() that follow from the motion alone
-                if (state == ExecState::REPLANNING && s >= stopArc_ - EPS)
+                if (state == ExecState::REPLANNING && mustBrake(s, v, period))
                     state = ExecState::STOPPING;
                 if ((state == ExecState::STOPPING && v <= 0.) ||
                     (state == ExecState::EXECUTE && s >= pathLength() - EPS))

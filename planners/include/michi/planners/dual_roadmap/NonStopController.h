@@ -67,7 +67,9 @@ namespace michi
 
             /** \param space the robot's state space (bounds set)
                 \param allocator makes the planner on the planning side's SpaceInformation; empty: DualRoadmap.
-                Throws std::invalid_argument on settings out of range. */
+                Throws std::invalid_argument on settings out of range (each must be finite). Sets \e space up (OMPL's
+                StateSpace::setup() registers its projections): controllers that share one space are constructed on
+                one thread. */
             explicit NonStopController(const ompl::base::StateSpacePtr &space, NonStopControllerSettings settings = {},
                                        PlannerAllocator allocator = {});
             ~NonStopController();
@@ -88,11 +90,16 @@ namespace michi
                 it at once (paper 002's Geo. change). */
             void observeWorld(ompl::base::StateValidityCheckerPtr world, DualRoadmap::ChangeRegion changed = {});
 
-            /** \brief Go from \e measured to \e goal (a world must have been observed). */
+            /** \brief Go from \e measured to \e goal (a world must have been observed). std::invalid_argument for a
+                state with a value that is not a finite number, or a goal outside the space's bounds. A goal (or
+                start) that the observed world blocks is not an error, since a mover may clear it: the controller
+                holds the robot and asks the planner again at every observation (Statistics::failures counts the
+                answers without a path). */
             void start(const ompl::base::State *measured, const ompl::base::State *goal);
 
             /** \brief The robot's state measured at \e time (seconds, any origin, never decreasing): returns the
-                motion to follow from now (times relative to \e time). */
+                motion to follow from now (times relative to \e time). std::invalid_argument for a measured state
+                with a value that is not a finite number (nothing moves then). */
             TimedPath update(const ompl::base::State *measured, double time);
 
             /** \brief Halt: cancel planning; update() then holds the robot where it is. */
@@ -135,6 +142,9 @@ namespace michi
             bool plan(const Configuration &from, const Configuration &goal, std::uint64_t snapshot,
                       const std::atomic<bool> &cancel, ConfigurationPath &path);
             Configuration toReals(const ompl::base::State *state) const;
+            /** toReals() of a state the caller hands in; std::invalid_argument naming \e what when it is null or
+                holds a value that is not a finite number */
+            Configuration measuredReals(const ompl::base::State *state, const char *what) const;
 
             NonStopControllerSettings settings_;
             ompl::base::StateSpacePtr space_;

@@ -1,6 +1,7 @@
 #ifndef MICHI_PLANNERS_DUAL_ROADMAP_NON_STOP_EXECUTOR_
 #define MICHI_PLANNERS_DUAL_ROADMAP_NON_STOP_EXECUTOR_
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -276,6 +277,25 @@ namespace michi
             double brakingDistance() const
             {
                 return velocity_ * velocity_ / (2. * settings_.deceleration);
+            }
+
+            /** Brake now (REPLANNING): the robot at \e s going \e v would pass the stop point within the next step of
+                \e dt (braking only once past it stopped the robot up to half a step beyond the room left). */
+            bool mustBrake(double s, double v, double dt) const;
+
+            /** How far the robot may still drive before it must brake to stand within \e limit (arc length ahead of
+                it). Until it brakes it keeps speeding up towards the cruise speed (advance()), so the braking
+                distance is the one of the speed it will have there, not of its speed now: with the latter, a robot
+                that saw an obstacle while starting off braked too late and stopped inside it. */
+            double roomBeforeBraking(double limit) const
+            {
+                const double a = settings_.deceleration, v = velocity_;
+                const double cruise = std::max(v, settings_.speed);
+                // speeding up all the way: x + (v^2 + 2 a x) / (2 a) = limit
+                const double x = 0.5 * (limit - v * v / (2. * a));
+                if (v * v + 2. * a * x <= cruise * cruise)
+                    return x;
+                return limit - cruise * cruise / (2. * a);  // at cruise speed before it brakes
             }
 
             NonStopHooks hooks_;
