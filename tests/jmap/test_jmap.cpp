@@ -453,6 +453,43 @@ TEST(JMap, QueriesMatchBoostGeometry)
     EXPECT_GT(checked, 39000);
 }
 
+TEST(JMap, AnEdgeAnUlpOffVerticalStopsTheSegmentsThatCrossIt)
+{
+    // Found by the safety sweep of 2026-12-07: a union of J-map tiles left an edge from x = -0.043633231299858251 to
+    // -0.043633231299858244 (one ulp apart, on a slice border). Stored as a sloped edge of slope 1e15 in a slab 7e-18
+    // wide, its heights rounded so far off that firstContact() called 42 segments that cross it free, and the
+    // J-map motion validator accepted motions into the polygon.
+    const double xa = -0.043633231299858251, xb = std::nextafter(xa, 1.);
+    ASSERT_NE(xa, xb);
+    Polygon2 square;
+    // clockwise, closed (Boost.Geometry's default); the left side is the near-vertical edge
+    bg::append(square.outer(), Point2(xa, -0.3));
+    bg::append(square.outer(), Point2(xb, 0.2));
+    bg::append(square.outer(), Point2(0.4, 0.2));
+    bg::append(square.outer(), Point2(0.4, -0.3));
+    bg::append(square.outer(), Point2(xa, -0.3));
+    ASSERT_TRUE(bg::is_valid(square));
+    MultiPolygon2 polygons;
+    polygons.push_back(square);
+    const auto map = JMap::fromPolygons(polygons, -M_PI, M_PI, -M_PI, M_PI);
+    ompl::RNG rng(11);
+    int crossing = 0;
+    for (int k = 0; k < 20000; ++k)
+    {
+        // from left of the edge to inside the square, at every height and slant
+        const double y0 = rng.uniformReal(-0.29, 0.19), y1 = rng.uniformReal(-0.29, 0.19);
+        const double x0 = xa - rng.uniformReal(1e-6, 0.05), x1 = xa + rng.uniformReal(1e-6, 0.3);
+        ASSERT_FALSE(map->collides(x0, y0));
+        ASSERT_TRUE(map->collides(x1, y1)) << x1 << ", " << y1;
+        const double t = map->firstContact(x0, y0, x1, y1);
+        ASSERT_TRUE(std::isfinite(t)) << "(" << x0 << ", " << y0 << ") -> (" << x1 << ", " << y1 << ")";
+        // it meets the square where it crosses the edge, not later
+        EXPECT_LE(x0 + t * (x1 - x0), xb + 1e-9);
+        ++crossing;
+    }
+    EXPECT_EQ(crossing, 20000);
+}
+
 namespace
 {
     /** A 2-link arm made of spheres: its x-y view (disks) is exactly what FCL checks. */

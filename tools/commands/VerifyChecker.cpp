@@ -63,7 +63,14 @@ namespace michi
             const ob::StateValidityCheckerPtr fast = si->getStateValidityChecker();
             const ob::MotionValidatorPtr fastMotions = si->getMotionValidator();
             const validity::FclValidityChecker &reference = *ctx.checker;
-            validity::ConservativeMotionValidator referenceMotions(si, ctx.checker);
+            // The reference motion check reads states through a SpaceInformation of its own whose checker is FCL: on
+            // the context's, ConservativeMotionValidator's test of the motion's end went to the fast checker, and a
+            // motion the fast checker's end refused while FCL found it free counted as unsafe.
+            const auto referenceSi = std::make_shared<ob::SpaceInformation>(si->getStateSpace());
+            referenceSi->setStateValidityChecker(ctx.checker);
+            referenceSi->setStateValidityCheckingResolution(si->getStateValidityCheckingResolution());
+            referenceSi->setup();
+            validity::ConservativeMotionValidator referenceMotions(referenceSi, ctx.checker);
             // the exact reference walks by FCL distances: fine for boxes and polygons, but on arm meshes a distance
             // costs tens of microseconds and a short motion near contact needs hundreds of them. For the sphere
             // checker the motions are re-checked as `michi bench` certifies paths instead: FCL collision queries

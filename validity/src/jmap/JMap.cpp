@@ -20,13 +20,14 @@ namespace michi
         public:
             explicit JMapIndex(const MultiPolygon2 &polygons)
             {
+                snapXs(polygons);
                 std::vector<std::pair<Point2, Point2>> edges;
                 auto addRing = [&](const Polygon2::ring_type &ring)
                 {
                     // Boost.Geometry rings are closed (the last point repeats the first), so ring.size() - 1 edges.
                     for (std::size_t i = 0; i + 1 < ring.size(); ++i)
                     {
-                        const Point2 &p = ring[i], &q = ring[i + 1];
+                        const Point2 p(snapped(ring[i].x()), ring[i].y()), q(snapped(ring[i + 1].x()), ring[i + 1].y());
                         xs_.push_back(p.x());
                         if (p.x() == q.x())
                         {
@@ -245,6 +246,39 @@ namespace michi
             }
 
         private:
+            /** Vertex x values closer than this (radians) are one value. A polygon's union can leave an edge that is
+                an ulp off vertical (x from -0.043633231299858251 to -0.043633231299858244 on a slice border): as a
+                sloped edge of slope 1e15 in a slab 7e-18 wide, its heights rounded so badly that firstHit() missed
+                segments crossing it. Snapped, it is a vertical edge. Moving a vertex by 1e-12 rad moves the arm by
+                about 1e-12 m, far inside the map's conservative growth. */
+            static constexpr double SNAP = 1e-12;
+
+            void snapXs(const MultiPolygon2 &polygons)
+            {
+                for (const auto &polygon : polygons)
+                {
+                    for (const auto &p : polygon.outer())
+                        snapFrom_.push_back(p.x());
+                    for (const auto &inner : polygon.inners())
+                        for (const auto &p : inner)
+                            snapFrom_.push_back(p.x());
+                }
+                std::sort(snapFrom_.begin(), snapFrom_.end());
+                snapFrom_.erase(std::unique(snapFrom_.begin(), snapFrom_.end()), snapFrom_.end());
+                snapTo_.resize(snapFrom_.size());
+                for (std::size_t i = 0; i < snapFrom_.size(); ++i)
+                    // each value joins the run of the first value within SNAP below it (measured from that first
+                    // value, so a run never creeps)
+                    snapTo_[i] = i > 0 && snapFrom_[i] - snapTo_[i - 1] <= SNAP ? snapTo_[i - 1] : snapFrom_[i];
+            }
+
+            double snapped(double x) const
+            {
+                const auto it = std::lower_bound(snapFrom_.begin(), snapFrom_.end(), x);
+                return it != snapFrom_.end() && *it == x ? snapTo_[static_cast<std::size_t>(it - snapFrom_.begin())]
+                                                         : x;
+            }
+
             struct Line
             {
                 double m, c;    ///< y = m x + c
@@ -407,6 +441,7 @@ namespace michi
             std::vector<std::uint32_t> start_;
             std::vector<Line> lines_;
             std::vector<Vertical> verticals_;
+            std::vector<double> snapFrom_, snapTo_;  ///< vertex x values and the values they snap to (snapXs())
             double binScale_{1.};
             std::vector<std::uint32_t> binSlab_;
         };
@@ -477,6 +512,19 @@ namespace michi
             map->slices_ = std::move(slices);
             map->finish();
             map->buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            return map;
+        }
+
+        std::shared_ptr<const JMap> JMap::fromPolygons(MultiPolygon2 polygons, double lo1, double hi1, double lo2,
+                                                       double hi2)
+        {
+            std::shared_ptr<JMap> map(new JMap());
+            map->lo1_ = lo1;
+            map->hi1_ = hi1;
+            map->lo2_ = lo2;
+            map->hi2_ = hi2;
+            map->polygons_ = std::move(polygons);
+            map->index_ = std::make_unique<JMapIndex>(map->polygons_);
             return map;
         }
 

@@ -258,6 +258,10 @@ namespace michi
                 \e lo2 / \e hi2 is the axis-2 range. */
             static std::shared_ptr<const JMap> fromSlices(std::vector<JMapSlice> slices, double lo2, double hi2,
                                                           const JMapSettings &settings = {});
+            /** \brief A map of given polygons, without slices (tests, and polygons made elsewhere); \e lo1 .. \e hi2
+                are the axes' ranges. */
+            static std::shared_ptr<const JMap> fromPolygons(MultiPolygon2 polygons, double lo1, double hi1, double lo2,
+                                                            double hi2);
             ~JMap();
 
             /** \brief True when (theta1, theta2) lies inside (or on the boundary of) a polygon. Points outside
