@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -187,6 +188,26 @@ TEST_F(Campaign, BadCampaignFileNamesFileAndKeyAndWritesNothing)
     EXPECT_EQ(run.exitCode, 1) << run.output;
     EXPECT_NE(run.output.find(tab.string() + ": planners[0].label: must not hold"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(out / "units"));
+
+    // found by the campaign sweep of 2026-12-07: a problem listed twice became two "run 0" units of one experiment,
+    // and two problem files of one name two experiments of that name, which Planner Arena pools
+    const fs::path twice =
+        write("twice.yaml", "problems: [" + problemFile("planar_2link") + ", " + problemFile("planar_2link") +
+                                "]\nplanners: [geometric::RRTConnect]\n");
+    run = runMichi("campaign plan " + twice.string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find(twice.string() + ": problems[1]: query 0 of"), std::string::npos) << run.output;
+    fs::copy_file(problemFile("planar_2link"), dir_ / "copy.yaml");
+    std::string copy = slurp(dir_ / "copy.yaml");
+    // the copy's paths (the URDF) are relative to the problem file: point them back at the bundled robots
+    copy = std::regex_replace(copy, std::regex("robots/"), (fs::path(MICHI_SOURCE_DIR) / "problems/robots/").string());
+    write("copy.yaml", copy);
+    const fs::path named =
+        write("named.yaml", "problems: [" + problemFile("planar_2link") + ", " + (dir_ / "copy.yaml").string() +
+                                "]\nplanners: [geometric::RRTConnect]\n");
+    run = runMichi("campaign plan " + named.string());
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find("are both named 'planar_2link'"), std::string::npos) << run.output;
 }
 
 TEST_F(Campaign, FourShardsMergeIntoTheUnshardedRunsAndSegfaultsAreFailedRuns)

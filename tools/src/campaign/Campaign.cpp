@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -257,6 +258,35 @@ namespace michi
                 }
             }
 
+            /** A query listed twice (a problem under problems and in a dataset folder, a folder listed twice) would be
+                run and counted twice in one experiment; two problem files of one name would be pooled by Planner
+                Arena, which groups runs by experiment name. Both are refused, naming the entry that repeats. */
+            void refuseRepeatedQueries(const Reader &r, const Campaign &c, std::size_t fromProblems)
+            {
+                std::map<std::string, std::string> seenQuery, fileOfName;
+                for (std::size_t i = 0; i < c.datasets.size(); ++i)
+                {
+                    const std::string key = i < fromProblems ? "problems[" + std::to_string(i) + "]"
+                                                             : "datasets[" + std::to_string(i - fromProblems) + "]";
+                    for (const auto &e : c.datasets[i].entries)
+                    {
+                        const std::string file = normalised(e.problemFile);
+                        const std::string query = file + "#" + std::to_string(e.query);
+                        const auto first = seenQuery.emplace(query, c.datasets[i].name);
+                        if (!first.second)
+                            r.fail(key, "query " + std::to_string(e.query) + " of " + e.problemFile +
+                                            " is also in dataset '" + first.first->second +
+                                            "': it would be run and counted twice");
+                        const auto named = fileOfName.emplace(e.problemName, file);
+                        if (!named.second && named.first->second != file)
+                            r.fail(key, e.problemFile + " and " + named.first->second + " are both named '" +
+                                            e.problemName +
+                                            "': Planner Arena would pool their runs as one experiment (give each "
+                                            "problem its own name)");
+                    }
+                }
+            }
+
             std::uint64_t splitMix64(std::uint64_t x)
             {
                 // SplitMix64's finalizer: consecutive ids come out as unrelated 64-bit values, so seeds and shard order
@@ -297,7 +327,9 @@ namespace michi
             if (!root["problems"] && !root["datasets"])
                 r.fail("problems", "missing: give problems (files), datasets (folders) or both");
             readProblems(r, root["problems"], c);
+            const std::size_t fromProblems = c.datasets.size();  // one dataset per problems entry
             readDatasets(r, file, root["datasets"], c);
+            refuseRepeatedQueries(r, c, fromProblems);
             readPlanners(r, root["planners"], c);
             readCheckers(r, root["checkers"], c);
             // A checker that cannot serve a dataset's robot (the grid checker on an arm, the J-map or spheres on an

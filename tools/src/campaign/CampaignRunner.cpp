@@ -69,10 +69,10 @@ namespace michi
                 if (held != text)
                     // A folder belongs to one campaign plan and one shard: resuming it with another would mix records
                     // of different units, or of other settings, under the same ids.
-                    throw std::runtime_error(file.string() + ": the folder holds " + what + " (" +
-                                             planDifference(held, text) +
-                                             " in this run; resume with the same campaign file and --shard, or use "
-                                             "another --out)");
+                    throw std::runtime_error(file.string() + ": the folder holds " + what +
+                                             " (the folder's against this run's, " + planDifference(held, text) +
+                                             "; resume with the same campaign file and --shard, or use another "
+                                             "--out)");
             }
 
             struct Child
@@ -263,7 +263,7 @@ namespace michi
             claim(out / "campaign.plan", planText(campaign, units), "another campaign's units or settings");
             claim(out / "shard", std::to_string(options.shard) + "/" + std::to_string(options.shards) + "\n",
                   "another shard");
-            // after the claims: a refused run leaves the folder as it found it
+            // after the claims: a refused run leaves no work folders behind (the lock file stays, hidden)
             fs::create_directories(out / "units");
             fs::create_directories(out / "work");
 
