@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -389,8 +390,20 @@ TEST_F(Campaign, OneRunWorksInAShardFolderAndItsUnitsDieWithIt)
     // the units run in plan order: the first test::Hang unit is unit 2 (planner 1 of problem 0, run 0)
     auto unitAlive = [&]
     {
-        // "2[.]spec": the pattern does not match the shell that runs pgrep with it
-        return !shell("pgrep -f '" + (out / "work").string() + "/2[.]spec'").empty();
+        // a process whose command line names the unit's spec (read from /proc: no procps needed; a zombie's command
+        // line is empty, so a killed unit not yet reaped counts as gone)
+        const std::string spec = (out / "work" / "2.spec").string();
+        for (const auto &e : fs::directory_iterator("/proc"))
+        {
+            const std::string pid = e.path().filename().string();
+            if (pid.find_first_not_of("0123456789") != std::string::npos)
+                continue;
+            std::ifstream in((e.path() / "cmdline").string(), std::ios::binary);
+            const std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            if (cmdline.find(spec) != std::string::npos)
+                return true;
+        }
+        return false;
     };
     for (int i = 0; i < 6000 && !unitAlive(); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
