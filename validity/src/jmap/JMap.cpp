@@ -20,14 +20,14 @@ namespace michi
         public:
             explicit JMapIndex(const MultiPolygon2 &polygons)
             {
-                snapXs(polygons);
+                const XSnap snap(polygons);
                 std::vector<std::pair<Point2, Point2>> edges;
                 auto addRing = [&](const Polygon2::ring_type &ring)
                 {
                     // Boost.Geometry rings are closed (the last point repeats the first), so ring.size() - 1 edges.
                     for (std::size_t i = 0; i + 1 < ring.size(); ++i)
                     {
-                        const Point2 p(snapped(ring[i].x()), ring[i].y()), q(snapped(ring[i + 1].x()), ring[i + 1].y());
+                        const Point2 p(snap(ring[i].x()), ring[i].y()), q(snap(ring[i + 1].x()), ring[i + 1].y());
                         xs_.push_back(p.x());
                         if (p.x() == q.x())
                         {
@@ -246,38 +246,45 @@ namespace michi
             }
 
         private:
-            /** Vertex x values closer than this (radians) are one value. A polygon's union can leave an edge that is
-                an ulp off vertical (x from -0.043633231299858251 to -0.043633231299858244 on a slice border): as a
-                sloped edge of slope 1e15 in a slab 7e-18 wide, its heights rounded so badly that firstHit() missed
-                segments crossing it. Snapped, it is a vertical edge. Moving a vertex by 1e-12 rad moves the arm by
-                about 1e-12 m, far inside the map's conservative growth. */
-            static constexpr double SNAP = 1e-12;
-
-            void snapXs(const MultiPolygon2 &polygons)
+            /** Vertex x values closer than SNAP (radians) as one value, the smallest of their run. A polygons' union
+               can leave an edge that is an ulp off vertical (x from -0.043633231299858251 to -0.043633231299858244 on a
+                slice border): as a sloped edge of slope 1e15 in a slab 7e-18 wide, its heights rounded so badly that
+                firstHit() missed segments crossing it. Snapped, it is a vertical edge. Moving a vertex by 1e-12 rad
+                moves the arm by about 1e-12 m, far inside the map's conservative growth. Used while the index is
+                built only. */
+            class XSnap
             {
-                for (const auto &polygon : polygons)
+            public:
+                static constexpr double SNAP = 1e-12;
+
+                explicit XSnap(const MultiPolygon2 &polygons)
                 {
-                    for (const auto &p : polygon.outer())
-                        snapFrom_.push_back(p.x());
-                    for (const auto &inner : polygon.inners())
-                        for (const auto &p : inner)
-                            snapFrom_.push_back(p.x());
+                    for (const auto &polygon : polygons)
+                    {
+                        for (const auto &p : polygon.outer())
+                            from_.push_back(p.x());
+                        for (const auto &inner : polygon.inners())
+                            for (const auto &p : inner)
+                                from_.push_back(p.x());
+                    }
+                    std::sort(from_.begin(), from_.end());
+                    from_.erase(std::unique(from_.begin(), from_.end()), from_.end());
+                    to_.resize(from_.size());
+                    for (std::size_t i = 0; i < from_.size(); ++i)
+                        // each value joins the run of the first value within SNAP below it (measured from that first
+                        // value, so a run never creeps)
+                        to_[i] = i > 0 && from_[i] - to_[i - 1] <= SNAP ? to_[i - 1] : from_[i];
                 }
-                std::sort(snapFrom_.begin(), snapFrom_.end());
-                snapFrom_.erase(std::unique(snapFrom_.begin(), snapFrom_.end()), snapFrom_.end());
-                snapTo_.resize(snapFrom_.size());
-                for (std::size_t i = 0; i < snapFrom_.size(); ++i)
-                    // each value joins the run of the first value within SNAP below it (measured from that first
-                    // value, so a run never creeps)
-                    snapTo_[i] = i > 0 && snapFrom_[i] - snapTo_[i - 1] <= SNAP ? snapTo_[i - 1] : snapFrom_[i];
-            }
 
-            double snapped(double x) const
-            {
-                const auto it = std::lower_bound(snapFrom_.begin(), snapFrom_.end(), x);
-                return it != snapFrom_.end() && *it == x ? snapTo_[static_cast<std::size_t>(it - snapFrom_.begin())]
-                                                         : x;
-            }
+                double operator()(double x) const
+                {
+                    const auto it = std::lower_bound(from_.begin(), from_.end(), x);
+                    return it != from_.end() && *it == x ? to_[static_cast<std::size_t>(it - from_.begin())] : x;
+                }
+
+            private:
+                std::vector<double> from_, to_;
+            };
 
             struct Line
             {
@@ -441,7 +448,6 @@ namespace michi
             std::vector<std::uint32_t> start_;
             std::vector<Line> lines_;
             std::vector<Vertical> verticals_;
-            std::vector<double> snapFrom_, snapTo_;  ///< vertex x values and the values they snap to (snapXs())
             double binScale_{1.};
             std::vector<std::uint32_t> binSlab_;
         };

@@ -282,12 +282,12 @@ namespace michi
                 return searchWeight_;
             }
 
+            /** \brief The most edge_probes (its declared range and the setter's bound). */
+            static constexpr unsigned int MAX_EDGE_PROBES = 15;
             /** \brief States inside an unproved edge checked before its motion check (at 1/2, 1/4, 3/4, ... of the
                 motion): one found invalid refutes the edge for the price of a state check. Most edges of a lazy
                 candidate path that fail, fail there, and a failing motion check walks far before it finds the
                 collision; an edge that passes gets its full motion check as before. 0: none. */
-            /** \brief The most edge_probes (its declared range and the setter's bound). */
-            static constexpr unsigned int MAX_EDGE_PROBES = 15;
             void setEdgeProbes(unsigned int n)
             {
                 // the declared range: each probe is a state check of every unproved edge a search takes, and a count

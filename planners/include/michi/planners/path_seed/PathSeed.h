@@ -143,10 +143,10 @@ namespace michi
             {
                 return neighbours_;
             }
-            /** \brief Threads that share the state checks of recall and stitching (default 1: none; on a loaded machine
-             * more threads were slower). */
             /** \brief The most check_threads (its declared range and the setter's bound). */
             static constexpr unsigned int MAX_CHECK_THREADS = 8;
+            /** \brief Threads that share the state checks of recall and stitching (default 1: none; on a loaded machine
+             * more threads were slower). */
             void setCheckThreads(unsigned int threads)
             {
                 // the declared range: helper threads are started for the planner's life, and 100,000 of them (or -1,
