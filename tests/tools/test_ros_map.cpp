@@ -11,8 +11,14 @@
 
 #include <gtest/gtest.h>
 
+#include <png.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <set>
+#include <vector>
 
 namespace fs = boost::filesystem;
 namespace ob = ompl::base;
@@ -44,9 +50,9 @@ namespace
             write("m.yaml", mapText);
             return write("p.yaml",
                          "name: p\nrobot: {type: se2, footprint: [[-0.01, -0.01], [0.01, -0.01], "
-                         "[0.01, 0.01], [-0.01, 0.01]], bounds: {x: [0, 5], y: [0, 1]}}\n"
+                         "[0.01, 0.01], [-0.01, 0.01]], bounds: {x: [0, 12], y: [0, 1]}}\n"
                          "scene: {map: " +
-                             sceneMap + "}\nstart: [4.5, 0.5, 0]\ngoal: [4.6, 0.5, 0]\n");
+                             sceneMap + "}\nstart: [10.5, 0.5, 0]\ngoal: [10.6, 0.5, 0]\n");
         }
         /** The columns of the one-row map's occupied cells. */
         std::set<int> occupied(const std::string &mapText)
@@ -57,11 +63,37 @@ namespace
             {
                 const double x0 = o.pose.translation().x() - 0.5 * o.shape->size().x();
                 const double x1 = o.pose.translation().x() + 0.5 * o.shape->size().x();
-                for (int c = 0; c < 4; ++c)
+                for (int c = 0; c < 8; ++c)
                     if (c + 0.5 > x0 && c + 0.5 < x1)
                         columns.insert(c);
             }
             return columns;
+        }
+        /** A one-row PNG map of \e samples (per pixel \e channels values: grey, grey + alpha or RGBA), 8 or 16
+            bits a sample, as stored (not converted between linear and sRGB). */
+        void writePng(const std::string &name, const std::vector<int> &samples, int channels, bool sixteen)
+        {
+            png_image png;
+            std::memset(&png, 0, sizeof(png));
+            png.version = PNG_IMAGE_VERSION;
+            png.width = static_cast<png_uint_32>(samples.size() / channels);
+            png.height = 1;
+            png.format = channels == 1 ? PNG_FORMAT_GRAY : channels == 2 ? PNG_FORMAT_GA : PNG_FORMAT_RGBA;
+            if (sixteen)
+            {
+                // libpng's simplified writer takes 16-bit samples as linear and premultiplied by alpha: given
+                // opaque or grey-only pixels here, it writes them as they are
+                png.format |= PNG_FORMAT_FLAG_LINEAR;
+                std::vector<std::uint16_t> data(samples.begin(), samples.end());
+                ASSERT_NE(png_image_write_to_file(&png, (dir_ / name).c_str(), 0, data.data(), 0, nullptr), 0)
+                    << png.message;
+            }
+            else
+            {
+                std::vector<std::uint8_t> data(samples.begin(), samples.end());
+                ASSERT_NE(png_image_write_to_file(&png, (dir_ / name).c_str(), 0, data.data(), 0, nullptr), 0)
+                    << png.message;
+            }
         }
         std::string error(const std::string &path)
         {
@@ -106,6 +138,48 @@ TEST_F(RosMaps, TrinaryScaleAndNegateAsMapServerReadsThem)
               (std::set<int>{0}));
     // nav2's defaults (0.65, 0.25) when the thresholds and negate are left out
     EXPECT_EQ(occupied(base), (std::set<int>{0, 3}));
+}
+
+TEST_F(RosMaps, SixteenBitPngsAndTransparentPixelsAsMapServerReadsThem)
+{
+    // fractions of white 0, .3, .5, .6, .65, .7, .8, 1: occupancy 1, .7, .5, .4, .35, .3, .2, 0. A 16-bit PNG was
+    // read through an sRGB conversion that made 0.3 of white read as 0.58, so dark cells came out free.
+    const std::vector<double> shades{0., .3, .5, .6, .65, .7, .8, 1.};
+    std::vector<int> grey16, grey8;
+    for (const double v : shades)
+    {
+        grey16.push_back(static_cast<int>(std::lround(v * 65535)));
+        grey8.push_back(static_cast<int>(std::lround(v * 255)));
+    }
+    writePng("g16.png", grey16, 1, true);
+    writePng("g8.png", grey8, 1, false);
+    const std::string thresholds =
+        "resolution: 1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n"
+        "free_thresh: 0.25\n";
+    for (const std::string image : {"g16.png", "g8.png"})
+    {
+        // trinary: occupied above .65, unknown (blocked) from .25 to .65
+        EXPECT_EQ(occupied("image: " + image + "\n" + thresholds), (std::set<int>{0, 1, 2, 3, 4, 5})) << image;
+        // scale: only the occupied cells
+        EXPECT_EQ(occupied("image: " + image + "\n" + thresholds + "mode: scale\n"), (std::set<int>{0, 1})) << image;
+    }
+    // Transparent pixels: trinary mode averages alpha in with the three colour channels (both map_servers), so a
+    // transparent white pixel is unknown, not free; scale mode calls every pixel that is not opaque unknown. White
+    // then black at alpha 255, 200, 128, 0.
+    std::vector<int> rgba;
+    for (const int colour : {255, 0})
+        for (const int alpha : {255, 200, 128, 0})
+            rgba.insert(rgba.end(), {colour, colour, colour, alpha});
+    writePng("rgba.png", rgba, 4, false);
+    // white: occupancy 1 - (3 + a) / 4 = 0, .054, .125, .25 (unknown at free_thresh .25); black: .75 and up
+    EXPECT_EQ(occupied("image: rgba.png\n" + thresholds), (std::set<int>{3, 4, 5, 6, 7}));
+    EXPECT_EQ(occupied("image: rgba.png\n" + thresholds + "mode: scale\n"), (std::set<int>{1, 2, 3, 4, 5, 6, 7}));
+    // A colour pixel's mean is not rounded down: negated, (166, 166, 167) is occupancy 0.6523 (occupied at 0.651);
+    // its integer mean 166 read 0.65098 (free). The second pixel, black, is free.
+    writePng("rgb.png", {166, 166, 167, 255, 0, 0, 0, 255}, 4, false);
+    EXPECT_EQ(occupied("image: rgb.png\nresolution: 1\norigin: [0, 0, 0]\nnegate: 1\noccupied_thresh: 0.651\n"
+                       "free_thresh: 0.1\nmode: scale\n"),
+              (std::set<int>{0}));
 }
 
 TEST_F(RosMaps, OriginAndYawPlaceTheMap)

@@ -75,14 +75,20 @@ namespace michi
                 // pixel that is not fully opaque is unknown. michi plans only through space known to be free:
                 // unknown cells are obstacles too.
                 std::vector<std::uint8_t> blocked(image.grey.size(), 0);
+                const bool alpha = !image.alpha.empty();
                 for (std::size_t i = 0; i < blocked.size(); ++i)
                 {
-                    const double v = static_cast<double>(image.grey[i]) / image.maxValue;
+                    double v = static_cast<double>(image.grey[i]) / image.maxValue;
+                    // Trinary mode averages alpha in with the three colour channels, as both map_servers do (ROS 1's
+                    // image_loader and nav2's map_io, "to preserve existing behavior"): a transparent pixel is
+                    // unknown there, not free.
+                    if (alpha && mode == "trinary")
+                        v = (3. * v + static_cast<double>(image.alpha[i]) / image.alphaMax) / 4.;
                     // map_server's convention: dark pixels are occupied, unless negate flips it.
                     const double p = negate ? v : 1. - v;
                     bool unknown;
                     if (mode == "scale")
-                        unknown = !image.alpha.empty() && image.alpha[i] < 255;
+                        unknown = alpha && image.alpha[i] < image.alphaMax;
                     else
                         unknown = !(p > occupied) && !(p < free);
                     blocked[i] = (p > occupied || unknown) ? 1 : 0;

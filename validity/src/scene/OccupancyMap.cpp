@@ -4,6 +4,7 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -127,8 +128,11 @@ namespace michi
 
             GreyImage readPng(const std::string &path)
             {
-                // libpng's simplified API, as 8-bit RGBA: a grey image gives R = G = B, an image without alpha
-                // gives alpha 255; ROS map_server then averages the colour channels, as done here
+                // libpng's simplified API, as RGBA: a grey image gives R = G = B, an image without alpha gives alpha
+                // at its maximum. An 8-bit file is read as 8-bit sRGB (its samples as stored); a 16-bit file as
+                // 16-bit "linear", which is how libpng takes 16-bit samples, so they too come as stored. Read as
+                // 8-bit, a 16-bit file was converted from linear to sRGB: 0.3 of white became 0.58 and dark
+                // cells came out free.
                 png_image png;
                 std::memset(&png, 0, sizeof(png));
                 png.version = PNG_IMAGE_VERSION;
@@ -142,11 +146,13 @@ namespace michi
                                              std::to_string(png.height) + " cells is empty or above the limit of " +
                                              std::to_string(MAX_MAP_CELLS) + " cells");
                 }
-                // Read before format is set to RGBA below, which always has an alpha channel.
+                // Read before format is set below, which always has an alpha channel.
                 const bool hasAlpha = (png.format & PNG_FORMAT_FLAG_ALPHA) != 0;
-                png.format = PNG_FORMAT_RGBA;
-                std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(png));
-                if (!png_image_finish_read(&png, nullptr, rgba.data(), 0, nullptr))
+                const bool sixteen = (png.format & PNG_FORMAT_FLAG_LINEAR) != 0;
+                png.format = sixteen ? PNG_FORMAT_LINEAR_RGB_ALPHA : PNG_FORMAT_RGBA;
+                const int sampleMax = sixteen ? 65535 : 255;
+                std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
+                if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr))
                 {
                     const std::string message = png.message;
                     png_image_free(&png);
@@ -155,16 +161,34 @@ namespace michi
                 GreyImage image;
                 image.width = static_cast<int>(png.width);
                 image.rows = static_cast<int>(png.height);
-                image.maxValue = 255;
+                // the sum of the three channels, so that their mean is exact (map_server averages in floating point)
+                image.maxValue = 3 * sampleMax;
+                image.alphaMax = sampleMax;
                 image.grey.resize(cells);
                 if (hasAlpha)
                     image.alpha.resize(cells);
                 for (std::size_t i = 0; i < cells; ++i)
                 {
-                    const std::uint8_t *p = rgba.data() + 4 * i;
-                    image.grey[i] = (p[0] + p[1] + p[2]) / 3;
+                    int c[4];
+                    if (sixteen)
+                    {
+                        std::uint16_t v[4];
+                        std::memcpy(v, bytes.data() + 8 * i, sizeof v);
+                        for (int k = 0; k < 4; ++k)
+                            c[k] = v[k];
+                        // libpng premultiplies linear colour by alpha: undone, rounded to nearest (a fully
+                        // transparent pixel keeps no colour and reads as black)
+                        if (c[3] > 0 && c[3] < 65535)
+                            for (int k = 0; k < 3; ++k)
+                                c[k] = static_cast<int>(std::min<std::int64_t>(
+                                    65535, (static_cast<std::int64_t>(c[k]) * 65535 + c[3] / 2) / c[3]));
+                    }
+                    else
+                        for (int k = 0; k < 4; ++k)
+                            c[k] = bytes[4 * i + static_cast<std::size_t>(k)];
+                    image.grey[i] = c[0] + c[1] + c[2];
                     if (hasAlpha)
-                        image.alpha[i] = p[3];
+                        image.alpha[i] = static_cast<std::uint16_t>(c[3]);
                 }
                 return image;
             }
