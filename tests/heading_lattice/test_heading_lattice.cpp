@@ -7,6 +7,7 @@
 #include <michi/tools/bench/PathCertificate.h>
 #include <michi/tools/bench/PlanningContext.h>
 #include <michi/tools/problem/Problem.h>
+#include <michi/validity/grid/GridValidityChecker.h>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ScopedState.h>
@@ -20,6 +21,7 @@
 #include <iomanip>
 #include <iostream>
 
+namespace og = ompl::geometric;
 namespace ob = ompl::base;
 using michi::planners::HeadingLattice;
 
@@ -356,6 +358,73 @@ TEST(HeadingLattice, RefusesSpacesThatAreNotSe2)
     EXPECT_EQ(ss.solve(1.), ob::PlannerStatus::ABORT);
 }
 
+namespace
+{
+    /** A door over the first wall (x or y = 5, 10 or 15 on se2_rooms) that \e path crosses: a box 2 m along the
+        wall and 0.3 m across it, and a test of whether a point lies in it. */
+    struct Door
+    {
+        bool vertical{false};
+        double wall{0.}, along{0.};
+        static constexpr double halfAcross = 0.15, halfAlong = 1.0;
+        bool contains(double x, double y) const
+        {
+            return vertical ? std::abs(x - wall) < halfAcross && std::abs(y - along) < halfAlong
+                            : std::abs(y - wall) < halfAcross && std::abs(x - along) < halfAlong;
+        }
+        michi::validity::Obstacle obstacle() const
+        {
+            std::vector<Eigen::Vector2d> box;
+            for (const auto &corner :
+                 {std::make_pair(-1., -1.), std::make_pair(1., -1.), std::make_pair(1., 1.), std::make_pair(-1., 1.)})
+            {
+                const double across = corner.first * halfAcross, length = corner.second * halfAlong;
+                box.emplace_back(vertical ? wall + across : along + length, vertical ? along + length : wall + across);
+            }
+            return michi::validity::Obstacle{
+                "door", michi::validity::Shape::prism(box, 0., 1.), Eigen::Isometry3d::Identity(), {}};
+        }
+    };
+
+    Door firstDoor(og::PathGeometric path)
+    {
+        path.interpolate(2000);
+        Door door;
+        for (std::size_t i = 0; i + 1 < path.getStateCount() && door.wall == 0.; ++i)
+        {
+            const auto *a = path.getState(i)->as<ob::SE2StateSpace::StateType>();
+            const auto *b = path.getState(i + 1)->as<ob::SE2StateSpace::StateType>();
+            for (double w : {5., 10., 15.})
+            {
+                if ((a->getX() - w) * (b->getX() - w) <= 0. && a->getX() != b->getX())
+                {
+                    door = Door{true, w, a->getY()};
+                    break;
+                }
+                if ((a->getY() - w) * (b->getY() - w) <= 0. && a->getY() != b->getY())
+                {
+                    door = Door{false, w, a->getX()};
+                    break;
+                }
+            }
+        }
+        return door;
+    }
+
+    /** Does no state of \e path, interpolated finely, lie in \e door? */
+    bool avoids(og::PathGeometric path, const Door &door)
+    {
+        path.interpolate(4000);
+        for (std::size_t i = 0; i < path.getStateCount(); ++i)
+        {
+            const auto *s = path.getState(i)->as<ob::SE2StateSpace::StateType>();
+            if (door.contains(s->getX(), s->getY()))
+                return false;
+        }
+        return true;
+    }
+}  // namespace
+
 TEST(HeadingLattice, ClosedDoorUpdatesOnlyTheLatticeAroundIt)
 {
     // se2_rooms (400 x 400 cells of 0.05 m): solve query 0, close the first door the path goes through (a box over
@@ -365,51 +434,13 @@ TEST(HeadingLattice, ClosedDoorUpdatesOnlyTheLatticeAroundIt)
     auto planner = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
     ctx.setup->setPlanner(planner);
     ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
-    auto path = ctx.setup->getSolutionPath();
-    path.interpolate(2000);
-    // the first crossing of a wall line (x or y = 5, 10 or 15)
-    bool vertical = false;
-    double wall = 0., along = 0.;
-    for (std::size_t i = 0; i + 1 < path.getStateCount() && wall == 0.; ++i)
-    {
-        const auto *a = path.getState(i)->as<ob::SE2StateSpace::StateType>();
-        const auto *b = path.getState(i + 1)->as<ob::SE2StateSpace::StateType>();
-        for (double w : {5., 10., 15.})
-        {
-            if ((a->getX() - w) * (b->getX() - w) <= 0. && a->getX() != b->getX())
-            {
-                vertical = true;
-                wall = w;
-                along = a->getY();
-                break;
-            }
-            if ((a->getY() - w) * (b->getY() - w) <= 0. && a->getY() != b->getY())
-            {
-                wall = w;
-                along = a->getX();
-                break;
-            }
-        }
-    }
-    ASSERT_NE(wall, 0.);
-    const double halfAcross = 0.15, halfAlong = 1.0;
-    auto inDoor = [&](double x, double y)
-    {
-        return vertical ? std::abs(x - wall) < halfAcross && std::abs(y - along) < halfAlong
-                        : std::abs(y - wall) < halfAcross && std::abs(x - along) < halfAlong;
-    };
-    std::vector<Eigen::Vector2d> box;
-    for (const auto &corner :
-         {std::make_pair(-1., -1.), std::make_pair(1., -1.), std::make_pair(1., 1.), std::make_pair(-1., 1.)})
-    {
-        const double across = corner.first * halfAcross, length = corner.second * halfAlong;
-        box.emplace_back(vertical ? wall + across : along + length, vertical ? along + length : wall + across);
-    }
+    const Door door = firstDoor(ctx.setup->getSolutionPath());
+    ASSERT_NE(door.wall, 0.);
+    const double halfAcross = Door::halfAcross, halfAlong = Door::halfAlong;
     const double cells = 4. * halfAcross * halfAlong / (0.05 * 0.05);
     EXPECT_LE(cells, 0.01 * 400 * 400);
     const auto before = planner->work();
-    problem.scene->add(michi::validity::Obstacle{
-        "door", michi::validity::Shape::prism(box, 0., 1.), Eigen::Isometry3d::Identity(), {}});
+    problem.scene->add(door.obstacle());
     ctx.setup->getProblemDefinition()->clearSolutionPaths();
     ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
     EXPECT_EQ(planner->buildCount(), 1u);
@@ -417,14 +448,8 @@ TEST(HeadingLattice, ClosedDoorUpdatesOnlyTheLatticeAroundIt)
     const auto &update = planner->lastUpdate();
     const auto &after = planner->work();
     // the new path does not go through the closed door
-    auto second = ctx.setup->getSolutionPath();
-    EXPECT_TRUE(second.check());
-    second.interpolate(4000);
-    for (std::size_t i = 0; i < second.getStateCount(); ++i)
-    {
-        const auto *s = second.getState(i)->as<ob::SE2StateSpace::StateType>();
-        ASSERT_FALSE(inDoor(s->getX(), s->getY())) << s->getX() << " " << s->getY();
-    }
+    EXPECT_TRUE(ctx.setup->getSolutionPath().check());
+    EXPECT_TRUE(avoids(ctx.setup->getSolutionPath(), door));
 
     // a rebuild: a fresh planner on the changed map, the same query
     auto fresh = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
@@ -450,6 +475,53 @@ TEST(HeadingLattice, ClosedDoorUpdatesOnlyTheLatticeAroundIt)
     // is directed at the start, the lattice knows fewer checks before the door closes: 33201)
     EXPECT_LE(10 * forgotten, rebuild);
     EXPECT_LE(10 * rechecked, rebuild);
+}
+
+TEST(HeadingLattice, TakesInAGridCheckersRefreshBothWays)
+{
+    // The grid checker answers from its table until refresh() rasterises a changed scene again. The lattice kept its
+    // checks across that: a door that opened stayed closed for it (ABORT at once, where a fresh planner found the
+    // path), and nodes inside a door that closed stayed in its planner data as valid.
+    auto problem = michi::tools::loadProblem(std::string(MICHI_SOURCE_DIR) + "/problems/se2_rooms.yaml");
+    problem.checker = "grid";
+    auto ctx = michi::tools::makePlanningContext(problem);
+    auto *grid = dynamic_cast<michi::validity::GridValidityChecker *>(
+        ctx.setup->getSpaceInformation()->getStateValidityChecker().get());
+    ASSERT_NE(grid, nullptr);
+    auto planner = std::make_shared<HeadingLattice>(ctx.setup->getSpaceInformation());
+    ctx.setup->setPlanner(planner);
+    ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
+    const double open = ctx.setup->getSolutionPath().length();
+    const Door door = firstDoor(ctx.setup->getSolutionPath());
+    ASSERT_NE(door.wall, 0.);
+
+    // the door closes
+    problem.scene->add(door.obstacle());
+    ASSERT_FALSE(grid->refresh().empty());
+    ctx.setup->getProblemDefinition()->clearSolutionPaths();
+    ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(planner->buildCount(), 1u);
+    EXPECT_EQ(planner->updateCount(), 1u);
+    EXPECT_TRUE(avoids(ctx.setup->getSolutionPath(), door));
+    const double closed = ctx.setup->getSolutionPath().length();
+    EXPECT_GT(closed, open);
+    // no node the planner data lists lies in the door
+    ob::PlannerData data(ctx.setup->getSpaceInformation());
+    planner->getPlannerData(data);
+    for (unsigned int v = 0; v < data.numVertices(); ++v)
+    {
+        const auto *s = data.getVertex(v).getState()->as<ob::SE2StateSpace::StateType>();
+        EXPECT_FALSE(door.contains(s->getX(), s->getY()) && grid->isValid(s)) << s->getX() << " " << s->getY();
+    }
+
+    // the door opens again: the short way is back
+    problem.scene->remove("door");
+    ASSERT_FALSE(grid->refresh().empty());
+    ctx.setup->getProblemDefinition()->clearSolutionPaths();
+    ASSERT_EQ(ctx.setup->solve(60.), ob::PlannerStatus::EXACT_SOLUTION);
+    EXPECT_EQ(planner->buildCount(), 1u);
+    EXPECT_EQ(planner->updateCount(), 2u);
+    EXPECT_NEAR(ctx.setup->getSolutionPath().length(), open, 1e-9);
 }
 
 TEST(HeadingLattice, GridNodeChecksAnswerAsTheSpaceInformation)

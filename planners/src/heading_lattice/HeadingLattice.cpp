@@ -636,9 +636,7 @@ namespace michi
             else
             {
                 lastBuildTime_ = 0.;
-                const auto *fcl =
-                    dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get());
-                const std::uint64_t changes = fcl != nullptr && fcl->scene() ? fcl->scene()->changeCount() : 0;
+                const std::uint64_t changes = checkerChanges();
                 if (changes != sceneChanges_)
                 {
                     update();

@@ -25,13 +25,35 @@ namespace michi
 {
     namespace planners
     {
+        const validity::Scene *HeadingLattice::checkedScene() const
+        {
+            const auto *checker = si_->getStateValidityChecker().get();
+            if (const auto *fcl = dynamic_cast<const validity::FclValidityChecker *>(checker))
+                return fcl->scene().get();
+            if (const auto *grid = dynamic_cast<const validity::GridValidityChecker *>(checker))
+                return grid->scene().get();
+            return nullptr;
+        }
+
+        std::uint64_t HeadingLattice::checkerChanges() const
+        {
+            const auto *checker = si_->getStateValidityChecker().get();
+            if (const auto *fcl = dynamic_cast<const validity::FclValidityChecker *>(checker))
+                return fcl->scene() ? fcl->scene()->changeCount() : 0;
+            // A grid checker answers from its table until refresh() rasterises the changed scene again: the
+            // scene's own count would run ahead of what the nodes can be checked against.
+            if (const auto *grid = dynamic_cast<const validity::GridValidityChecker *>(checker))
+                return grid->refreshCount();
+            return 0;
+        }
+
         std::vector<HeadingLattice::ObstacleBox> HeadingLattice::sceneBoxes() const
         {
             std::vector<ObstacleBox> boxes;
-            const auto *fcl = dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get());
-            if (fcl == nullptr || !fcl->scene())
+            const validity::Scene *scene = checkedScene();
+            if (scene == nullptr)
                 return boxes;
-            for (const auto &o : fcl->scene()->obstacles())
+            for (const auto &o : scene->obstacles())
             {
                 ObstacleBox b{o.name, {INF, INF, -INF, -INF}};
                 auto add = [&](const Eigen::Vector3d &local)
@@ -221,9 +243,7 @@ namespace michi
             newHeuristicStamp();
             hReady_ = false;
             boxes_ = sceneBoxes();
-            if (const auto *fcl =
-                    dynamic_cast<const validity::FclValidityChecker *>(si_->getStateValidityChecker().get()))
-                sceneChanges_ = fcl->scene() ? fcl->scene()->changeCount() : 0;
+            sceneChanges_ = checkerChanges();
             built_ = true;
             nodeListDirty_ = true;
             ++buildCount_;

@@ -372,7 +372,10 @@ namespace michi
                 rasterizeScene(*scene_, g.resolution, g.origin, g.width, g.height, tolerance_, zMin_, zMax_);
             const CellBox box = table_->update(now);
             if (!box.empty())
+            {
                 distanceTransform();
+                ++refreshes_;
+            }
             buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             return box;
         }

@@ -17,7 +17,8 @@ namespace michi
     namespace validity
     {
         class GridValidityChecker;
-    }
+        class Scene;
+    }  // namespace validity
 }  // namespace michi
 
 namespace michi
@@ -55,8 +56,9 @@ namespace michi
            again. The lattice is kept across queries (new start and goal, new problem definition) as long as the
            map is the same: the same validity checker, motion validator and state space settings. When the
            checker is michi's FclValidityChecker and its scene changes (an obstacle added, removed or moved: a
-           door closes), only the nodes and edges within reach of the obstacles that changed are forgotten
-           (checked again when needed), counted in lastUpdate() and work(). clear() forgets everything, as
+           door closes), or the checker is michi's GridValidityChecker and its refresh() took in such a change,
+           only the nodes and edges within reach of the obstacles that changed are forgotten (checked again when
+           needed), counted in lastUpdate() and work(). clear() forgets everything, as
            OMPL's planners do. Without randomness, the same query on the same map gives the same path every time.
 
            @par External documentation
@@ -252,6 +254,12 @@ namespace michi
             /** \brief The scene changed: forget the node and edge checks near the obstacles that changed. */
             void update();
             std::vector<ObstacleBox> sceneBoxes() const;
+            /** \brief The scene behind michi's FCL or grid checker (null for any other checker). */
+            const validity::Scene *checkedScene() const;
+            /** \brief Changes the lattice must take in: the FCL checker's scene changes, or the grid checker's
+                refresh() calls that changed its table (its table, not the scene, is what the nodes were checked
+                against). */
+            std::uint64_t checkerChanges() const;
             void freeGraph();
             void freeQuery();
             void setNodeState(Vertex v, ompl::base::State *state) const;

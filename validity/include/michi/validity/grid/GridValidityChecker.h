@@ -7,6 +7,7 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <atomic>
 #include <memory>
@@ -122,6 +123,12 @@ namespace michi
             /** \brief Rasterise the scene again (it changed: a door closed) and recompute the table only around
                 the cells that changed; returns the box of table cells recomputed (empty: nothing changed). */
             CellBox refresh();
+            /** \brief How many refresh() calls changed the table so far: a planner that keeps checks between queries
+                (HeadingLattice) compares it to see that the scene it checked against is gone. */
+            std::uint64_t refreshCount() const
+            {
+                return refreshes_;
+            }
 
         private:
             void distanceTransform();
@@ -132,6 +139,7 @@ namespace michi
             double zMin_{-std::numeric_limits<double>::infinity()};  ///< the robot's z range (GridCheckerSettings)
             double zMax_{std::numeric_limits<double>::infinity()};
             std::unique_ptr<HeadingTable> table_;
+            std::uint64_t refreshes_{0};   ///< refresh() calls that changed the table
             std::vector<float> distance_;  ///< cellDistance() per cell, metres
             double buildSeconds_{0.};
             bool se2_{false};    ///< the space is an SE2StateSpace (read directly)
