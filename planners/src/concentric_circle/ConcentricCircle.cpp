@@ -64,12 +64,17 @@ namespace michi
                                       "length,clearance");
             declareParam<std::string>("mode", this, &ConcentricCircle::setMode, &ConcentricCircle::getMode,
                                       "auto,jmap,projection,hierarchy,surface");
-            declareParam<int>("axis1", this, &ConcentricCircle::setAxis1, &ConcentricCircle::getAxis1, "0:1:100");
-            declareParam<int>("axis2", this, &ConcentricCircle::setAxis2, &ConcentricCircle::getAxis2, "0:1:100");
+            // the axes are values of this space's states: the declared range is what the setters accept
+            const std::string lastValue =
+                std::to_string(std::max<int>(1, static_cast<int>(si->getStateDimension())) - 1);
+            declareParam<int>("axis1", this, &ConcentricCircle::setAxis1, &ConcentricCircle::getAxis1,
+                              "0:1:" + lastValue);
+            declareParam<int>("axis2", this, &ConcentricCircle::setAxis2, &ConcentricCircle::getAxis2,
+                              "0:1:" + lastValue);
             declareParam<double>("surface_angle", this, &ConcentricCircle::setSurfaceAngle,
                                  &ConcentricCircle::getSurfaceAngle, "-3.15:0.05:3.15");
             declareParam<int>("hand_axis", this, &ConcentricCircle::setHandAxis, &ConcentricCircle::getHandAxis,
-                              "-1:1:100");
+                              "-1:1:" + lastValue);
             declareParam<int>("arm_slices", this, &ConcentricCircle::setArmSlices, &ConcentricCircle::getArmSlices,
                               "0:1:100000");
             declareParam<double>("arm_tolerance", this, &ConcentricCircle::setArmTolerance,

@@ -42,7 +42,7 @@ namespace michi
             declareParam<double>("cell_size", this, &HeadingLattice::setCellSize, &HeadingLattice::getCellSize,
                                  "0.:0.01:2.");
             declareParam<double>("angle_step", this, &HeadingLattice::setAngleStep, &HeadingLattice::getAngleStep,
-                                 "0.05:0.01:1.58");
+                                 "0.05:0.01:1.57");
             declareParam<double>("connection_cells", this, &HeadingLattice::setConnectionCells,
                                  &HeadingLattice::getConnectionCells, "0.5:0.5:10.");
             declareParam<double>("heuristic_weight", this, &HeadingLattice::setHeuristicWeight,
