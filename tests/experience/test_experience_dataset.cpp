@@ -213,6 +213,40 @@ TEST(ExperienceDataset, ADatasetProblemWithAnotherRobotIsRefused)
     }
 }
 
+TEST(ExperienceDataset, ADatasetProblemWhoseRobotHoldsAToolIsRefused)
+{
+    // The same seven joints, but a box grasped in the hand (panda_grasp.urdf): the entry was planned with the
+    // dataset problem's bare Panda, and its paths reported solved and certified through the tool.
+    const Problem problem = loadProblem((SOURCE / "mbm_table_pick.yaml").string());
+    michi::tools::ContextOptions options;
+    options.scene = michi::tools::copyScene(*problem.scene);
+    const auto ctx = michi::tools::makePlanningContext(problem, options);
+    std::ifstream in((SOURCE / "datasets/table_pick/table_pick_0001.yaml").string());
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string dir = (SOURCE / "datasets/table_pick").string() + "/";
+    for (const std::string key : {"urdf: ", "srdf: ", "moveit: ", "request: "})
+        text.insert(text.find(key) + key.size(), dir);
+    static const michi::test::TempDir root("michi-dataset-robot");
+    const std::string same = (fs::path(root.path()) / "same.yaml").string();
+    std::ofstream(same) << text;
+    const std::string urdf = "robots/panda/panda.urdf";
+    text.replace(text.find(urdf), urdf.size(), "robots/panda/panda_grasp.urdf");
+    const std::string tool = (fs::path(root.path()) / "tool.yaml").string();
+    std::ofstream(tool) << text;
+
+    // the same robot loaded from another problem file is one robot
+    EXPECT_NO_THROW(michi::tools::installScene(problem, ctx, loadProblem(same)));
+    try
+    {
+        michi::tools::installScene(problem, ctx, loadProblem(tool));
+        FAIL() << "a Panda holding a tool was installed in a dataset of the bare Panda";
+    }
+    catch (const michi::tools::ProblemError &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("tool.yaml: robot: differs from"), std::string::npos) << e.what();
+    }
+}
+
 TEST(ExperienceDataset, BenchRunsEachHeldOutProblemOncePerPlanner)
 {
     ompl::RNG::setSeed(5);

@@ -50,11 +50,67 @@ namespace michi
             return copy;
         }
 
+        namespace
+        {
+            bool samePose(const Eigen::Isometry3d &a, const Eigen::Isometry3d &b)
+            {
+                return a.matrix() == b.matrix();
+            }
+
+            /** Why the two robots differ ("" when they are one robot): the dataset's scenes are installed into
+                the problem's planning context, whose checkers hold the problem's robot, so an entry may change the
+                scene and the query but not the robot. Compared as loaded (kinematics, limits, collision shapes,
+                allowed pairs, base), not by file name: copies of one URDF are one robot. */
+            std::string robotDifference(const validity::RobotModel &a, const validity::RobotModel &b)
+            {
+                if (!samePose(a.basePose(), b.basePose()))
+                    return "its base pose";
+                if (a.links().size() != b.links().size() || a.joints().size() != b.joints().size())
+                    return "its links or joints";
+                for (std::size_t j = 0; j < a.joints().size(); ++j)
+                {
+                    const auto &x = a.joints()[j], &y = b.joints()[j];
+                    if (x.name != y.name || x.type != y.type || x.parentLink != y.parentLink ||
+                        x.childLink != y.childLink || !samePose(x.origin, y.origin) || x.axis != y.axis ||
+                        x.lower != y.lower || x.upper != y.upper || x.mimic != y.mimic ||
+                        x.mimicMultiplier != y.mimicMultiplier || x.mimicOffset != y.mimicOffset)
+                        return "joint '" + x.name + "' (its type, origin, axis or limits)";
+                }
+                for (std::size_t l = 0; l < a.links().size(); ++l)
+                {
+                    const auto &x = a.links()[l], &y = b.links()[l];
+                    bool same = x.name == y.name && x.collisions.size() == y.collisions.size();
+                    for (std::size_t c = 0; same && c < x.collisions.size(); ++c)
+                    {
+                        const auto &sx = *x.collisions[c].shape, &sy = *y.collisions[c].shape;
+                        same = samePose(x.collisions[c].origin, y.collisions[c].origin) && sx.type() == sy.type() &&
+                               sx.size() == sy.size() && sx.vertices() == sy.vertices() &&
+                               sx.triangles() == sy.triangles() && sx.outline() == sy.outline();
+                    }
+                    if (!same)
+                        return "the collision geometry of link '" + x.name + "'";
+                }
+                if (a.selfCollisionPairs() != b.selfCollisionPairs())
+                    return "its self-collision pairs (allowed collisions)";
+                return "";
+            }
+        }  // namespace
+
         void installScene(const Problem &problem, const PlanningContext &ctx, const Problem &source)
         {
             if (source.kind != Problem::Kind::ARM || source.valueNames() != problem.valueNames())
                 throw ProblemError(source.file, "robot",
                                    "plans other joints than " + problem.file + " (a dataset's problems share a robot)");
+            // A held-out problem with a robot of its own (a grasped tool) was planned with the dataset problem's
+            // robot and its paths reported solved and certified, through the tool.
+            if (source.model && problem.model && source.model != problem.model)
+            {
+                const std::string why = robotDifference(*problem.model, *source.model);
+                if (!why.empty())
+                    throw ProblemError(source.file, "robot",
+                                       "differs from " + problem.file + "'s robot in " + why +
+                                           " (a dataset's problems share one robot)");
+            }
             // only the joints not planned: the planned ones' values there are the request's start
             bool same = source.fixedValues.size() == ctx.fixedValues.size();
             for (std::size_t i = 0; i < source.fixedValues.size() && same; ++i)
