@@ -53,6 +53,8 @@ namespace michi
                         {
                             solved = false;
                             run["solved BOOLEAN"] = "0";
+                            // OMPL's own check (path->check() with the planner's checker) said correct: FCL says not
+                            run["correct solution BOOLEAN"] = "0";
                             if (progress)
                                 *progress << "michi bench: " << planner->getName() << ": path NOT certified by FCL ("
                                           << certificate.reason << "): counted as a failure" << std::endl;

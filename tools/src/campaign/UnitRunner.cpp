@@ -151,6 +151,8 @@ namespace michi
                         {
                             solved = false;
                             run["solved BOOLEAN"] = "0";
+                            // OMPL's own check (path->check() with the planner's checker) said correct: FCL says not
+                            run["correct solution BOOLEAN"] = "0";
                             run["certificate VARCHAR(256)"] = certificate.reason;
                         }
                     }
