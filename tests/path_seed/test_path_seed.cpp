@@ -116,6 +116,33 @@ TEST(PathSeedLibrary, SavesAndLoadsTheSameSeeds)
     }
 }
 
+TEST(PathSeedLibrary, RefusesAPathWhoseSeedIsNotFinite)
+{
+    // Found by a tester's sweep: finite joint values of ~1e155 or more overflow a seed's length and deviation to
+    // inf; add() kept it, save() wrote "seed 1 inf" and load() then refused the whole file (every seed lost).
+    const std::vector<Eigen::VectorXd> overflowing = {vec({0, 0, 0}), vec({1e200, 0, 0}), vec({1, 1, 1})};
+    for (SeedVariant variant : {SeedVariant::BLOCKS, SeedVariant::ROTATION})
+    {
+        PathSeedLibrary lib(variant);
+        lib.add({vec({0, 0, 0}), vec({0.5, 1, 0}), vec({1, 1, 1})});
+        try
+        {
+            lib.add(overflowing);
+            ADD_FAILURE() << "a path whose seed is not finite was added";
+        }
+        catch (const std::invalid_argument &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(lib.size(), 1u);
+        // what save() writes, load() reads back
+        const std::string file = tempFile("finite.seeds");
+        lib.save(file);
+        EXPECT_EQ(loadError(file), "");
+        EXPECT_EQ(PathSeedLibrary::load(file)->size(), 1u);
+    }
+}
+
 TEST(PathSeedLibrary, BadFilesGiveClearErrors)
 {
     EXPECT_NE(loadError("/no/such/file.seeds").find("cannot open"), std::string::npos);

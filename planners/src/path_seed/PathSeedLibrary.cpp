@@ -26,6 +26,26 @@ namespace michi
             record.goal = path.back();
             for (std::size_t i = 0; i + 1 < path.size(); ++i)
                 record.length += (path[i + 1] - path[i]).norm();
+            // Finite joint values can still give an infinite seed (values of ~1e155 or more overflow the length and
+            // the deviations): save() would write it and load() refuse the whole file, so such a path is refused
+            // here, naming what overflowed.
+            const auto finite = [](const std::vector<double> &values)
+            {
+                return std::all_of(values.begin(), values.end(),
+                                   [](double x)
+                                   {
+                                       return std::isfinite(x);
+                                   });
+            };
+            const char *overflow = !std::isfinite(record.length)    ? "length"
+                                   : !finite(record.code.ratio)     ? "ratio"
+                                   : !finite(record.code.deviation) ? "deviation"
+                                   : !finite(record.code.direction) ? "direction"
+                                   : !finite(record.code.axis)      ? "axis"
+                                                                    : nullptr;
+            if (overflow != nullptr)
+                throw std::invalid_argument(std::string("PathSeedLibrary: the path's seed is not finite (its ") +
+                                            overflow + " overflows: joint values too large to encode); not added");
             // The library is shared: a benchmark thread reads its size while a solve() learns into it.
             std::lock_guard<std::mutex> lock(mutex_);
             if (dimension_ != 0 && record.code.dimension != dimension_)

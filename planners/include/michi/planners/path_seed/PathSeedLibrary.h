@@ -45,7 +45,8 @@ namespace michi
             explicit PathSeedLibrary(SeedVariant variant = SeedVariant::BLOCKS);
 
             /** \brief Encode \e path (start, waypoints, goal) and keep it. Throws std::invalid_argument when its
-                dimension differs from the library's (set by the first seed). */
+                dimension differs from the library's (set by the first seed), or when its seed is not finite (joint
+                values too large to encode: save() could not write it as a file load() reads). */
             void add(const std::vector<Eigen::VectorXd> &path);
 
             /** \brief Up to \e k seeds whose queries are nearest to (start, goal), nearest first. */
