@@ -10,6 +10,7 @@
 #include <michi/tools/problem/Problem.h>
 
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <gtest/gtest.h>
@@ -20,6 +21,7 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -481,4 +483,74 @@ TEST(PathSeedPlanner, CheckThreadsBeyondTheirRangeAreRefused)
     EXPECT_THROW(planner.params().setParam("check_threads", "-1"), ompl::Exception);
     EXPECT_TRUE(planner.params().setParam("check_threads", "8"));
     EXPECT_EQ(planner.getCheckThreads(), 8u);
+}
+
+TEST(PathSeedPlanner, LibraryFileAndVariantAgreeWhicheverIsSetFirst)
+{
+    // Found by a tester's sweep: OMPL applies a problem's params in name order, so library_file was loaded
+    // before variant, and a variant other than the file's replaced the loaded library with an empty one: every run
+    // planned from scratch while the settings still named the library file.
+    auto space = std::make_shared<ob::RealVectorStateSpace>(3);
+    space->setBounds(-2., 2.);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    std::map<SeedVariant, std::string> files;
+    for (SeedVariant variant : {SeedVariant::BLOCKS, SeedVariant::ROTATION})
+    {
+        PathSeedLibrary lib(variant);
+        lib.add({vec({0, 0, 0}), vec({0.5, 1, 0}), vec({1, 1, 1})});
+        lib.add({vec({1, 0, 0}), vec({0.5, 1, 1}), vec({-1, 1, 1})});
+        // named without the variants' names, so that a message naming them does not find them in the file's name
+        files[variant] = tempFile(variant == SeedVariant::BLOCKS ? "b.seeds" : "r.seeds");
+        lib.save(files[variant]);
+    }
+    for (const auto &[fileVariant, file] : files)
+        for (SeedVariant wanted : {SeedVariant::BLOCKS, SeedVariant::ROTATION})
+            for (bool fileFirst : {true, false})
+            {
+                const std::string name = michi::planners::seedVariantName(wanted);
+                SCOPED_TRACE(michi::planners::seedVariantName(fileVariant) + " file, variant " + name +
+                             (fileFirst ? ", library_file first" : ", variant first"));
+                PathSeed planner(si);
+                std::string error;
+                try
+                {
+                    for (const std::string key :
+                         {fileFirst ? "library_file" : "variant", fileFirst ? "variant" : "library_file"})
+                        EXPECT_TRUE(planner.params().setParam(key, key == "variant" ? name : file));
+                }
+                catch (const ompl::Exception &e)
+                {
+                    error = e.what();
+                }
+                if (fileVariant == wanted)
+                {
+                    EXPECT_EQ(error, "");
+                    EXPECT_EQ(planner.experienceCount(), 2u);  // the file's seeds are in use
+                    EXPECT_EQ(planner.getVariant(), name);
+                    EXPECT_EQ(planner.getLibraryFile(), file);
+                }
+                else
+                {
+                    // refused, naming the file and both variants
+                    EXPECT_NE(error.find(file), std::string::npos) << error;
+                    EXPECT_NE(error.find(michi::planners::seedVariantName(fileVariant)), std::string::npos) << error;
+                    EXPECT_NE(error.find(name), std::string::npos) << error;
+                }
+                // never a planner that names a library file and holds other seeds than the file's
+                if (!planner.getLibraryFile().empty())
+                {
+                    EXPECT_EQ(planner.experienceCount(), 2u);
+                    EXPECT_EQ(planner.getVariant(), michi::planners::seedVariantName(fileVariant));
+                }
+            }
+    // all params at once, as michi bench sets them (ParamSet::setParams goes in name order)
+    PathSeed planner(si);
+    EXPECT_THROW(planner.params().setParams({{"variant", "rotation"}, {"library_file", files[SeedVariant::BLOCKS]}}),
+                 ompl::Exception);
+    // without a library file the variant starts an empty library of its own, as before
+    PathSeed fresh(si);
+    fresh.setLibrary(PathSeedLibrary::load(files[SeedVariant::BLOCKS]));
+    fresh.setVariant("rotation");
+    EXPECT_EQ(fresh.getVariant(), "rotation");
+    EXPECT_EQ(fresh.experienceCount(), 0u);
 }

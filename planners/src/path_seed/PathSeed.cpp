@@ -78,14 +78,32 @@ namespace michi
 
         PathSeed::~PathSeed() = default;
 
+        namespace
+        {
+            std::string variantMismatch(const std::string &file, SeedVariant held, SeedVariant wanted)
+            {
+                return "PathSeed: library_file " + file + " holds " + seedVariantName(held) + " seeds, but variant " +
+                       seedVariantName(wanted) +
+                       " was requested (seeds of one variant cannot be decoded as another: make the library with "
+                       "that variant, or leave the variant to the file)";
+            }
+        }  // namespace
+
         void PathSeed::setLibraryFile(const std::string &file)
         {
             if (file.empty() || file == libraryFile_)
             {
+                // no file: the library (kept) is no longer the file's, and a later variant may replace it
+                if (file.empty())
+                    libraryFromFile_ = false;
                 libraryFile_ = file;
                 return;
             }
             auto lib = PathSeedLibrary::load(file);  // throws PathSeedFileError naming file and line
+            // The variant may have been set first (params are applied in name order, but a caller may use any): a file
+            // of another variant is refused, as setVariant() refuses a variant other than the loaded file's.
+            if (variant_ && lib->variant() != *variant_)
+                throw ompl::Exception(variantMismatch(file, lib->variant(), *variant_));
             // A library made for another robot would decode into meaningless states: refuse it when it is set, not at
             // solve().
             if (lib->size() > 0 && lib->dimension() != si_->getStateDimension())
@@ -94,6 +112,7 @@ namespace michi
             library_ = lib;
             library_->setCapacity(maxSeeds_);
             libraryFile_ = file;
+            libraryFromFile_ = true;
         }
 
         void PathSeed::setMaxSeeds(unsigned int seeds)
@@ -113,6 +132,7 @@ namespace michi
                 throw std::invalid_argument("PathSeed: null library");
             library_ = std::move(library);
             library_->setCapacity(maxSeeds_);
+            libraryFromFile_ = false;
         }
 
         void PathSeed::setRepair(const std::string &method)
@@ -126,12 +146,17 @@ namespace michi
         void PathSeed::setVariant(const std::string &variant)
         {
             const SeedVariant v = seedVariantFromName(variant);  // throws for an unknown name
-            // Seeds of one variant cannot be decoded as another: changing the variant starts an empty library.
+            // Seeds of one variant cannot be decoded as another: changing the variant starts an empty library. Not a
+            // library loaded from library_file, though: OMPL applies params in name order (library_file first), and
+            // replacing it would leave every run planning from scratch while the settings name the file.
             if (v != library_->variant())
             {
+                if (libraryFromFile_)
+                    throw ompl::Exception(variantMismatch(libraryFile_, library_->variant(), v));
                 library_ = std::make_shared<PathSeedLibrary>(v);
                 library_->setCapacity(maxSeeds_);
             }
+            variant_ = v;
         }
 
         std::string PathSeed::getVariant() const

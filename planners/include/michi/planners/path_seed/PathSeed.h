@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,8 @@ namespace michi
             bool loadExperience(const std::string &file) override;
 
             /** \brief Load a library file (PathSeedLibrary::load; throws PathSeedFileError for a bad file) and use
-                it; an empty name keeps the current library. */
+                it; an empty name keeps the current library. When the variant was set (setVariant) to another than the
+                file's, the file is refused (ompl::Exception naming the file and both variants). */
             void setLibraryFile(const std::string &file);
             const std::string &getLibraryFile() const
             {
@@ -92,7 +94,9 @@ namespace michi
             {
                 return repair_;
             }
-            /** \brief "blocks" (the paper's, default) or "rotation"; changing it empties the library. */
+            /** \brief "blocks" (the paper's, default) or "rotation". Changing it empties the library, unless the
+                library was loaded from library_file: a file of another variant is refused (ompl::Exception naming the
+                file and both variants), whichever of the two is set first. */
             void setVariant(const std::string &variant);
             std::string getVariant() const;
             /** \brief Race RRT-Connect from scratch in a second thread (default); without it, RRT-Connect runs
@@ -209,6 +213,10 @@ namespace michi
 
             PathSeedLibraryPtr library_;
             std::string libraryFile_;
+            /// library_ is the one loaded from libraryFile_ (setLibraryFile), which setVariant() must not replace
+            bool libraryFromFile_{false};
+            /// the variant setVariant() asked for, if it was called: a library file of another variant is refused
+            std::optional<SeedVariant> variant_;
             std::vector<char> continuous_;  ///< per value of a state: an SO(2) component (wraps at +-pi)
             unsigned int candidates_{10};
             unsigned int maxSeeds_{0};
