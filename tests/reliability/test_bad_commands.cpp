@@ -280,6 +280,25 @@ TEST_F(BadCommands, InputsThatWereAcceptedAsIfTheyMeantSomething)
     expectCleanError(
         "path-seed-library " + (dir_ / "p/planar_2link.yaml").string() + " --out " + (dir_ / "lib.seeds").string(),
         "no training queries", dir_ / "lib.seeds");
+    // nor from training queries none of which was solved (found by a tester's sweep: "seeds 0", exit 0): no
+    // time to solve any, in a problem with training queries and in a dataset problem
+    const fs::path ring = dir_ / "p/xarm6_ring.yaml", table = dir_ / "p/mbm_table_pick.yaml";
+    spit(ring, std::regex_replace(slurp(ring), std::regex("training_time: 5"), "training_time: 1.0e-9"));
+    spit(table,
+         std::regex_replace(std::regex_replace(slurp(table), std::regex("training_time: 5"), "training_time: 1.0e-9"),
+                            std::regex("training: 0-49"), "training: 0-1"));
+    for (const auto &[problem, expected] :
+         {std::make_pair(ring, std::string("none of the 60 training queries")),
+          std::make_pair(table, std::string("none of the 2 training problems of table_pick"))})
+    {
+        const CommandRun run =
+            runMichi("path-seed-library " + problem.string() + " --out " + (dir_ / "lib.seeds").string());
+        EXPECT_EQ(run.exitCode, 1) << run.output;
+        const std::string last = lastLine(run.output);
+        EXPECT_NE(last.find(expected), std::string::npos) << last;
+        EXPECT_NE(last.find("1e-09 s each"), std::string::npos) << last;
+        EXPECT_FALSE(fs::exists(dir_ / "lib.seeds")) << run.output;
+    }
 }
 
 TEST_F(BadCommands, SettingsThatHungOrBlamedTheWrongKey)

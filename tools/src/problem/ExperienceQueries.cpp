@@ -375,6 +375,19 @@ namespace michi
             return report.str();
         }
 
+        namespace
+        {
+            /** why path-seed-library writes nothing when RRT-Connect solved none of \e what */
+            std::string noSeedsLearned(const std::string &what, double time)
+            {
+                std::ostringstream message;
+                message << "none of the " << what << " was solved by RRT-Connect in " << time
+                        << " s each (experience.training_time): no seeds to learn, and an empty library written as "
+                           "if it were one would mislead every later run; nothing written";
+                return message.str();
+            }
+        }  // namespace
+
         std::string writePathSeedLibrary(const Problem &problem, const std::string &variant, unsigned int seed,
                                          const std::string &file)
         {
@@ -391,6 +404,12 @@ namespace michi
                 planner->setVariant(variant);
                 const auto sets = loadExperienceDataset(problem);
                 trainOnDataset(problem, dctx, sets.training, problem.experience.trainingTime, {planner}, nullptr);
+                // nothing learned: an empty library would mislead every later run as much as one with no training
+                if (planner->experienceCount() == 0)
+                    throw ProblemError(problem.file, "experience",
+                                       noSeedsLearned(std::to_string(sets.training.entries.size()) +
+                                                          " training problems of " + sets.training.name,
+                                                      problem.experience.trainingTime));
                 planner->saveLibrary(file);
                 std::ostringstream report;
                 report << "michi path-seed-library: wrote " << file << " (" << planner->experienceCount() << " "
@@ -417,6 +436,11 @@ namespace michi
                 }
                 library.add(states);
             }
+            if (library.size() == 0)
+                throw ProblemError(
+                    problem.file, "experience",
+                    noSeedsLearned(std::to_string(problem.experience.training.size()) + " training queries",
+                                   problem.experience.trainingTime));
             library.save(file);
             std::ostringstream report;
             report << "michi path-seed-library: wrote " << file << " (" << library.size() << " " << variant
