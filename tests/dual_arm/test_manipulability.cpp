@@ -1,7 +1,8 @@
 // Tests of the manipulability measure (michi::planners::manipulability, ArmChain), the hand IK and
 // ManipulabilityObjective: w against the closed form of a planar 2-link arm and against the singular values,
 // the Jacobian-based w against a finite-difference Jacobian on both arms of the dual-arm robot, IK meeting
-// the hand-orientation constraints, and the objective's state and motion costs.
+// the hand-orientation constraints, the objective's state and motion costs, and the reach sphere containing every
+// tool position of arms with prismatic joints.
 
 #include "support/TestScenes.h"
 
@@ -16,6 +17,10 @@
 #include <Eigen/SVD>
 
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <string>
 
 using namespace michi;
 using planners::ArmChain;
@@ -220,4 +225,86 @@ TEST(Manipulability, ShortArmRowsAreRejectedNotZero)
     EXPECT_THROW(arm.requireRows(ManipulabilityRows::POSITION), std::invalid_argument);
     EXPECT_THROW(arm.requireRows(ManipulabilityRows::FULL), std::invalid_argument);
     EXPECT_THROW(arm.manipulability({0.7, 0.3}, ManipulabilityRows::FULL), std::invalid_argument);
+}
+
+namespace
+{
+    /** Tool positions of \e arm at many configurations inside the joint limits (uniform samples and every joint at
+        a limit, where a prismatic joint reaches furthest) must stay inside ArmChain::reachSphere. */
+    void expectReachSphereHolds(const ArmChain &arm, const std::string &what)
+    {
+        const auto &model = *arm.model();
+        Eigen::Vector3d centre;
+        double radius = 0.;
+        arm.reachSphere(centre, radius);
+        ompl::RNG rng(11);
+        double farthest = 0.;
+        for (int s = 0; s < 20000; ++s)
+        {
+            std::vector<double> q(model.variableCount(), 0.);
+            for (int v : arm.variables())
+            {
+                const auto &joint = model.variableJoint(static_cast<std::size_t>(v));
+                // a quarter of the samples put each joint at one of its limits
+                const int pick = rng.uniformInt(0, 7);
+                q[v] = pick == 0 ? joint.lower : pick == 1 ? joint.upper : rng.uniformReal(joint.lower, joint.upper);
+            }
+            const double d = (arm.toolPose(q).translation() - centre).norm();
+            farthest = std::max(farthest, d);
+            ASSERT_LE(d, radius + 1e-9) << what << ": the tool is " << d
+                                        << " m from the reach sphere's centre, its radius is " << radius << " m";
+        }
+        // the samples do stretch the arm (the triangle inequality's bound is loose where offsets are not in line)
+        EXPECT_GT(farthest, 0.5 * radius) << what;
+    }
+}  // namespace
+
+TEST(Manipulability, ReachSphereHoldsWithPrismaticJoints)
+{
+    // the dual-arm robot with the small arm's third joint made prismatic (0 to 0.4 m along its link): the sum of the
+    // link offsets alone (0.435 m) is far short of the stretched arm (0.65 m from the shoulder)
+    std::ifstream in(test::sourcePath("problems/robots/dual_arm.urdf"));
+    std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string joint3 = "<joint name=\"small_joint3\" type=\"revolute\">";
+    const auto at = urdf.find(joint3);
+    ASSERT_NE(at, std::string::npos);
+    urdf.replace(at, joint3.size(), "<joint name=\"small_joint3\" type=\"prismatic\">");
+    const std::string limits = "<limit lower=\"-2.09440\" upper=\"2.09440\"";
+    const auto limitAt = urdf.find(limits, at);
+    ASSERT_NE(limitAt, std::string::npos);
+    urdf.replace(limitAt, limits.size(), "<limit lower=\"0\" upper=\"0.4\"");
+    const auto prismatic = validity::RobotModel::fromUrdfString(urdf, "dual_arm_prismatic.urdf", ".");
+    ASSERT_EQ(prismatic->variableJoint(static_cast<std::size_t>(prismatic->variableIndex("small_joint3"))).type,
+              validity::RobotJoint::Type::PRISMATIC);
+    expectReachSphereHolds(ArmChain(prismatic, "small_tip"), "small arm, prismatic joint 3");
+    expectReachSphereHolds(ArmChain(prismatic, "small_link6", Eigen::Vector3d(0.05, 0.02, 0.1)),
+                           "small arm, prismatic joint 3, tool point");
+    expectReachSphereHolds(ArmChain(prismatic, "large_tip"), "large arm");
+
+    // a prismatic first joint (a rail) carries everything after it: the centre cannot be its moving child frame
+    const std::string rail = R"(<?xml version="1.0"?>
+<robot name="rail_arm">
+  <link name="base"/>
+  <joint name="rail" type="prismatic">
+    <parent link="base"/><child link="carriage"/><origin xyz="0.1 0 0"/><axis xyz="1 0 0"/>
+    <limit lower="-0.5" upper="0.5" effort="10" velocity="1"/>
+  </joint>
+  <link name="carriage"/>
+  <joint name="shoulder" type="revolute">
+    <parent link="carriage"/><child link="upper"/><origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="10" velocity="1"/>
+  </joint>
+  <link name="upper"/>
+  <joint name="slide" type="prismatic">
+    <parent link="upper"/><child link="fore"/><origin xyz="0.3 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-0.25" upper="0.1" effort="10" velocity="1"/>
+  </joint>
+  <link name="fore"/>
+  <joint name="tip_joint" type="fixed">
+    <parent link="fore"/><child link="tip"/><origin xyz="0 0 0.05"/>
+  </joint>
+  <link name="tip"/>
+</robot>)";
+    const auto railArm = validity::RobotModel::fromUrdfString(rail, "rail_arm.urdf", ".");
+    expectReachSphereHolds(ArmChain(railArm, "tip"), "arm on a rail");
 }

@@ -109,8 +109,11 @@ namespace michi
             }
             std::vector<Eigen::Isometry3d> zero, moved;
             model_->forwardKinematics(std::vector<double>(model_->variableCount(), 0.).data(), zero);
-            // the last joint in the chain whose frame origin no joint before it moves
-            std::size_t fixed = 0;
+            // from: the first joint of the chain whose frame origin some joint moves. The joints before it keep their
+            // frame origins fixed, so the centre is the origin of that joint's parent link. When no joint is still
+            // (a prismatic first joint, e.g. a rail, moves its own child), the centre is the root link's origin and
+            // every joint counts: the centre must not be a point that the prismatic joint itself carries along.
+            std::size_t from = 0;
             for (std::size_t c = 0; c < chain.size(); ++c)
             {
                 const int child = model_->joints()[chain[c]].childLink;
@@ -122,14 +125,21 @@ namespace michi
                 }
                 if (!still)
                     break;
-                fixed = c;
+                from = c + 1;
             }
-            centre = zero[model_->joints()[chain[fixed]].childLink].translation();
-            // An upper bound on the reach: the sum of the link offsets after the fixed point, plus the tool offset
-            // (triangle inequality); the sphere may be larger than the real work space, never smaller.
+            centre = zero[from < chain.size() ? model_->joints()[chain[from]].parentLink : tip_].translation();
+            // An upper bound on the reach (triangle inequality): from the centre, each later joint moves its child's
+            // origin by its offset plus, for a prismatic joint, q along its unit axis (|q| <= max(|lower|, |upper|)),
+            // and the tool point is toolPoint_ from the tip's origin. The sphere may be larger than the real work
+            // space, never smaller: DualArmWorkspace::compute() skips every cell outside it.
             radius = toolPoint_.norm();
-            for (std::size_t c = fixed + 1; c < chain.size(); ++c)
-                radius += model_->joints()[chain[c]].origin.translation().norm();
+            for (std::size_t c = from; c < chain.size(); ++c)
+            {
+                const auto &joint = model_->joints()[chain[c]];
+                radius += joint.origin.translation().norm();
+                if (joint.type == validity::RobotJoint::Type::PRISMATIC)
+                    radius += std::max(std::abs(joint.lower), std::abs(joint.upper));
+            }
         }
     }  // namespace planners
 }  // namespace michi

@@ -73,9 +73,10 @@ namespace michi
             void requireRows(ManipulabilityRows rows) const;
 
             /** \brief A point that stays fixed whatever the arm's joints do (the origin of the last joint whose
-                origin no earlier joint moves, e.g. the shoulder of an arm with a vertical first joint) and an
-                upper bound of the tool point's distance from it: every reachable tool position is inside this
-                sphere. */
+                origin no earlier joint moves, e.g. the shoulder of an arm with a vertical first joint; the root
+                link's origin when the first joint is prismatic) and an upper bound of the tool point's distance
+                from it (the later joints' offsets, each prismatic joint's max(|lower|, |upper|) and the tool
+                point's offset): every reachable tool position is inside this sphere. */
             void reachSphere(Eigen::Vector3d &centre, double &radius) const;
 
             /** \brief Clamp the arm's values of \e q into the joint limits. */
