@@ -1,6 +1,7 @@
 // `michi dualarm` as a user runs it (on a coarse grid so it takes a few seconds): it writes dualarm.json with the
 // work positions and the stirring motion's manipulability, and the pictures; a problem without a dual_arm section
-// or with a misspelt key gives a one-line error naming the file and key, a non-zero exit and no output folder.
+// or with a misspelt key gives a one-line error naming the file and key, a non-zero exit and no output folder; an
+// analysis that finds no work position says why.
 #include "support/MichiCommand.h"
 #include "support/TestScenes.h"
 
@@ -21,8 +22,9 @@ namespace
     using michi::test::runMichi;
     using michi::test::slurp;
 
-    /** The bundled dual_arm problem, made coarse and quick, written to \e dir; \e edit changes its text. */
-    std::string quickProblem(const fs::path &dir, const std::pair<std::string, std::string> &edit = {})
+    /** The bundled dual_arm problem, made coarse and quick, written to \e dir; \e edit and \e edit2 change its text. */
+    std::string quickProblem(const fs::path &dir, const std::pair<std::string, std::string> &edit = {},
+                             const std::pair<std::string, std::string> &edit2 = {})
     {
         std::string text = slurp(michi::test::sourcePath("problems/dual_arm.yaml"));
         auto replace = [&text](const std::string &from, const std::string &to)
@@ -37,8 +39,9 @@ namespace
         replace("seed_samples: 3000", "seed_samples: 1500");
         replace("planning: {planner: geometric::RRTstar, time: 2}",
                 "planning: {planner: geometric::RRTstar, time: 0.2}");
-        if (!edit.first.empty())
-            replace(edit.first, edit.second);
+        for (const auto *e : {&edit, &edit2})
+            if (!e->first.empty())
+                replace(e->first, e->second);
         const fs::path file = dir / "dual_arm_quick.yaml";
         std::ofstream(file.string()) << text;
         return file.string();
@@ -105,4 +108,31 @@ TEST_F(DualArmCli, BadProblemNamesFileAndKeyAndWritesNothing)
     run = runMichi("dualarm " + misspelt);
     EXPECT_EQ(run.exitCode, 2);
     EXPECT_NE(run.output.find("dualarm needs --out DIR"), std::string::npos) << run.output;
+}
+
+TEST_F(DualArmCli, FailedAnalysisSaysWhyAndWritesNothing)
+{
+    const fs::path out = dir_ / "out";
+    // A 1.5 m stirring square cannot be drawn anywhere. The threshold reads as a number (it was "w > 0.000000" for
+    // 1e-9), and the reason the square failed is given, not only the manipulability explanation.
+    const std::string bigSquare = quickProblem(dir_, {"threshold: 0.004", "threshold: 0.000000001"},
+                                               {"stirring: {side: 0.03, step: 0.0025}", "stirring: {side: 1.5}"});
+    auto run = runMichi("dualarm " + bigSquare + " --out " + out.string());
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find("manipulability area (w > 1e-09)"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("cannot complete the stirring square of side 1.5 m (first: the small arm"),
+              std::string::npos)
+        << run.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    // The large arm's "tip" at its mount reaches no cell: no cell is reached by both arms, which is not "both reach
+    // 0 but collide there".
+    const std::string noLargeArm =
+        quickProblem(dir_, {"tip: large_tip", "tip: large_base"}, {"perpendicular_to: [0, 0, 1]", "along: [0, 0, 1]"});
+    run = runMichi("dualarm " + noLargeArm + " --out " + out.string());
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.output.find("no common work space (large arm reaches 0 cells"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("no cell is reached by both"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("collide"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(out));
 }

@@ -332,8 +332,12 @@ namespace michi
             const auto start = std::chrono::steady_clock::now();
             sampleSeeds(large_, largeSeeds_, largeTips_);
             sampleSeeds(small_, smallSeeds_, smallTips_);
-            if (largeSeeds_.empty() || smallSeeds_.empty())
-                throw std::runtime_error("dual arm: no joint-space sample satisfies an arm's hand orientation");
+            for (const ArmTask *task : {&large_, &small_})
+                if ((task == &large_ ? largeSeeds_ : smallSeeds_).empty())
+                    throw std::runtime_error("dual arm: no joint-space sample of the " + task->name + " arm (to '" +
+                                             task->arm.tipLinkName() + "') satisfies its hand orientation (" +
+                                             std::to_string(settings_.seedSamples) +
+                                             " samples pulled onto it by IK within the joint limits)");
 
             // the grid covers both arms' reach spheres (above the floor z = 0)
             Eigen::Vector3d cl, cs;
@@ -452,10 +456,14 @@ namespace michi
                 std::size_t both = 0;
                 for (auto f : flags_)
                     both += (f & REACH_LARGE) && (f & REACH_SMALL);
-                throw std::runtime_error("dual arm: the two arms have no common work space (large arm reaches " +
-                                         std::to_string(count(REACH_LARGE)) + " cells, small arm " +
-                                         std::to_string(count(REACH_SMALL)) + ", both " + std::to_string(both) +
-                                         " but collide there)");
+                // "both N but collide there" only when some cell is reached by both: with none, the arms' work
+                // spaces do not overlap at all.
+                throw std::runtime_error(
+                    "dual arm: the two arms have no common work space (large arm reaches " +
+                    std::to_string(count(REACH_LARGE)) + " cells, small arm " + std::to_string(count(REACH_SMALL)) +
+                    (both == 0 ? std::string(", no cell is reached by both")
+                               : ", both " + std::to_string(both) + " but the arms collide in every one of them") +
+                    ")");
             }
 
             auto centroidOf = [this](std::uint8_t flag)
@@ -499,19 +507,56 @@ namespace michi
 
             // Task B (stirring): the positions from which the whole square keeps w above the threshold; their centroid
             // is the work position.
+            // why the cells failed, for the error when none succeeds: the square could not be completed (the first
+            // reason kept), or it was completed but w dropped to the threshold or below on the way
+            std::size_t incomplete = 0, belowThreshold = 0;
+            std::string firstFailure;
+            double bestMinW = 0.;
             for (std::size_t c = 0; c < n; ++c)
                 if (flags_[c] & AREA)
                 {
                     const StirringMotion m = stir(grid_.centre(c), configs_[c]);
                     if (m.valid && m.minManipulability > settings_.threshold)
                         flags_[c] |= STIR;
+                    else if (!m.valid)
+                    {
+                        if (incomplete++ == 0)
+                            firstFailure = m.failure;
+                    }
+                    else
+                    {
+                        ++belowThreshold;
+                        bestMinW = std::max(bestMinW, m.minManipulability);
+                    }
                 }
             stirSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - mid).count();
             if (count(STIR) == 0)
-                throw std::runtime_error(
-                    "dual arm: no position keeps the whole stirring motion in the manipulability "
-                    "area (w > " +
-                    std::to_string(settings_.threshold) + ")");
+            {
+                // %g-like numbers: a threshold of 1e-9 printed with 6 fixed decimals read "w > 0.000000"
+                std::ostringstream why;
+                why << "dual arm: no position keeps the whole stirring motion in the manipulability area (w > "
+                    << settings_.threshold << "): ";
+                if (count(AREA) == 0)
+                {
+                    float maxW = 0.f;
+                    for (std::size_t c = 0; c < n; ++c)
+                        if (flags_[c] & COMMON)
+                            maxW = std::max(maxW, smallW_[c]);
+                    why << "no cell of the common work space (" << count(COMMON)
+                        << " cells) has the small arm's w above it (the highest is " << maxW << ")";
+                }
+                else
+                {
+                    why << "of the " << count(AREA) << " cells of the manipulability area, ";
+                    if (incomplete > 0)
+                        why << incomplete << " cannot complete the stirring square of side " << settings_.stirSide
+                            << " m (first: " << firstFailure << ")" << (belowThreshold > 0 ? " and " : "");
+                    if (belowThreshold > 0)
+                        why << belowThreshold << " complete it but w drops to the threshold or below on the way "
+                            << "(the best keeps w >= " << bestMinW << ")";
+                }
+                throw std::runtime_error(why.str());
+            }
             centroidB_ = centroidOf(STIR);
             place(STIR, centroidB_, positionB_, configB_);
         }
