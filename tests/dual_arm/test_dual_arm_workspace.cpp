@@ -2,7 +2,8 @@
 // the common work space is inside both arms' work spaces, a position in the manipulability area gives w above
 // the threshold at IK, both work positions are reached by both arms with the stated hand orientations and
 // without collisions, and the stirring motion at B keeps w above the threshold at every state. Also the
-// dual_arm section of the problem file: strict keys with errors naming the file and key.
+// dual_arm section of the problem file: strict keys with errors naming the file and key (also for a small arm too
+// short for the manipulability rows).
 
 #include "support/TestScenes.h"
 
@@ -178,4 +179,6 @@ TEST(DualArmProblem, StrictKeysNameFileAndKey)
     expectError("manipulability_rows: full", "manipulability_rows: some", "dual_arm.manipulability_rows");
     expectError("stirring: {side: 0.03, step: 0.0025}", "stirring: {side: 0.03, step: 0.1}", "dual_arm.stirring.step");
     expectError("small: [small_joint1, small_joint2,", "small: [small_joint2, small_joint1,", "robot.group");
+    // a small arm of 5 joints has no 6-row manipulability (manipulability_rows: full): named by file and key
+    expectError("tip: small_tip", "tip: small_link5", "dual_arm.small.tip");
 }

@@ -187,9 +187,18 @@ namespace michi
                 const Eigen::Vector3d v = r.vector(n["paper_handover"], "dual_arm.paper_handover");
                 spec.paperHandover = {{v.x(), v.y(), v.z()}};
             }
-            // the planned group must be the small arm's joints (the approach motions are planned for it)
             const planners::ArmChain small(problem.model, spec.small.tip, spec.small.toolPoint);
             const planners::ArmChain large(problem.model, spec.large.tip, spec.large.toolPoint);
+            // Checked here, so the error names the file and key (DualArmWorkspace's own check names only the tip).
+            const bool full = s.rows == planners::ManipulabilityRows::FULL;
+            if (small.size() < (full ? 6u : 3u))
+                r.fail("dual_arm.small.tip", "the small arm (root to '" + spec.small.tip + "') has " +
+                                                 std::to_string(small.size()) +
+                                                 " joints: with manipulability_rows: " + (full ? "full" : "position") +
+                                                 " its manipulability is 0 in every configuration (use " +
+                                                 (full ? "manipulability_rows: position or " : "") +
+                                                 "an arm with at least " + (full ? "6" : "3") + " joints)");
+            // the planned group must be the small arm's joints (the approach motions are planned for it)
             if (problem.groupVariables != small.variables())
                 r.fail("robot.group", "expected the small arm's joints (root to '" + spec.small.tip +
                                           "', in chain order): the approach motions are planned for it");

@@ -30,8 +30,8 @@ namespace michi
         };
 
         /** \brief Read the dual_arm section of \e problem's file (strict keys). Throws ProblemError naming the
-            file and key; checks the links exist in the problem's robot and that the planned group is the small
-            arm's joints. */
+            file and key; checks the links exist in the problem's robot, that the planned group is the small
+            arm's joints and that the small arm has enough joints for manipulability_rows. */
         DualArmSpec loadDualArmSpec(const Problem &problem);
 
         /** \brief The two ArmTasks of a spec on the problem's robot model. */
