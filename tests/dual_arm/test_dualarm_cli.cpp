@@ -1,7 +1,7 @@
 // `michi dualarm` as a user runs it (on a coarse grid so it takes a few seconds): it writes dualarm.json with the
 // work positions and the stirring motion's manipulability, and the pictures; a problem without a dual_arm section
 // or with a misspelt key gives a one-line error naming the file and key, a non-zero exit and no output folder; an
-// analysis that finds no work position says why.
+// analysis that finds no work position says why; a rerun without --html removes the earlier run's replay page.
 #include "support/MichiCommand.h"
 #include "support/TestScenes.h"
 
@@ -135,4 +135,24 @@ TEST_F(DualArmCli, FailedAnalysisSaysWhyAndWritesNothing)
     EXPECT_NE(run.output.find("no cell is reached by both"), std::string::npos) << run.output;
     EXPECT_EQ(run.output.find("collide"), std::string::npos) << run.output;
     EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(DualArmCli, RerunWithoutHtmlRemovesTheEarlierReplayPage)
+{
+    const fs::path out = dir_ / "out";
+    const std::string problem = quickProblem(dir_);
+    const fs::path page = out / "dual_arm.html";
+    auto run = runMichi("dualarm " + problem + " --out " + out.string() + " --html");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    ASSERT_TRUE(fs::exists(page));
+    // the page of the first run would show that run's motions beside the second run's results
+    run = runMichi("dualarm " + problem + " --out " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(fs::exists(out / "dualarm.json"));
+    EXPECT_FALSE(fs::exists(page));
+    // a file of that name that michi did not write stays
+    std::ofstream(page.string()) << "<html>my notes</html>\n";
+    run = runMichi("dualarm " + problem + " --out " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(slurp(page), "<html>my notes</html>\n");
 }

@@ -382,6 +382,9 @@ namespace michi
                 replay.fixedValues = fixedB;
                 writeReplayPage(problem, paths, stage.path(problem.name + ".html").string(), replay);
             }
+            else
+                // a page from an earlier run with --html would show another run's motions beside these results
+                stage.removeStale(problem.name + ".html", REPLAY_PAGE_MARK);
             stage.commit();
             return json.str();
         }

@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -299,6 +300,11 @@ namespace michi
             return dir_ / name;
         }
 
+        void StagedDirectory::removeStale(const std::string &name, const std::string &mark)
+        {
+            stale_.emplace_back(name, mark);
+        }
+
         void StagedDirectory::commit()
         {
             namespace fs = boost::filesystem;
@@ -328,6 +334,23 @@ namespace michi
                                                  "move them away or choose another folder");
                 }
                 moves.emplace_back(entry.path(), target);
+            }
+            // Before the moves: a file that cannot be removed is reported while the folder still holds the earlier
+            // run's outputs whole.
+            for (const auto &stale : stale_)
+            {
+                const fs::path target = out_ / stale.first;
+                if (fs::exists(fs::symlink_status(dir_ / stale.first, ec)) ||
+                    !fs::is_regular_file(fs::symlink_status(target, ec)))
+                    continue;
+                std::ifstream in(target.string(), std::ios::binary);
+                const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+                if (text.find(stale.second) == std::string::npos)
+                    continue;
+                fs::remove(target, ec);
+                if (ec)
+                    throw std::runtime_error("output folder '" + out_.string() + "': cannot remove '" +
+                                             target.string() + "' of an earlier run: " + ec.message());
             }
             try
             {

@@ -20,6 +20,8 @@ namespace michi
 {
     namespace tools
     {
+        const char *const REPLAY_PAGE_MARK = "\"format\":\"michi-replay-1\"";
+
         namespace
         {
             namespace ob = ompl::base;
@@ -267,7 +269,7 @@ namespace michi
             }
             pathsJson += "]";
 
-            std::string out = "{\"format\":\"michi-replay-1\",\"problem\":" + jsonString(problem.name) +
+            std::string out = std::string("{") + REPLAY_PAGE_MARK + ",\"problem\":" + jsonString(problem.name) +
                               ",\"kind\":" + (problem.kind == Problem::Kind::SE2 ? "\"se2\"" : "\"arm\"") +
                               ",\"description\":" + jsonString(problem.description) + ",\"valueNames\":[";
             const auto names = problem.valueNames();

@@ -42,7 +42,14 @@ namespace michi
             /** \brief Where to write the staged entry \e name. */
             boost::filesystem::path path(const std::string &name) const;
 
-            /** \brief Move every staged entry into the output folder. */
+            /** \brief At commit(), when nothing named \e name was staged, remove the file \e name from the output
+                folder if it contains \e mark: an optional output of an earlier run that this run does not write
+                (a replay page from a run with --html) would otherwise sit beside results it does not belong to.
+                Anything else of that name (a folder, a link, a file without the mark) is not michi's output and
+                is left alone. */
+            void removeStale(const std::string &name, const std::string &mark);
+
+            /** \brief Move every staged entry into the output folder (and remove the stale files of removeStale()). */
             void commit();
 
             /** \brief The output folder (absolute). */
@@ -57,6 +64,7 @@ namespace michi
 
             boost::filesystem::path out_;
             boost::filesystem::path dir_;
+            std::vector<std::pair<std::string, std::string>> stale_;  ///< removeStale(): name, mark
             int slot_{-1};  ///< registration for removal on a signal (FileOutput.cpp)
         };
     }  // namespace tools

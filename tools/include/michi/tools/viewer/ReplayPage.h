@@ -35,6 +35,9 @@ namespace michi
             std::shared_ptr<const validity::Scene> scene;
         };
 
+        /** \brief Text that every replay page contains (the format of its data block). */
+        extern const char *const REPLAY_PAGE_MARK;
+
         /** \brief The data a replay page shows, as JSON: the scene (obstacle shapes and poses, moving obstacles'
             key frames, an occupancy map as an image), the robot's collision geometry and, for every path, its
             waypoints and the poses of every moving body at each interpolated frame. michi computes every pose
